@@ -1,0 +1,60 @@
+// The job JSON of SPEC §4: parsing, validation, defaults and canonical form.
+//
+// Every field is optional and defaults to the paper's scene. Unknown fields, wrong types
+// and out-of-range values are errors; all errors of a spec are reported together, each
+// with the JSON pointer of the offending field and the reason.
+#pragma once
+
+#include "solver/params.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::api {
+
+struct FieldError {
+  std::string pointer; // JSON pointer, e.g. "/material/poisson_ratio" ("" = the whole document)
+  std::string reason;  // e.g. "must be in (0, 0.5), got 0.5"
+};
+
+struct ValidationLimits {
+  double max_memory_bytes = 8.0e9; // a job whose memory estimate exceeds this is refused
+};
+
+struct JobSpec {
+  SimulationParams params;
+  std::string name;              // free text, not part of the physics
+  std::vector<std::string> tags; // free text, not part of the physics
+  nlohmann::json canonical;      // every field present (defaults filled); keys sorted on dump
+  std::string sha256;            // SHA-256 (hex) of the canonical physics: see spec_hash()
+  double memory_estimate_bytes = 0.0;
+};
+
+struct ParseResult {
+  std::optional<JobSpec> spec; // set when errors is empty
+  std::vector<FieldError> errors;
+  bool ok() const { return errors.empty(); }
+};
+
+// Validate a parsed JSON document and build the job.
+ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits = {});
+
+// Parse text first (a syntax error is one FieldError with pointer "" and the parser's
+// message); then as above.
+ParseResult parse_job_text(const std::string& text, const ValidationLimits& limits = {});
+
+// The canonical text: canonical JSON dumped with sorted keys and no whitespace.
+std::string canonical_text(const nlohmann::json& canonical);
+
+// SHA-256 (lower-case hex) of the canonical text of the physics: the canonical spec
+// without `name`, `tags`, `threads` and `output` (which do not change the metrics).
+std::string spec_hash(const nlohmann::json& canonical);
+
+// SHA-256 of arbitrary bytes / of a file's content (lower-case hex).
+std::string sha256_hex(const std::string& bytes);
+std::string sha256_file(const std::string& path);
+
+} // namespace slipfront::api

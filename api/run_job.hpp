@@ -1,0 +1,35 @@
+// Run one validated job: the solver, the HDF5 result file and the metrics JSON.
+// Shared by `slipfront run` and the server's workers.
+#pragma once
+
+#include "api/job_spec.hpp"
+#include "solver/simulation.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace slipfront::api {
+
+struct JobOutput {
+  RunResult result;
+  nlohmann::json metrics;    // metrics_json(result)
+  std::string result_path;   // final path of the HDF5 file ("" if none was asked for)
+  std::uint64_t result_size = 0;
+  std::string result_sha256; // of the file's bytes
+};
+
+// Runs the job. If output_path is not empty, the HDF5 file is written to a temporary file
+// beside it and renamed into place only when the run ends with a result (not when it was
+// cancelled or diverged: then no file is left behind).
+JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunHooks& hooks = {});
+
+// The metrics of SPEC §2 as one JSON object (names are part of the API), including the
+// cost (wall_time_s, steps, dt), mesh facts and the code version.
+nlohmann::json metrics_json(const RunResult& result);
+
+// The front (x1, arrival_time, rupture_speed) as JSON arrays; null where undefined.
+nlohmann::json front_json(const RunResult& result);
+
+} // namespace slipfront::api

@@ -1,0 +1,118 @@
+// Parameters of one rupture simulation. Every default is the paper's scene
+// (Kammer et al. 2014, Sec. 2; SPEC §1). The job JSON of api/ maps onto these
+// structs one to one; the solver itself knows nothing of JSON.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace slipfront {
+
+// Linear isotropic elastic solid in plane strain.
+struct Material {
+  double density = 1.0;       // rho [kg/m^3]
+  double young_modulus = 2.5; // E [Pa]
+  double poisson_ratio = 0.25;
+
+  double shear_modulus() const { return young_modulus / (2.0 * (1.0 + poisson_ratio)); }
+  double lame_lambda() const {
+    return young_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
+  }
+  // Plane-strain wave speeds: c_p = sqrt((lambda + 2 mu)/rho), c_s = sqrt(mu/rho).
+  double p_wave_speed() const { return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) / density); }
+  double s_wave_speed() const { return std::sqrt(shear_modulus() / density); }
+};
+
+// Domain [x_min, x_min + width) x [0, height], periodic in x1, on a rigid plane at x2 = 0.
+struct Geometry {
+  double width = 40.0;
+  double height = 20.0;
+  bool auto_height = false; // "height": "auto": smallest h free of top reflections (see mesh.hpp)
+  double x_min = -10.0;
+  double nodes_per_meter = 40.0; // n_d; the element size is 1/n_d
+};
+
+// Top boundary condition of the perturbation field.
+enum class TopBoundary {
+  traction,  // keeps the remote traction (free surface for the perturbation)
+  absorbing, // Lysmer-Kuhlemeyer dashpots: sigma.n = -rho c v (normal c_p, tangential c_s)
+};
+
+// Remote uniform load (the initial, uniform, stuck state).
+struct Loading {
+  double normal_stress = -0.0150; // tau2_0 [Pa], negative = compressive
+  double shear_stress = 0.0105;   // tau1_0 [Pa], drives the solid towards +x1
+};
+
+enum class FrictionLaw {
+  prakash_clifton, // simplified Prakash-Clifton regularisation (paper eq. 1)
+  coulomb,         // tau_s = mu * max(0, p) at every instant
+};
+
+// How the strength ODE d(tau_s)/dt = -(|V|+V*)/L (tau_s - mu p) is advanced over a step.
+enum class StrengthUpdate {
+  exponential,    // exact for coefficients frozen over the step: stable for every L
+  explicit_euler, // forward Euler: unstable once dt (|V|+V*)/L > 2 (offered for failure studies)
+};
+
+struct Friction {
+  FrictionLaw law = FrictionLaw::prakash_clifton;
+  double mu = 0.75;    // static = kinetic coefficient
+  double L = 5e-5;     // characteristic length [m]
+  double v_star = 1e-4; // reference velocity V* [m/s]
+  StrengthUpdate update = StrengthUpdate::exponential;
+};
+
+// Nucleation ellipse in the x1-t plane (paper appendix A, after Cochard & Rice 2000).
+struct Nucleation {
+  bool enabled = true;
+  double a = 0.6;     // a_ell [m]
+  double b = 3.6;     // b_ell [m]
+  double v = 0.825;   // v_ell [m/s]
+  double alpha = 0.8; // largest relative reduction of the normal load
+};
+
+struct TimeControl {
+  double duration = 16.0;     // simulated time [s]
+  double safety_factor = 0.5; // dt = safety_factor * stable step of the discrete system
+  bool stop_on_arrest = true; // end the run once the rupture has arrested (see arrest rule)
+  double arrest_window = 1.0; // [s] the front must stand still and the interface be quiet this long
+};
+
+// What the interface records hold (the metrics always use every node and every step).
+struct OutputSampling {
+  double interval = 0.02; // time between stored samples [s]; rounded to whole steps
+  int space_stride = 1;   // store every k-th interface node
+};
+
+struct Probes {
+  double arrival_x1 = 11.0;  // arrival_time_at_probe
+  double spectrum_x1 = 6.0;  // tau_s(t) spectrum for the spectral L_c estimate
+  double front_threshold = 1e-6; // slip velocity that defines the front [m/s]
+};
+
+// An extra traction applied at the interface (for verification scenes, e.g. a uniform
+// tensile step). Returns (t1, t2) [Pa] acting on the solid at (x1, t); t2 > 0 pulls the
+// solid away from the rigid plane.
+struct InterfaceTraction {
+  double t1 = 0.0;
+  double t2 = 0.0;
+};
+using ExtraInterfaceLoad = std::function<InterfaceTraction(double x1, double t)>;
+
+struct SimulationParams {
+  Material material;
+  Geometry geometry;
+  TopBoundary top = TopBoundary::traction;
+  Loading loading;
+  Friction friction;
+  Nucleation nucleation;
+  TimeControl time;
+  OutputSampling output;
+  Probes probes;
+  int threads = 0; // 0 = all hardware threads
+  ExtraInterfaceLoad extra_load; // empty for every job; used by verification tests
+};
+
+} // namespace slipfront
