@@ -54,4 +54,22 @@ double filter_amplitude_ratio(double frequency, double L, double v_star, double 
 double filter_critical_length(double frequency, double v_star, double slip_velocity,
                               double ratio = 0.98);
 
+// The ruptured stretch of the interface: the run of consecutive nodes (periodic in x1) that
+// slipped and that contains the nucleation patch's slipped nodes. Positions are unwrapped
+// so that left <= right even when the stretch crosses the periodic seam.
+struct RupturedStretch {
+  bool ruptured = false; // a node outside the nucleation patch slipped
+  bool any_slip = false;
+  double left = 0, right = 0; // smallest and largest x1 reached [m]
+  std::vector<int> nodes;     // node indices from left to right
+};
+RupturedStretch ruptured_stretch(const std::vector<double>& x1,
+                                 const std::vector<double>& arrival_time, double patch_lo,
+                                 double patch_hi, double width);
+
+// Frequency content of a strength record tau_s(t) (uniform steps): the frequency below which
+// `fraction` of the power of the detrended, Hann-windowed signal lies (DC excluded).
+double spectral_cutoff_frequency(const std::vector<double>& signal, double dt,
+                                 double fraction = 0.99);
+
 } // namespace slipfront

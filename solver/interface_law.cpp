@@ -1,0 +1,50 @@
+#include "solver/interface_law.hpp"
+
+#include "solver/friction.hpp"
+
+#include <cmath>
+
+namespace slipfront {
+
+InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2, double v1,
+                                         double v2, double f1, double f2, double strength) {
+  InterfaceNodeStep out;
+  // 1. Trial (free) velocity and next normal displacement.
+  const double v1_trial = v1 + c.dt * f1 / c.mass;
+  const double v2_trial = v2 + c.dt * f2 / c.mass;
+  const double u2_trial = u2 + c.dt * v2_trial;
+
+  // 2. Normal reaction that closes the gap exactly: u2_next = u2_trial + dt^2 R / m = 0.
+  const double reaction = -c.mass * u2_trial / (c.dt * c.dt);
+  const bool in_contact = reaction > 0.0;
+  out.contact_force2 = in_contact ? reaction : 0.0;
+  out.pressure = out.contact_force2 / c.tributary_length;
+
+  // 3. Strength over the step: this step's pressure, last known slip speed.
+  out.strength = advance_strength(c.friction, strength, out.pressure, std::abs(v1), c.dt);
+
+  // 4. Tangential: stick if the plane can hold the node, else slip at strength.
+  // The constrained velocities are set exactly (not through the force, whose round-off
+  // would leave 1e-20 m/s of noise on a stuck, closed node).
+  out.v2 = in_contact ? -u2 / c.dt : v2_trial; // in contact: u2_next = u2 + dt v2 = 0
+  if (!in_contact) {
+    out.state = NodeState::open;
+    out.contact_force1 = 0.0;
+    out.v1 = v1_trial;
+    return out;
+  }
+  const double stick_force = -c.mass * v1_trial / c.dt;
+  const double limit = out.strength * c.tributary_length;
+  if (std::abs(stick_force) <= limit) {
+    out.state = NodeState::stick;
+    out.contact_force1 = stick_force;
+    out.v1 = 0.0;
+  } else {
+    out.state = NodeState::slip;
+    out.contact_force1 = v1_trial > 0.0 ? -limit : limit;
+    out.v1 = v1_trial + c.dt * out.contact_force1 / c.mass;
+  }
+  return out;
+}
+
+} // namespace slipfront

@@ -1,0 +1,265 @@
+#include "solver/rupture_model.hpp"
+
+#include "solver/element_stiffness.hpp"
+#include "solver/mesh_size.hpp"
+#include "solver/nucleation.hpp"
+#include "solver/stable_time_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slipfront {
+
+namespace {
+
+// v^{n+1/2} = v^{n-1/2} - dt/m (K u^n) for one bulk or top row (no dashpot). With kEnergy,
+// also the row's kinetic term 1/2 m |v^{n+1/2}|^2 and strain term 1/2 (K u^n).u^{n+1}.
+template <bool kEnergy>
+void free_row_update(const NodeStencil& s, const double* uxm, const double* uym, const double* ux0,
+                     const double* uy0, const double* uxp, const double* uyp, double* __restrict vx,
+                     double* __restrict vy, int nx, double dt, double mass, double& kinetic,
+                     double& strain) {
+  const double dt_over_m = dt / mass;
+  double kin = 0, str = 0;
+  for_each_node_force(s, uxm, uym, ux0, uy0, uxp, uyp, nx, [&](int i, double kx, double ky) {
+    const double vx_new = vx[i] - dt_over_m * kx;
+    const double vy_new = vy[i] - dt_over_m * ky;
+    vx[i] = vx_new;
+    vy[i] = vy_new;
+    if constexpr (kEnergy) {
+      kin += vx_new * vx_new + vy_new * vy_new;
+      str += kx * (ux0[i] + dt * vx_new) + ky * (uy0[i] + dt * vy_new);
+    }
+  });
+  if constexpr (kEnergy) {
+    kinetic = 0.5 * mass * kin;
+    strain = 0.5 * str;
+  }
+}
+
+} // namespace
+
+RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
+  const MeshSize m = mesh_size(params);
+  nx_ = m.nx;
+  ny_ = m.ny;
+  dx_ = m.dx;
+  height_ = m.height;
+  stencils_ = build_stencils(q4_plane_strain_stiffness(params.material));
+  stable_dt_ = stable_time_step(stencils_, nx_, ny_, dx_, params.material.density);
+  dt_ = params.time.safety_factor * stable_dt_;
+  u_ = VectorField(nx_, ny_);
+  v_ = VectorField(nx_, ny_);
+  zero_row_.assign(nx_ + 2, 0.0);
+  load1_.assign(nx_, 0.0);
+  load2_.assign(nx_, 0.0);
+  kx0_.assign(nx_, 0.0);
+  ky0_.assign(nx_, 0.0);
+  node_ = {node_mass(0), dt_, dx_, params.friction};
+
+  const double p0 = std::abs(params.loading.normal_stress);
+  iface_.x1.resize(nx_);
+  for (int i = 0; i < nx_; ++i) iface_.x1[i] = params.geometry.x_min + i * dx_;
+  iface_.velocity.assign(nx_, 0.0);
+  iface_.half_velocity.assign(nx_, 0.0);
+  iface_.slip.assign(nx_, 0.0);
+  iface_.opening.assign(nx_, 0.0);
+  iface_.shear_traction.assign(nx_, params.loading.shear_stress);
+  iface_.pressure.assign(nx_, p0);
+  iface_.strength.assign(nx_, params.friction.mu * p0); // tau_s(0) = mu p0
+  iface_.state.assign(nx_, std::int8_t(NodeState::stick));
+  row_kinetic_.assign(ny_, 0.0);
+  row_strain_.assign(ny_, 0.0);
+  row_dissipated_.assign(ny_, 0.0);
+}
+
+double RuptureModel::node_mass(int j) const {
+  const double full = params_.material.density * dx_ * dx_;
+  return (j == 0 || j == ny_ - 1) ? 0.5 * full : full;
+}
+
+void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
+  // Load changes at the interface at t_n: nucleation (tensile) and any extra traction.
+  const double t = time();
+  for (int i = 0; i < nx_; ++i) {
+    const double x1 = iface_.x1[i];
+    InterfaceTraction extra;
+    if (params_.extra_load) extra = params_.extra_load(x1, t);
+    const double nucleation =
+        nucleation_traction(params_.nucleation, params_.loading.normal_stress, x1, t);
+    load1_[i] = extra.t1 * dx_;
+    load2_[i] = (nucleation + extra.t2) * dx_;
+  }
+
+  // Rows at and above active_rows_ + 1 are exact zeros and stay so in this step.
+  const int rows = std::min(ny_, active_rows_ + 1);
+  const int members = rows >= 2 * team.size() ? team.size() : 1;
+  auto chunk = [&](int m) { return RowRange{int(long(rows) * m / members), int(long(rows) * (m + 1) / members)}; };
+  team.run([&](int member, int) {
+    if (member < members) sweep_rows(chunk(member), compute_energy);
+  });
+  // The first and last row of each chunk are neighbours of another chunk: their
+  // displacement is advanced only now that every member has read it.
+  for (int m = 0; m < members; ++m) {
+    const RowRange r = chunk(m);
+    update_displacement_row(r.begin);
+    if (r.end - 1 > r.begin) update_displacement_row(r.end - 1);
+  }
+  if (rows > active_rows_ && !row_is_zero(rows - 1)) active_rows_ = rows;
+
+  // Sum the per-row terms in row order: the same result for any number of threads.
+  double dissipated = 0;
+  for (int j = 0; j < rows; ++j) dissipated += row_dissipated_[j];
+  energy_.dissipated += dissipated;
+  energy_.external_work += step_work_;
+  if (compute_energy) {
+    double kinetic = 0, strain = 0;
+    for (int j = 0; j < rows; ++j) {
+      kinetic += row_kinetic_[j];
+      strain += row_strain_[j];
+    }
+    energy_.kinetic = kinetic;
+    energy_.strain = strain;
+  }
+  ++step_;
+}
+
+void RuptureModel::sweep_rows(RowRange range, bool compute_energy) {
+  const double* z = zero_row_.data() + 1;
+  for (int j = range.begin; j < range.end; ++j) {
+    const double* uxm = j > 0 ? u_.x.row(j - 1) : z;
+    const double* uym = j > 0 ? u_.y.row(j - 1) : z;
+    const double* uxp = j < ny_ - 1 ? u_.x.row(j + 1) : z;
+    const double* uyp = j < ny_ - 1 ? u_.y.row(j + 1) : z;
+    const double* ux0 = u_.x.row(j);
+    const double* uy0 = u_.y.row(j);
+    row_dissipated_[j] = 0.0;
+    if (j == 0) {
+      for_each_node_force(stencils_.bottom, uxm, uym, ux0, uy0, uxp, uyp, nx_,
+                          [&](int i, double kx, double ky) {
+                            kx0_[i] = kx;
+                            ky0_[i] = ky;
+                          });
+      interface_row(compute_energy);
+    } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
+      absorbing_top_row(uxm, uym, compute_energy);
+    } else {
+      const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
+      if (compute_energy)
+        free_row_update<true>(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
+                              node_mass(j), row_kinetic_[j], row_strain_[j]);
+      else
+        free_row_update<false>(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_,
+                               dt_, node_mass(j), row_kinetic_[j], row_strain_[j]);
+    }
+    // Row j-1 is no longer read by this member: advance its displacement now, while it is
+    // still in cache (one streaming pass over u and v per step).
+    if (j >= range.begin + 2) update_displacement_row(j - 1);
+  }
+}
+
+void RuptureModel::interface_row(bool compute_energy) {
+  // The initial contact force of the plane, C0 = dx (-tau1_0, |tau2_0|); the perturbation
+  // sees C - C0.
+  const double c0_1 = -params_.loading.shear_stress * dx_;
+  const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
+  const double m = node_.mass;
+  double* vx = v_.x.row(0);
+  double* vy = v_.y.row(0);
+  const double* ux = u_.x.row(0);
+  const double* uy = u_.y.row(0);
+  double work = 0, dissipated = 0, kinetic = 0, strain = 0;
+  for (int i = 0; i < nx_; ++i) {
+    const double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
+    const double f2 = -ky0_[i] + load2_[i] - c0_2;
+    const double v1_old = vx[i], v2_old = vy[i];
+    const InterfaceNodeStep r = resolve_interface_node(node_, uy[i], v1_old, v2_old, f1, f2,
+                                                       iface_.strength[i]);
+    const double v1_new = r.v1, v2_new = r.v2;
+    vx[i] = v1_new;
+    vy[i] = v2_new;
+
+    const double v1_mid = 0.5 * (v1_old + v1_new), v2_mid = 0.5 * (v2_old + v2_new);
+    iface_.velocity[i] = v1_mid;
+    iface_.half_velocity[i] = v1_new;
+    iface_.slip[i] = ux[i];
+    iface_.opening[i] = uy[i];
+    iface_.shear_traction[i] = -r.contact_force1 / dx_;
+    iface_.pressure[i] = r.pressure;
+    iface_.strength[i] = r.strength;
+    iface_.state[i] = std::int8_t(r.state);
+
+    // Work over the step: F^n . (u^{n+1} - u^{n-1}) / 2 = F^n . dt (v^{n+1/2} + v^{n-1/2}) / 2.
+    work += dt_ * ((load1_[i] - c0_1) * v1_mid + (load2_[i] - c0_2) * v2_mid);
+    dissipated -= dt_ * (r.contact_force1 * v1_mid + r.contact_force2 * v2_mid);
+    if (compute_energy) {
+      kinetic += v1_new * v1_new + v2_new * v2_new;
+      strain += kx0_[i] * (ux[i] + dt_ * v1_new) + ky0_[i] * (uy[i] + dt_ * v2_new);
+    }
+  }
+  step_work_ = work;
+  row_dissipated_[0] = dissipated;
+  if (compute_energy) {
+    row_kinetic_[0] = 0.5 * m * kinetic;
+    row_strain_[0] = 0.5 * strain;
+  }
+}
+
+void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool compute_energy) {
+  // Lysmer-Kuhlemeyer dashpots on the top nodes: force -c v with c = rho c_s dx (tangential)
+  // and rho c_p dx (normal). Taken at the step's mid velocity (v^{n+1/2} + v^{n-1/2})/2,
+  // which is implicit in v^{n+1/2} but diagonal:
+  //   v^{n+1/2} (1 + a) = v^{n-1/2} (1 - a) - dt/m (K u)^n,  a = c dt / (2 m).
+  const int j = ny_ - 1;
+  const double m = node_mass(j);
+  const double rho = params_.material.density;
+  const double c_x = rho * params_.material.s_wave_speed() * dx_;
+  const double c_y = rho * params_.material.p_wave_speed() * dx_;
+  const double a_x = c_x * dt_ / (2 * m), a_y = c_y * dt_ / (2 * m);
+  double* vx = v_.x.row(j);
+  double* vy = v_.y.row(j);
+  const double* ux0 = u_.x.row(j);
+  const double* uy0 = u_.y.row(j);
+  const double* z = zero_row_.data() + 1;
+  double dissipated = 0, kinetic = 0, strain = 0;
+  for_each_node_force(stencils_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
+    const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * kx) / (1 + a_x);
+    const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * ky) / (1 + a_y);
+    const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
+    dissipated += dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid);
+    vx[i] = vx_new;
+    vy[i] = vy_new;
+    if (compute_energy) {
+      kinetic += vx_new * vx_new + vy_new * vy_new;
+      strain += kx * (ux0[i] + dt_ * vx_new) + ky * (uy0[i] + dt_ * vy_new);
+    }
+  });
+  row_dissipated_[j] = dissipated;
+  if (compute_energy) {
+    row_kinetic_[j] = 0.5 * m * kinetic;
+    row_strain_[j] = 0.5 * strain;
+  }
+}
+
+void RuptureModel::update_displacement_row(int j) {
+  double* __restrict ux = u_.x.row(j);
+  double* __restrict uy = u_.y.row(j);
+  const double* __restrict vx = v_.x.row(j);
+  const double* __restrict vy = v_.y.row(j);
+  for (int i = 0; i < nx_; ++i) {
+    ux[i] += dt_ * vx[i];
+    uy[i] += dt_ * vy[i];
+  }
+  u_.x.refresh_ghosts(j);
+  u_.y.refresh_ghosts(j);
+}
+
+bool RuptureModel::row_is_zero(int j) const {
+  const double* rows[4] = {u_.x.row(j), u_.y.row(j), v_.x.row(j), v_.y.row(j)};
+  for (const double* r : rows)
+    for (int i = 0; i < nx_; ++i)
+      if (r[i] != 0.0) return false;
+  return true;
+}
+
+} // namespace slipfront

@@ -1,0 +1,103 @@
+// The discrete rupture model: a regular Q4 mesh of the block on the rigid plane, its
+// state, and one explicit central-difference step.
+//
+// Perturbation formulation: u, v are the displacement and velocity on top of the uniform,
+// stuck, pre-stressed initial state. The top keeps its remote traction, so it is free for
+// the perturbation (or absorbing). At an interface node the plane exerts the total force
+// C = (C1, C2); in the initial state C0 = dx (-tau1_0, |tau2_0|), so the perturbation sees
+// C - C0 (the release of the pre-stress when the node slips or opens).
+//
+// Central differences (explicit Newmark beta = 0, gamma = 1/2) in leapfrog form:
+//   v^{n+1/2} = v^{n-1/2} + dt M^-1 (F^n - K u^n),   u^{n+1} = u^n + dt v^{n+1/2},
+// with M lumped. The stored velocity is that of the last half step.
+#pragma once
+
+#include "solver/interface_law.hpp"
+#include "solver/nodal_field.hpp"
+#include "solver/params.hpp"
+#include "solver/stencil.hpp"
+#include "solver/thread_team.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace slipfront {
+
+// The interface (row 0) after a step, at time t_n: every quantity of step n.
+struct InterfaceFields {
+  std::vector<double> x1;             // node positions
+  std::vector<double> velocity;       // V^n = (v^{n-1/2} + v^{n+1/2}) / 2 along x1
+  std::vector<double> half_velocity;  // v^{n+1/2} along x1 (the velocity the next step uses)
+  std::vector<double> slip;           // u1^n
+  std::vector<double> opening;        // u2^n
+  std::vector<double> shear_traction; // tau1^n = -C1/dx
+  std::vector<double> pressure;       // p^n
+  std::vector<double> strength;       // tau_s used in step n
+  std::vector<std::int8_t> state;     // NodeState in step n
+};
+
+// Energy terms since t = 0 (per unit thickness) after the step; see docs/physics.md.
+struct EnergyBalance {
+  double kinetic = 0;       // 1/2 v^{n+1/2} M v^{n+1/2}
+  double strain = 0;        // 1/2 u^n K u^{n+1}  (the quadratic form that leapfrog conserves)
+  double external_work = 0; // work of the load changes: pre-stress release, nucleation, extra
+  double dissipated = 0;    // friction and contact impacts, absorbing top
+};
+
+class RuptureModel {
+public:
+  explicit RuptureModel(const SimulationParams& params);
+
+  // Advance from t_n to t_{n+1}. With compute_energy the kinetic and strain terms of the
+  // energy balance are evaluated in the same sweep (else they keep their last value).
+  void step(ThreadTeam& team, bool compute_energy);
+
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  double dx() const { return dx_; }
+  double height() const { return height_; }
+  double dt() const { return dt_; }
+  double stable_dt() const { return stable_dt_; }
+  long steps_done() const { return step_; }
+  double time() const { return step_ * dt_; } // t_n of the state (u^n)
+  int active_rows() const { return active_rows_; }
+
+  const InterfaceFields& interface() const { return iface_; }
+  const EnergyBalance& energy() const { return energy_; }
+  const VectorField& displacement() const { return u_; }
+  const VectorField& velocity() const { return v_; }
+  VectorField& displacement() { return u_; } // for verification set-ups
+  VectorField& velocity() { return v_; }
+  // Mark every row as possibly non-zero (after a test wrote initial fields by hand).
+  void activate_all_rows() { active_rows_ = ny_; }
+
+  double node_mass(int j) const; // lumped mass of a node of row j [kg/m]
+
+private:
+  struct RowRange {
+    int begin, end;
+  };
+  void sweep_rows(RowRange rows, bool compute_energy);
+  void interface_row(bool compute_energy);
+  void absorbing_top_row(const double* uxm, const double* uym, bool compute_energy);
+  void update_displacement_row(int j);
+  bool row_is_zero(int j) const;
+
+  SimulationParams params_;
+  int nx_, ny_;
+  double dx_, height_, dt_, stable_dt_;
+  MeshStencils stencils_;
+  VectorField u_, v_;
+  std::vector<double> zero_row_; // nx + 2 zeros, a neighbour for boundary rows
+  std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
+  std::vector<double> kx0_, ky0_;     // K u on the interface row
+  double step_work_ = 0;              // work of the load changes in this step
+  InterfaceNodeConstants node_;
+  InterfaceFields iface_;
+  EnergyBalance energy_;
+  std::vector<double> row_kinetic_, row_strain_, row_dissipated_;
+  long step_ = 0;
+  int active_rows_ = 1; // rows >= active_rows_ hold exact zeros in u and v
+};
+
+} // namespace slipfront

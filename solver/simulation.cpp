@@ -1,0 +1,315 @@
+// The time loop of one run: steps the model, follows the slip front, samples the
+// interface, reports progress, stops on cancel, divergence or arrest, and derives the
+// metrics (docs/metrics.md).
+#include "solver/simulation.hpp"
+
+#include "solver/mesh_size.hpp"
+#include "solver/nucleation.hpp"
+#include "solver/rupture_model.hpp"
+#include "solver/thread_team.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <thread>
+
+#ifndef SLIPFRONT_VERSION_STRING
+#define SLIPFRONT_VERSION_STRING "unknown"
+#endif
+
+namespace slipfront {
+
+const char* code_version() { return SLIPFRONT_VERSION_STRING; }
+
+double resolved_height(const SimulationParams& params) { return mesh_size(params).height; }
+
+double estimated_memory_bytes(const SimulationParams& params) {
+  const MeshSize m = mesh_size(params);
+  const double nodes = double(m.nx + 2) * m.ny;
+  const double fields = 4.0 * 8.0 * nodes;    // u and v, two components each
+  const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
+  // Probe records (4 doubles a step) for the longest possible run; the stable step of a
+  // regular Q4 mesh is above 0.5 dx / c_p.
+  const double steps = params.time.duration / (params.time.safety_factor * 0.5 * m.dx /
+                                               params.material.p_wave_speed());
+  const double records = 4.0 * 8.0 * steps;
+  const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer
+  const double baseline = 16.0e6;                       // code, libraries, HDF5 caches
+  return fields + interface + records + sample_buffer + baseline;
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Follows the slip front: per node, the first time the half-step slip speed crossed the
+// threshold, interpolated linearly between the two half steps around the crossing.
+class FrontTracker {
+public:
+  FrontTracker(int nx, double threshold) : threshold_(threshold), arrival_(nx, kNaN), previous_(nx, 0.0) {}
+
+  // half_velocity holds v^{n+1/2}; previous_ holds v^{n-1/2}. t_half = t_{n+1/2}.
+  void update(const std::vector<double>& half_velocity, double t_half, double dt) {
+    for (std::size_t i = 0; i < arrival_.size(); ++i) {
+      const double now = std::abs(half_velocity[i]);
+      if (std::isnan(arrival_[i]) && now > threshold_) {
+        const double before = std::abs(previous_[i]);
+        const double s = (threshold_ - before) / (now - before); // in [0, 1)
+        arrival_[i] = t_half - dt + std::clamp(s, 0.0, 1.0) * dt;
+        last_new_arrival_ = std::max(last_new_arrival_, arrival_[i]);
+      }
+      previous_[i] = half_velocity[i];
+    }
+  }
+  const std::vector<double>& arrival() const { return arrival_; }
+  double last_new_arrival() const { return last_new_arrival_; }
+
+private:
+  double threshold_;
+  std::vector<double> arrival_, previous_;
+  double last_new_arrival_ = -std::numeric_limits<double>::infinity();
+};
+
+int nearest_node(double x1, double x_min, double dx, int nx) {
+  const long i = std::lround((x1 - x_min) / dx);
+  return int(((i % nx) + nx) % nx);
+}
+
+// Value at x1 of a nodal quantity, linear between the two nodes around x1 (NaN if either is).
+double interpolate_nodal(const std::vector<double>& values, double x1, double x_min, double dx) {
+  const int nx = int(values.size());
+  const double s = (x1 - x_min) / dx;
+  const long i0 = long(std::floor(s));
+  const double w = s - double(i0);
+  auto at = [&](long i) { return values[((i % nx) + nx) % nx]; };
+  if (w < 1e-9) return at(i0);
+  return (1 - w) * at(i0) + w * at(i0 + 1);
+}
+
+InterfaceSample make_sample(const InterfaceFields& f, double t, int stride) {
+  InterfaceSample s;
+  s.time = t;
+  for (std::size_t i = 0; i < f.x1.size(); i += stride) {
+    s.slip_velocity.push_back(f.velocity[i]);
+    s.slip.push_back(f.slip[i]);
+    s.shear_traction.push_back(f.shear_traction[i]);
+    s.contact_pressure.push_back(f.pressure[i]);
+    s.strength.push_back(f.strength[i]);
+    s.state.push_back(f.state[i]);
+  }
+  return s;
+}
+
+// Restores the caller's floating-point mode when the run ends, however it ends.
+struct FloatModeGuard {
+  unsigned saved = set_flush_denormals(true);
+  ~FloatModeGuard() { restore_float_mode(saved); }
+};
+
+void derive_front_metrics(const SimulationParams& p, const MeshInfo& mesh, const FrontTracker& front,
+                          RunResult& r) {
+  Metrics& m = r.metrics;
+  const auto patch = p.nucleation.enabled
+                         ? nucleation_patch(p.nucleation)
+                         : Interval{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  r.front.x1.resize(mesh.nx);
+  for (int i = 0; i < mesh.nx; ++i) r.front.x1[i] = p.geometry.x_min + i * mesh.dx;
+  r.front.arrival_time = front.arrival();
+  r.front.rupture_speed.assign(mesh.nx, kNaN);
+
+  const RupturedStretch stretch =
+      ruptured_stretch(r.front.x1, r.front.arrival_time, patch.lo, patch.hi, p.geometry.width);
+  m.arrest_position = stretch.any_slip ? stretch.right : kNaN;
+  m.propagation_distance = stretch.any_slip ? stretch.right - stretch.left : 0.0;
+  m.probe_x1 = p.probes.arrival_x1;
+  m.arrival_time_at_probe = interpolate_nodal(r.front.arrival_time, p.probes.arrival_x1, p.geometry.x_min, mesh.dx);
+
+  // V_r along the stretch, on unwrapped positions; max and mean outside the nucleation patch
+  // (inside it the nucleation, not the rupture, sets the front).
+  std::vector<double> xs, ts;
+  for (std::size_t k = 0; k < stretch.nodes.size(); ++k) {
+    xs.push_back(stretch.left + double(k) * mesh.dx);
+    ts.push_back(r.front.arrival_time[stretch.nodes[k]]);
+  }
+  const std::vector<double> vr = rupture_speed_profile(xs, ts, std::max(0.25, 2.0 * mesh.dx));
+  double vmax = kNaN, vsum = 0;
+  int count = 0;
+  for (std::size_t k = 0; k < stretch.nodes.size(); ++k) {
+    r.front.rupture_speed[stretch.nodes[k]] = vr[k];
+    if (std::isnan(vr[k]) || (xs[k] >= patch.lo && xs[k] <= patch.hi)) continue;
+    vmax = std::isnan(vmax) ? vr[k] : std::max(vmax, vr[k]);
+    vsum += vr[k];
+    ++count;
+  }
+  m.max_rupture_speed = vmax;
+  m.mean_rupture_speed = count > 0 ? vsum / count : kNaN;
+  if (m.outcome != Outcome::diverged && !stretch.ruptured) m.outcome = Outcome::no_rupture;
+  if (stretch.nodes.size() == std::size_t(mesh.nx))
+    m.warnings.push_back("the whole periodic interface slipped: the rupture met itself across the seam");
+}
+
+void derive_spectral_estimate(const SimulationParams& p, const RunResult& r, double dt, Metrics& m) {
+  // The strength record at the spectrum probe from half a second before the front arrives
+  // to the end; |V| = the peak slip speed there (docs/metrics.md).
+  m.spectral_frequency = m.spectral_velocity = m.spectral_critical_length = kNaN;
+  if (p.friction.law != FrictionLaw::prakash_clifton) return;
+  const double arrival = interpolate_nodal(r.front.arrival_time, p.probes.spectrum_x1, p.geometry.x_min, r.mesh.dx);
+  if (std::isnan(arrival)) return;
+  std::vector<double> window;
+  double vpeak = 0;
+  for (std::size_t k = 0; k < r.probes.time.size(); ++k) {
+    if (r.probes.time[k] < arrival - 0.5) continue;
+    window.push_back(r.probes.strength_spectrum[k]);
+    vpeak = std::max(vpeak, std::abs(r.probes.slip_velocity_spectrum[k]));
+  }
+  const double f = spectral_cutoff_frequency(window, dt);
+  if (std::isnan(f)) return;
+  m.spectral_frequency = f;
+  m.spectral_velocity = vpeak;
+  m.spectral_critical_length = filter_critical_length(f, p.friction.v_star, vpeak);
+}
+
+} // namespace
+
+RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {
+  using clock = std::chrono::steady_clock;
+  const auto wall_start = clock::now();
+  auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - wall_start).count(); };
+  FloatModeGuard float_mode;
+
+  const int threads = params.threads > 0 ? params.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  RuptureModel model(params);
+  ThreadTeam team(threads);
+
+  RunResult result;
+  result.mesh = {model.nx(), model.ny(), model.dx(), model.height(), model.stable_dt(), model.dt(), threads};
+  Metrics& m = result.metrics;
+  m.front_threshold = params.probes.front_threshold;
+  m.dt = model.dt();
+
+  const double dt = model.dt();
+  const long total_steps = long(std::ceil(params.time.duration / dt - 1e-9));
+  const int sample_every = std::max(1, int(std::lround(params.output.interval / dt)));
+  const int stride = std::max(1, params.output.space_stride);
+  const int nx = model.nx();
+  const int probe_arrival = nearest_node(params.probes.arrival_x1, params.geometry.x_min, model.dx(), nx);
+  const int probe_spectrum = nearest_node(params.probes.spectrum_x1, params.geometry.x_min, model.dx(), nx);
+  result.probes.arrival_node_x1 = model.interface().x1[probe_arrival];
+  result.probes.spectrum_node_x1 = model.interface().x1[probe_spectrum];
+
+  if (hooks.sink) {
+    InterfaceLayout layout;
+    for (int i = 0; i < nx; i += stride) layout.x1.push_back(model.interface().x1[i]);
+    layout.expected_samples = total_steps / sample_every + 1;
+    layout.sample_interval = sample_every * dt;
+    hooks.sink->begin(layout);
+  }
+
+  // Divergence: a slip speed far above anything the loads can drive (1000 times the
+  // particle velocity that the whole remote load would cause, |tau| / (rho c_s)), or a
+  // non-finite value anywhere (checked through the energy sums on sampled steps).
+  const Material& mat = params.material;
+  const double load_scale = std::abs(params.loading.normal_stress) + std::abs(params.loading.shear_stress);
+  const double speed_limit = 1000.0 * load_scale / (mat.density * mat.s_wave_speed());
+  const double quiet_after = params.nucleation.enabled ? nucleation_end_time(params.nucleation) : 0.0;
+
+  FrontTracker front(nx, params.probes.front_threshold);
+  bool arrested = false;
+  double last_progress = -1e9;
+  long n = 0;
+  for (; n < total_steps; ++n) {
+    if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) {
+      result.cancelled = true;
+      m.message = "cancelled at t = " + std::to_string(n * dt) + " s";
+      break;
+    }
+    const bool sample = n % sample_every == 0;
+    model.step(team, sample);
+    const double t_n = n * dt;
+    const InterfaceFields& f = model.interface();
+    front.update(f.half_velocity, t_n + 0.5 * dt, dt);
+
+    bool finite = true;
+    for (int i = 0; i < nx; ++i) {
+      const double v = std::abs(f.velocity[i]);
+      if (!(v <= speed_limit)) finite = false; // also catches NaN
+      m.max_slip_velocity = std::max(m.max_slip_velocity, v);
+    }
+    result.probes.time.push_back(t_n);
+    result.probes.slip_velocity_arrival.push_back(f.velocity[probe_arrival]);
+    result.probes.slip_velocity_spectrum.push_back(f.velocity[probe_spectrum]);
+    result.probes.strength_spectrum.push_back(f.strength[probe_spectrum]);
+    if (sample) {
+      const EnergyBalance& e = model.energy();
+      result.energy.time.push_back(t_n + 0.5 * dt);
+      result.energy.kinetic.push_back(e.kinetic);
+      result.energy.strain.push_back(e.strain);
+      result.energy.external_work.push_back(e.external_work);
+      result.energy.dissipated.push_back(e.dissipated);
+      if (!std::isfinite(e.kinetic) || !std::isfinite(e.strain)) finite = false;
+      if (hooks.sink) hooks.sink->write(make_sample(f, t_n, stride));
+    }
+    if (!finite) {
+      m.outcome = Outcome::diverged;
+      char msg[200];
+      std::snprintf(msg, sizeof msg, "diverged at t = %.6g s (step %ld): slip speed above %.3g m/s or a non-finite field", t_n, n, speed_limit);
+      m.message = msg;
+      ++n;
+      break;
+    }
+
+    // Arrest: after the nucleation, no node has been reached by the front for a window.
+    const double quiet_since = std::max(quiet_after, front.last_new_arrival());
+    arrested = t_n - quiet_since >= params.time.arrest_window;
+    if (arrested && params.time.stop_on_arrest) {
+      ++n;
+      break;
+    }
+
+    const double wall = wall_seconds();
+    if (hooks.on_progress && wall - last_progress >= hooks.progress_interval_s) {
+      last_progress = wall;
+      Progress pr{(n + 1) * dt, params.time.duration, n + 1, total_steps, double(n + 1) / total_steps, wall,
+                  (n + 1) / std::max(wall, 1e-9), 0.0};
+      pr.eta_s = (total_steps - n - 1) / std::max(pr.steps_per_s, 1e-9);
+      hooks.on_progress(pr);
+    }
+  }
+
+  m.steps = n;
+  m.simulated_time = n * dt;
+  if (m.outcome != Outcome::diverged) m.outcome = arrested ? Outcome::arrested : Outcome::running_at_end;
+  derive_front_metrics(params, result.mesh, front, result);
+  derive_spectral_estimate(params, result, dt, m);
+
+  // Energy balance at the last sampled step: E - E(0) = W - D, with E(0) = 0.
+  if (!result.energy.time.empty()) {
+    const std::size_t k = result.energy.time.size() - 1;
+    const double stored = result.energy.kinetic[k] + result.energy.strain[k];
+    const double net = result.energy.external_work[k] - result.energy.dissipated[k];
+    const double scale = std::max({std::abs(result.energy.external_work[k]), std::abs(stored), 1e-300});
+    m.energy_error = std::abs(stored - net) / scale;
+  }
+
+  const double reflection_time = 2.0 * model.height() / mat.p_wave_speed();
+  if (m.simulated_time > reflection_time) {
+    char msg[300];
+    std::snprintf(msg, sizeof msg,
+                  "h = %.4g m is small for this run: a P wave reflected by the top reaches the interface "
+                  "at t = 2h/c_p = %.4g s, before the run ended at %.4g s%s",
+                  model.height(), reflection_time, m.simulated_time,
+                  params.top == TopBoundary::absorbing ? " (the absorbing top weakens, but does not remove, the reflection)" : "");
+    m.warnings.push_back(msg);
+  }
+  m.wall_time_s = wall_seconds();
+  if (hooks.on_progress) {
+    Progress pr{m.simulated_time, params.time.duration, n, total_steps, double(n) / std::max(total_steps, 1L),
+                m.wall_time_s, n / std::max(m.wall_time_s, 1e-9), 0.0};
+    hooks.on_progress(pr);
+  }
+  return result;
+}
+
+} // namespace slipfront

@@ -1,0 +1,29 @@
+// The stable time step of central differences for the discrete system:
+//   dt_stable = 2 / omega_max,  omega_max^2 = largest eigenvalue of M^-1 K
+// (Hughes, The Finite Element Method, sec. 9.3). omega_max^2 is found by power iteration
+// on the symmetric M^-1/2 K M^-1/2 of the free block (periodic in x1, free top and bottom):
+// contact and stick only remove degrees of freedom, which cannot raise the largest
+// eigenvalue (Cauchy interlacing), so the free block bounds every contact state.
+#pragma once
+
+#include "solver/stencil.hpp"
+
+namespace slipfront {
+
+struct EigenEstimate {
+  double lambda_max = 0; // omega_max^2 [1/s^2]
+  int iterations = 0;
+  double relative_change = 0; // of the Rayleigh quotient at the last iteration
+};
+
+// Power iteration on the nx x ny free block with element size dx and density rho.
+EigenEstimate largest_eigenvalue(const MeshStencils& stencils, int nx, int ny, double dx,
+                                 double density, int max_iterations = 20000,
+                                 double tolerance = 1e-9);
+
+// The stable step of the mesh nx x ny. The highest modes of a regular mesh are local
+// (checkerboard-like), so the iteration runs on a patch of at most 24 x 24 nodes with the
+// same boundaries (an even number of columns, which holds the shortest periodic wave).
+double stable_time_step(const MeshStencils& stencils, int nx, int ny, double dx, double density);
+
+} // namespace slipfront

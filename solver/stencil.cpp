@@ -1,0 +1,49 @@
+#include "solver/stencil.hpp"
+
+#include <vector>
+
+namespace slipfront {
+
+MeshStencils build_stencils(const ElementStiffness& K) {
+  // A node is local node `a` of the element whose lower-left node lies at -offset(a); its
+  // neighbour `b` in that element lies at offset(b) - offset(a).
+  auto add_element = [&](NodeStencil& s, int a) {
+    for (int bn = 0; bn < 4; ++bn) {
+      const int di = kQ4NodeOffset[bn][0] - kQ4NodeOffset[a][0];
+      const int dj = kQ4NodeOffset[bn][1] - kQ4NodeOffset[a][1];
+      Block2& blk = s.b[dj + 1][di + 1];
+      blk.xx += K[2 * a][2 * bn];
+      blk.xy += K[2 * a][2 * bn + 1];
+      blk.yx += K[2 * a + 1][2 * bn];
+      blk.yy += K[2 * a + 1][2 * bn + 1];
+    }
+  };
+  MeshStencils s;
+  // Elements above a node: the node is their local 0 or 1. Below: local 2 or 3.
+  for (int a : {0, 1}) add_element(s.bottom, a);
+  for (int a : {2, 3}) add_element(s.top, a);
+  for (int a : {0, 1, 2, 3}) add_element(s.interior, a);
+  return s;
+}
+
+void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku) {
+  const int nx = u.x.nx(), ny = u.x.ny();
+  const std::vector<double> zero(nx + 2, 0.0);
+  const double* z = zero.data() + 1;
+  for (int j = 0; j < ny; ++j) {
+    const NodeStencil& s = (j == 0) ? stencils.bottom : (j == ny - 1) ? stencils.top : stencils.interior;
+    const double* uxm = j > 0 ? u.x.row(j - 1) : z;
+    const double* uym = j > 0 ? u.y.row(j - 1) : z;
+    const double* uxp = j < ny - 1 ? u.x.row(j + 1) : z;
+    const double* uyp = j < ny - 1 ? u.y.row(j + 1) : z;
+    double* kx = Ku.x.row(j);
+    double* ky = Ku.y.row(j);
+    for_each_node_force(s, uxm, uym, u.x.row(j), u.y.row(j), uxp, uyp, nx,
+                        [&](int i, double fx, double fy) {
+                          kx[i] = fx;
+                          ky[i] = fy;
+                        });
+  }
+}
+
+} // namespace slipfront
