@@ -14,8 +14,8 @@ namespace slipfront::api {
 
 struct JobOutput {
   RunResult result;
-  nlohmann::json metrics;    // metrics_json(result)
-  std::string result_path;   // final path of the HDF5 file ("" if none was asked for)
+  nlohmann::json metrics;  // metrics_json(result)
+  std::string result_path; // final path of the HDF5 file ("" if none was asked for)
   std::uint64_t result_size = 0;
   std::string result_sha256; // of the file's bytes
 };
@@ -28,6 +28,14 @@ JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunH
 // The metrics of SPEC §2 as one JSON object (names are part of the API), including the
 // cost (wall_time_s, steps, dt), mesh facts and the code version.
 nlohmann::json metrics_json(const RunResult& result);
+
+// As above, with "method" also naming the top boundary and the friction law of `params`
+// (run_job uses this one; the one-argument form names the discretisation only).
+nlohmann::json metrics_json(const RunResult& result, const SimulationParams& params);
+
+// The numerical method that produced a result, e.g. "Q4 2x2 Gauss, lumped mass, central
+// differences; top boundary: traction; friction: prakash_clifton, exponential strength update".
+std::string method_description(const SimulationParams& params);
 
 // The front (x1, arrival_time, rupture_speed) as JSON arrays; null where undefined.
 nlohmann::json front_json(const RunResult& result);

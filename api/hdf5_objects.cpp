@@ -1,0 +1,154 @@
+#include "api/hdf5_objects.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace slipfront::api::hdf5 {
+
+namespace {
+
+constexpr unsigned deflate_level = 1;
+constexpr hsize_t vector_chunk = 65536;
+
+// Shuffle + deflate on a chunked layout.
+Handle compressed_layout(int rank, const hsize_t* chunk) {
+  Handle properties(check_id(H5Pcreate(H5P_DATASET_CREATE), "dataset properties"));
+  check(H5Pset_chunk(properties.get(), rank, chunk), "chunk layout");
+  check(H5Pset_shuffle(properties.get()), "shuffle filter");
+  check(H5Pset_deflate(properties.get(), deflate_level), "deflate filter");
+  return properties;
+}
+
+} // namespace
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
+}
+
+hid_t check_id(hid_t id, const std::string& what) {
+  if (id < 0) throw std::runtime_error("HDF5: " + what + " failed");
+  return id;
+}
+
+Handle& Handle::operator=(Handle&& other) noexcept {
+  if (this != &other) {
+    reset();
+    id_ = other.id_;
+    other.id_ = H5I_INVALID_HID;
+  }
+  return *this;
+}
+
+void Handle::reset() {
+  if (id_ < 0) return;
+  switch (H5Iget_type(id_)) {
+  case H5I_FILE:
+    H5Fclose(id_);
+    break;
+  case H5I_GROUP:
+    H5Gclose(id_);
+    break;
+  case H5I_DATASET:
+    H5Dclose(id_);
+    break;
+  case H5I_DATASPACE:
+    H5Sclose(id_);
+    break;
+  case H5I_DATATYPE:
+    H5Tclose(id_);
+    break;
+  case H5I_ATTR:
+    H5Aclose(id_);
+    break;
+  case H5I_GENPROP_LST:
+    H5Pclose(id_);
+    break;
+  default:
+    break;
+  }
+  id_ = H5I_INVALID_HID;
+}
+
+Handle create_file(const std::string& path) {
+  return Handle(check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                         "creating file " + path));
+}
+
+Handle create_group(hid_t parent, const std::string& name) {
+  return Handle(check_id(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                         "creating group " + name));
+}
+
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  const std::string& units) {
+  const hsize_t size = values.size();
+  Handle space(check_id(H5Screate_simple(1, &size, nullptr), "dataspace of " + name));
+  Handle properties; // contiguous when empty: a chunk may not be empty
+  if (size > 0) {
+    const hsize_t chunk = std::min(size, vector_chunk);
+    properties = compressed_layout(1, &chunk);
+  }
+  Handle dataset(
+      check_id(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                          properties.valid() ? properties.get() : H5P_DEFAULT, H5P_DEFAULT),
+               "creating dataset " + name));
+  if (size > 0) {
+    check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+          "writing dataset " + name);
+  }
+  write_attribute(dataset.get(), "units", units);
+}
+
+void write_attribute(hid_t object, const std::string& name, const std::string& value) {
+  Handle type(check_id(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "string type size");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "string type character set");
+  Handle space(check_id(H5Screate(H5S_SCALAR), "scalar dataspace"));
+  Handle attribute(
+      check_id(H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+               "creating attribute " + name));
+  const char* text = value.c_str();
+  check(H5Awrite(attribute.get(), type.get(), &text), "writing attribute " + name);
+}
+
+void write_attribute(hid_t object, const std::string& name, double value) {
+  Handle space(check_id(H5Screate(H5S_SCALAR), "scalar dataspace"));
+  Handle attribute(check_id(
+      H5Acreate2(object, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+      "creating attribute " + name));
+  check(H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, &value), "writing attribute " + name);
+}
+
+RowAppender::RowAppender(hid_t parent, const std::string& name, hid_t type,
+                         std::optional<hsize_t> columns, hsize_t chunk_rows,
+                         const std::string& units)
+    : type_(type), rank_(columns ? 2 : 1), columns_(columns.value_or(0)), name_(name) {
+  const hsize_t initial[2] = {0, columns_};
+  // A row of zero columns still needs a chunk of at least one column.
+  const hsize_t maximum[2] = {H5S_UNLIMITED, columns_ > 0 ? columns_ : H5S_UNLIMITED};
+  const hsize_t chunk[2] = {chunk_rows, std::max<hsize_t>(columns_, 1)};
+  Handle space(check_id(H5Screate_simple(rank_, initial, maximum), "dataspace of " + name));
+  Handle properties = compressed_layout(rank_, chunk);
+  const hid_t file_type = type == H5T_NATIVE_INT8 ? H5T_STD_I8LE : H5T_IEEE_F64LE;
+  dataset_ = Handle(check_id(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
+                                        properties.get(), H5P_DEFAULT),
+                             "creating dataset " + name));
+  write_attribute(dataset_.get(), "units", units);
+}
+
+void RowAppender::append(const void* data, hsize_t rows) {
+  if (rows == 0) return;
+  const hsize_t new_size[2] = {rows_ + rows, columns_};
+  check(H5Dset_extent(dataset_.get(), new_size), "extending dataset " + name_);
+  Handle file_space(check_id(H5Dget_space(dataset_.get()), "dataspace of " + name_));
+  const hsize_t start[2] = {rows_, 0};
+  const hsize_t count[2] = {rows, columns_};
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+        "selecting rows of " + name_);
+  Handle memory_space(check_id(H5Screate_simple(rank_, count, nullptr), "memory dataspace"));
+  check(H5Dwrite(dataset_.get(), type_, memory_space.get(), file_space.get(), H5P_DEFAULT, data),
+        "writing rows of " + name_);
+  rows_ += rows;
+}
+
+} // namespace slipfront::api::hdf5

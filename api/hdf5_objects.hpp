@@ -1,0 +1,70 @@
+// Small RAII layer over the HDF5 C API for the result file: owned handles, 1-D datasets,
+// attributes, and 2-D datasets that grow along their first (time) axis.
+#pragma once
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::api::hdf5 {
+
+// Throws std::runtime_error naming `what` when an HDF5 call failed (negative status).
+void check(herr_t status, const std::string& what);
+hid_t check_id(hid_t id, const std::string& what);
+
+// An owned identifier (file, group, dataset, dataspace, type or property list).
+class Handle {
+public:
+  Handle() = default;
+  explicit Handle(hid_t id) : id_(id) {}
+  ~Handle() { reset(); }
+  Handle(Handle&& other) noexcept : id_(other.id_) { other.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& other) noexcept;
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  void reset(); // closes the object (whatever its kind)
+
+private:
+  hid_t id_ = H5I_INVALID_HID;
+};
+
+Handle create_file(const std::string& path); // truncates
+Handle create_group(hid_t parent, const std::string& name);
+
+// A 1-D float64 dataset (chunked and compressed when not empty) with a `units` attribute.
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  const std::string& units);
+
+void write_attribute(hid_t object, const std::string& name, const std::string& value); // UTF-8
+void write_attribute(hid_t object, const std::string& name, double value);
+
+// A dataset that grows by rows: 2-D [rows, columns], or 1-D [rows] without `columns`.
+// Chunked [chunk_rows, columns], shuffle + deflate level 1. `type` is the native type of the
+// data passed to append (H5T_NATIVE_DOUBLE or H5T_NATIVE_INT8), stored little-endian.
+class RowAppender {
+public:
+  RowAppender() = default;
+  RowAppender(hid_t parent, const std::string& name, hid_t type, std::optional<hsize_t> columns,
+              hsize_t chunk_rows, const std::string& units);
+
+  // Appends `rows` rows stored contiguously (row-major) at `data`.
+  void append(const void* data, hsize_t rows);
+  hid_t id() const { return dataset_.get(); }
+  void close() { dataset_.reset(); }
+
+private:
+  Handle dataset_;
+  hid_t type_ = H5I_INVALID_HID;
+  int rank_ = 1;
+  hsize_t columns_ = 0;
+  hsize_t rows_ = 0;
+  std::string name_;
+};
+
+} // namespace slipfront::api::hdf5

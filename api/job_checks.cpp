@@ -1,0 +1,118 @@
+#include "api/job_checks.hpp"
+
+#include "solver/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace slipfront::api {
+
+namespace {
+
+constexpr double whole_elements_tolerance = 1e-9; // relative
+constexpr double min_elements_along_x1 = 3.0;     // a periodic row needs distinct neighbours
+constexpr double strength_tolerance = 1e-12;      // relative: a load equal to mu |p| may stick
+
+bool has_error(const std::vector<FieldError>& errors, const std::string& pointer) {
+  return std::any_of(errors.begin(), errors.end(),
+                     [&](const FieldError& e) { return e.pointer == pointer; });
+}
+
+bool any_error(const std::vector<FieldError>& errors, std::initializer_list<const char*> pointers) {
+  return std::any_of(pointers.begin(), pointers.end(),
+                     [&](const char* pointer) { return has_error(errors, pointer); });
+}
+
+std::string text(double value) {
+  std::ostringstream out;
+  out.precision(12);
+  out << value;
+  return out.str();
+}
+
+// "length * nodes_per_meter" must be a whole number of elements.
+void check_whole_elements(const char* pointer, const char* what, double length,
+                          double nodes_per_meter, double min_elements,
+                          std::vector<FieldError>& errors) {
+  const double elements = length * nodes_per_meter;
+  const double whole = std::round(elements);
+  if (std::abs(elements - whole) > whole_elements_tolerance * elements) {
+    errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(length) + " * " +
+                                   text(nodes_per_meter) + " = " + text(elements) +
+                                   " must be a whole number of elements (within 1e-9 relative): "
+                                   "the mesh is regular with element size 1/nodes_per_meter"});
+  } else if (whole < min_elements) {
+    errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(elements) +
+                                   " elements, need at least " + text(min_elements)});
+  }
+}
+
+void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
+  const Geometry& g = job.params.geometry;
+  if (any_error(errors, {"/geometry/nodes_per_meter"})) return;
+  if (!has_error(errors, "/geometry/width")) {
+    check_whole_elements("/geometry/width", "width", g.width, g.nodes_per_meter,
+                         min_elements_along_x1, errors);
+  }
+  if (!g.auto_height && !has_error(errors, "/geometry/height")) {
+    check_whole_elements("/geometry/height", "height", g.height, g.nodes_per_meter, 1.0, errors);
+  }
+  const SimulationParams& p = job.params;
+  const double interface_nodes = std::round(g.width * g.nodes_per_meter);
+  if (!any_error(errors, {"/geometry/width", "/output/space_stride"}) &&
+      p.output.space_stride > interface_nodes) {
+    errors.push_back({"/output/space_stride", "must be at most the number of interface nodes (" +
+                                                  text(interface_nodes) + "), got " +
+                                                  std::to_string(p.output.space_stride)});
+  }
+}
+
+void check_probe(const JobSpec& job, const char* pointer, double x1,
+                 std::vector<FieldError>& errors) {
+  const Geometry& g = job.params.geometry;
+  if (any_error(errors, {"/geometry/width", "/geometry/x_min"}) || has_error(errors, pointer)) {
+    return;
+  }
+  if (x1 < g.x_min || x1 >= g.x_min + g.width) {
+    errors.push_back({pointer, "must lie in the domain [x_min, x_min + width) = [" + text(g.x_min) +
+                                   ", " + text(g.x_min + g.width) + "), got " + text(x1)});
+  }
+}
+
+// The initial state is uniform and stuck: the shear load may not exceed the static strength.
+void check_initial_stick(const JobSpec& job, std::vector<FieldError>& errors) {
+  const SimulationParams& p = job.params;
+  if (any_error(errors, {"/loading/normal_stress", "/loading/shear_stress", "/friction/mu"})) {
+    return;
+  }
+  const double strength = p.friction.mu * std::abs(p.loading.normal_stress);
+  if (std::abs(p.loading.shear_stress) > strength * (1.0 + strength_tolerance)) {
+    errors.push_back({"/loading/shear_stress",
+                      "|shear_stress| must not exceed the static strength mu * |normal_stress| = " +
+                          text(strength) + " Pa (the initial state is stuck), got " +
+                          text(p.loading.shear_stress)});
+  }
+}
+
+} // namespace
+
+void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) {
+  check_mesh(job, errors);
+  check_probe(job, "/probe/arrival_x1", job.params.probes.arrival_x1, errors);
+  check_probe(job, "/probe/spectrum_x1", job.params.probes.spectrum_x1, errors);
+  check_initial_stick(job, errors);
+}
+
+void check_memory(const JobSpec& job, const ValidationLimits& limits,
+                  std::vector<FieldError>& errors) {
+  if (job.memory_estimate_bytes > limits.max_memory_bytes) {
+    errors.push_back(
+        {"/geometry/nodes_per_meter",
+         "the run would need about " + text(job.memory_estimate_bytes / 1e9) +
+             " GB of memory (estimate), above the limit of " + text(limits.max_memory_bytes / 1e9) +
+             " GB: use fewer nodes per meter, a smaller domain or a shorter duration"});
+  }
+}
+
+} // namespace slipfront::api

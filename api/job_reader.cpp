@@ -1,0 +1,102 @@
+#include "api/job_reader.hpp"
+
+namespace slipfront::api {
+
+namespace {
+
+constexpr int max_threads = 256;
+constexpr std::size_t max_name_length = 256;
+constexpr std::size_t max_tags = 32;
+constexpr std::size_t max_tag_length = 64;
+
+void read_material(ObjectReader& in, Material& material) {
+  in.number("density", material.density, positive());
+  in.number("young_modulus", material.young_modulus, positive());
+  in.number("poisson_ratio", material.poisson_ratio, open_interval(0.0, 0.5));
+}
+
+// "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp).
+void read_height(ObjectReader& in, Geometry& geometry) {
+  if (const nlohmann::json* member = in.raw("height")) {
+    if (*member == "auto") {
+      geometry.auto_height = true;
+    } else if (member->is_number() && positive().contains(member->get<double>())) {
+      geometry.height = member->get<double>();
+      geometry.auto_height = false;
+    } else {
+      in.error("height", "must be a finite number > 0 or \"auto\", got " + describe_value(*member));
+    }
+  }
+  in.set_canonical("height",
+                   geometry.auto_height ? nlohmann::json("auto") : nlohmann::json(geometry.height));
+}
+
+void read_geometry(ObjectReader& in, SimulationParams& params) {
+  in.number("width", params.geometry.width, positive());
+  read_height(in, params.geometry);
+  in.number("x_min", params.geometry.x_min, any_finite());
+  in.number("nodes_per_meter", params.geometry.nodes_per_meter, positive());
+  in.choice("top_boundary", params.top,
+            {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
+}
+
+void read_loading(ObjectReader& in, Loading& loading) {
+  in.number("normal_stress", loading.normal_stress, negative());
+  in.number("shear_stress", loading.shear_stress, any_finite());
+}
+
+void read_friction(ObjectReader& in, Friction& friction) {
+  in.choice("law", friction.law,
+            {{"prakash_clifton", FrictionLaw::prakash_clifton}, {"coulomb", FrictionLaw::coulomb}});
+  in.number("mu", friction.mu, non_negative());
+  in.number("L", friction.L, positive());
+  in.number("v_star", friction.v_star, positive());
+  in.choice("strength_update", friction.update,
+            {{"exponential", StrengthUpdate::exponential},
+             {"explicit_euler", StrengthUpdate::explicit_euler}});
+}
+
+void read_nucleation(ObjectReader& in, Nucleation& nucleation) {
+  in.boolean("enabled", nucleation.enabled);
+  in.number("a", nucleation.a, positive());
+  in.number("b", nucleation.b, positive());
+  in.number("v", nucleation.v, non_negative());
+  in.number("alpha", nucleation.alpha, closed_interval(0.0, 1.0));
+}
+
+void read_time(ObjectReader& in, TimeControl& time) {
+  in.number("duration", time.duration, positive());
+  in.number("safety_factor", time.safety_factor, left_open(0.0, 1.0));
+  in.boolean("stop_on_arrest", time.stop_on_arrest);
+  in.number("arrest_window", time.arrest_window, positive());
+}
+
+void read_output(ObjectReader& in, OutputSampling& output) {
+  in.number("interval", output.interval, positive());
+  in.integer("space_stride", output.space_stride, 1, 1'000'000);
+}
+
+void read_probes(ObjectReader& in, Probes& probes) {
+  in.number("arrival_x1", probes.arrival_x1, any_finite());
+  in.number("spectrum_x1", probes.spectrum_x1, any_finite());
+  in.number("front_threshold", probes.front_threshold, positive());
+}
+
+} // namespace
+
+void read_job_fields(ObjectReader& in, JobSpec& job) {
+  SimulationParams& params = job.params;
+  in.object("material", [&](ObjectReader& m) { read_material(m, params.material); });
+  in.object("geometry", [&](ObjectReader& g) { read_geometry(g, params); });
+  in.object("loading", [&](ObjectReader& l) { read_loading(l, params.loading); });
+  in.object("friction", [&](ObjectReader& f) { read_friction(f, params.friction); });
+  in.object("nucleation", [&](ObjectReader& n) { read_nucleation(n, params.nucleation); });
+  in.object("time", [&](ObjectReader& t) { read_time(t, params.time); });
+  in.object("output", [&](ObjectReader& o) { read_output(o, params.output); });
+  in.object("probe", [&](ObjectReader& p) { read_probes(p, params.probes); });
+  in.integer("threads", params.threads, 0, max_threads);
+  in.string("name", job.name, max_name_length);
+  in.string_list("tags", job.tags, max_tags, max_tag_length);
+}
+
+} // namespace slipfront::api

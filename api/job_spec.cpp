@@ -1,0 +1,57 @@
+#include "api/job_spec.hpp"
+
+#include "api/job_checks.hpp"
+#include "api/job_reader.hpp"
+#include "api/json_fields.hpp"
+#include "solver/simulation.hpp"
+
+namespace slipfront::api {
+
+ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits) {
+  ParseResult result;
+  if (!document.is_object()) {
+    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(document)});
+    return result;
+  }
+
+  JobSpec job;
+  ObjectReader reader(&document, "", result.errors);
+  read_job_fields(reader, job);
+  reader.finish();
+  check_job_consistency(job, result.errors);
+  if (!result.errors.empty()) return result;
+
+  job.memory_estimate_bytes = estimated_memory_bytes(job.params);
+  check_memory(job, limits, result.errors);
+  if (!result.errors.empty()) return result;
+
+  job.canonical = reader.canonical();
+  job.sha256 = spec_hash(job.canonical);
+  result.spec = std::move(job);
+  return result;
+}
+
+ParseResult parse_job_text(const std::string& text, const ValidationLimits& limits) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) { // syntax errors, number overflow
+    ParseResult result;
+    result.errors.push_back({"", std::string("not valid JSON: ") + e.what()});
+    return result;
+  }
+  return parse_job(document, limits);
+}
+
+std::string canonical_text(const nlohmann::json& canonical) {
+  return canonical.dump();
+}
+
+std::string spec_hash(const nlohmann::json& canonical) {
+  nlohmann::json physics = canonical;
+  for (const char* key : {"name", "tags", "threads", "output"})
+    physics.erase(key);
+  return sha256_hex(canonical_text(physics));
+}
+
+} // namespace slipfront::api

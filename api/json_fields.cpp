@@ -1,0 +1,215 @@
+#include "api/json_fields.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace slipfront::api {
+
+namespace {
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+} // namespace
+
+bool Interval::contains(double value) const {
+  if (!std::isfinite(value)) return false;
+  const bool above = lo_open ? value > lo : value >= lo;
+  const bool below = hi_open ? value < hi : value <= hi;
+  return above && below;
+}
+
+std::string Interval::describe() const {
+  const bool has_lo = std::isfinite(lo);
+  const bool has_hi = std::isfinite(hi);
+  if (has_lo && has_hi) {
+    return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
+           format_number(hi) + (hi_open ? ")" : "]");
+  }
+  if (has_lo) return (lo_open ? "> " : ">= ") + format_number(lo);
+  if (has_hi) return (hi_open ? "< " : "<= ") + format_number(hi);
+  return "";
+}
+
+Interval any_finite() {
+  return {};
+}
+Interval positive() {
+  return {.lo = 0.0, .lo_open = true};
+}
+Interval negative() {
+  return {.hi = 0.0, .hi_open = true};
+}
+Interval non_negative() {
+  return {.lo = 0.0};
+}
+Interval open_interval(double lo, double hi) {
+  return {.lo = lo, .hi = hi, .lo_open = true, .hi_open = true};
+}
+Interval closed_interval(double lo, double hi) {
+  return {.lo = lo, .hi = hi};
+}
+Interval left_open(double lo, double hi) {
+  return {.lo = lo, .hi = hi, .lo_open = true};
+}
+
+std::string describe_value(const nlohmann::json& value) {
+  if (value.is_object()) return "an object";
+  if (value.is_array()) return "an array";
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) return "a non-finite number";
+  if (value.is_string()) {
+    const auto& text = value.get_ref<const std::string&>();
+    constexpr std::size_t shown = 40;
+    if (text.size() > shown) return nlohmann::json(text.substr(0, shown)).dump() + "...";
+  }
+  return value.dump();
+}
+
+std::string child_pointer(const std::string& parent, const std::string& key) {
+  std::string escaped;
+  for (char c : key) {
+    if (c == '~') {
+      escaped += "~0";
+    } else if (c == '/') {
+      escaped += "~1";
+    } else {
+      escaped += c;
+    }
+  }
+  return parent + "/" + escaped;
+}
+
+ObjectReader::ObjectReader(const nlohmann::json* object, std::string pointer,
+                           std::vector<FieldError>& errors)
+    : object_(object), pointer_(std::move(pointer)), errors_(errors) {}
+
+const nlohmann::json* ObjectReader::raw(const std::string& key) {
+  known_.insert(key);
+  if (object_ == nullptr) return nullptr;
+  const auto found = object_->find(key);
+  return found == object_->end() ? nullptr : &*found;
+}
+
+void ObjectReader::set_canonical(const std::string& key, nlohmann::json value) {
+  canonical_[key] = std::move(value);
+}
+
+void ObjectReader::error(const std::string& key, std::string reason) {
+  errors_.push_back({pointer(key), std::move(reason)});
+}
+
+void ObjectReader::number(const std::string& key, double& target, const Interval& allowed) {
+  if (const nlohmann::json* member = raw(key)) {
+    if (member->is_number() && allowed.contains(member->get<double>())) {
+      target = member->get<double>();
+    } else {
+      const std::string range = allowed.describe();
+      error(key, "must be a finite number" + (range.empty() ? "" : " " + range) + ", got " +
+                     describe_value(*member));
+    }
+  }
+  set_canonical(key, target);
+}
+
+void ObjectReader::integer(const std::string& key, int& target, int lo, int hi) {
+  if (const nlohmann::json* member = raw(key)) {
+    // 3.0 is accepted as 3: clients that write every number as a float stay welcome.
+    const bool integral = member->is_number_integer() ||
+                          (member->is_number_float() && std::isfinite(member->get<double>()) &&
+                           std::floor(member->get<double>()) == member->get<double>());
+    if (integral && member->get<double>() >= lo && member->get<double>() <= hi) {
+      target = static_cast<int>(member->get<double>());
+    } else {
+      error(key, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "], got " + describe_value(*member));
+    }
+  }
+  set_canonical(key, target);
+}
+
+void ObjectReader::boolean(const std::string& key, bool& target) {
+  if (const nlohmann::json* member = raw(key)) {
+    if (member->is_boolean()) {
+      target = member->get<bool>();
+    } else {
+      error(key, "must be true or false, got " + describe_value(*member));
+    }
+  }
+  set_canonical(key, target);
+}
+
+void ObjectReader::string(const std::string& key, std::string& target, std::size_t max_length) {
+  if (const nlohmann::json* member = raw(key)) {
+    if (member->is_string() && member->get_ref<const std::string&>().size() <= max_length) {
+      target = member->get<std::string>();
+    } else {
+      error(key, "must be a string of at most " + std::to_string(max_length) + " characters, got " +
+                     describe_value(*member));
+    }
+  }
+  set_canonical(key, target);
+}
+
+void ObjectReader::string_list(const std::string& key, std::vector<std::string>& target,
+                               std::size_t max_items, std::size_t max_length) {
+  const std::string expected = "must be an array of at most " + std::to_string(max_items) +
+                               " non-empty strings of at most " + std::to_string(max_length) +
+                               " characters";
+  if (const nlohmann::json* member = raw(key)) {
+    if (!member->is_array() || member->size() > max_items) {
+      error(key, expected + ", got " + describe_value(*member));
+    } else {
+      std::vector<std::string> items;
+      bool valid = true;
+      for (std::size_t i = 0; i < member->size(); ++i) {
+        const nlohmann::json& item = (*member)[i];
+        if (item.is_string() && !item.get_ref<const std::string&>().empty() &&
+            item.get_ref<const std::string&>().size() <= max_length) {
+          items.push_back(item.get<std::string>());
+        } else {
+          valid = false;
+          errors_.push_back({pointer(key) + "/" + std::to_string(i),
+                             "must be a non-empty string of at most " + std::to_string(max_length) +
+                                 " characters, got " + describe_value(item)});
+        }
+      }
+      if (valid) target = std::move(items);
+    }
+  }
+  set_canonical(key, target);
+}
+
+void ObjectReader::object(const std::string& key, const std::function<void(ObjectReader&)>& read) {
+  const nlohmann::json* member = raw(key);
+  if (member != nullptr && !member->is_object()) {
+    error(key, "must be an object, got " + describe_value(*member));
+    member = nullptr;
+  }
+  ObjectReader child(member, pointer(key), errors_);
+  read(child);
+  child.finish();
+  set_canonical(key, child.canonical());
+}
+
+void ObjectReader::finish() {
+  if (object_ == nullptr) return;
+  std::string known_list;
+  for (const auto& name : known_)
+    known_list += (known_list.empty() ? "" : ", ") + name;
+  for (const auto& [key, value] : object_->items()) {
+    if (!known_.contains(key)) error(key, "unknown field (known here: " + known_list + ")");
+  }
+}
+
+std::string ObjectReader::choice_error(const std::vector<std::string>& names,
+                                       const nlohmann::json& got) {
+  std::string list;
+  for (const auto& name : names)
+    list += (list.empty() ? "\"" : ", \"") + name + "\"";
+  return "must be one of " + list + ", got " + describe_value(got);
+}
+
+} // namespace slipfront::api

@@ -1,0 +1,113 @@
+// Reading one object of the job JSON field by field.
+//
+// Each call reads one member: if it is absent the target keeps its default, if it is
+// present and valid the target takes its value, otherwise a FieldError naming the member's
+// JSON pointer, what was expected and what was got is recorded. Every value read (or
+// defaulted) is copied into the canonical object, and members nobody asked for are
+// reported as unknown when the reader finishes.
+#pragma once
+
+#include "api/job_spec.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <limits>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace slipfront::api {
+
+// An allowed range of a number: each bound is absent (infinite), closed or open.
+struct Interval {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false;
+  bool hi_open = false;
+
+  bool contains(double value) const;
+  std::string describe() const; // e.g. "> 0", "in (0, 0.5)", "" for every finite number
+};
+
+Interval any_finite();
+Interval positive();                            // > 0
+Interval negative();                            // < 0
+Interval non_negative();                        // >= 0
+Interval open_interval(double lo, double hi);   // (lo, hi)
+Interval closed_interval(double lo, double hi); // [lo, hi]
+Interval left_open(double lo, double hi);       // (lo, hi]
+
+// A short description of a JSON value for error messages: 0.5, "abc", true, null, an object.
+std::string describe_value(const nlohmann::json& value);
+
+// The JSON pointer of `key` inside the object at `parent` (escapes '~' and '/').
+std::string child_pointer(const std::string& parent, const std::string& key);
+
+class ObjectReader {
+public:
+  // `object` may be null: every field then keeps its default.
+  ObjectReader(const nlohmann::json* object, std::string pointer, std::vector<FieldError>& errors);
+
+  void number(const std::string& key, double& target, const Interval& allowed);
+  void integer(const std::string& key, int& target, int lo, int hi);
+  void boolean(const std::string& key, bool& target);
+  void string(const std::string& key, std::string& target, std::size_t max_length);
+  void string_list(const std::string& key, std::vector<std::string>& target, std::size_t max_items,
+                   std::size_t max_length);
+
+  template <class Enum>
+  void choice(const std::string& key, Enum& target,
+              const std::vector<std::pair<std::string, Enum>>& names);
+
+  // A nested object, read by `read`; its canonical form becomes a member of this one.
+  void object(const std::string& key, const std::function<void(ObjectReader&)>& read);
+
+  // For fields with a shape of their own: the raw member (null if absent), marked as known.
+  const nlohmann::json* raw(const std::string& key);
+  void set_canonical(const std::string& key, nlohmann::json value);
+  void error(const std::string& key, std::string reason);
+  std::string pointer(const std::string& key) const { return child_pointer(pointer_, key); }
+
+  // Records every member that was never asked for as an unknown field.
+  void finish();
+  const nlohmann::json& canonical() const { return canonical_; }
+
+private:
+  std::string choice_error(const std::vector<std::string>& names, const nlohmann::json& got);
+
+  const nlohmann::json* object_;
+  std::string pointer_;
+  std::vector<FieldError>& errors_;
+  std::set<std::string> known_;
+  nlohmann::json canonical_ = nlohmann::json::object();
+};
+
+template <class Enum>
+void ObjectReader::choice(const std::string& key, Enum& target,
+                          const std::vector<std::pair<std::string, Enum>>& names) {
+  std::vector<std::string> spellings;
+  std::string current;
+  for (const auto& [name, value] : names) {
+    spellings.push_back(name);
+    if (value == target) current = name;
+  }
+  const nlohmann::json* member = raw(key);
+  if (member != nullptr) {
+    bool matched = false;
+    if (member->is_string()) {
+      for (const auto& [name, value] : names) {
+        if (*member == name) {
+          target = value;
+          current = name;
+          matched = true;
+        }
+      }
+    }
+    if (!matched) error(key, choice_error(spellings, *member));
+  }
+  set_canonical(key, current);
+}
+
+} // namespace slipfront::api

@@ -1,0 +1,220 @@
+#include "api/result_file.hpp"
+
+#include "api/hdf5_objects.hpp"
+#include "api/job_spec.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <stdexcept>
+
+namespace slipfront::api {
+
+namespace {
+
+constexpr hsize_t max_chunk_rows = 64;
+constexpr hsize_t max_chunk_bytes = 1 << 20;
+
+// The float64 interface fields, in the order of InterfaceSample, with their units.
+struct FieldInfo {
+  const char* name;
+  const char* units;
+  const std::vector<double> InterfaceSample::*values;
+};
+constexpr std::array<FieldInfo, 5> interface_fields = {{
+    {"slip_velocity", "m/s", &InterfaceSample::slip_velocity},
+    {"slip", "m", &InterfaceSample::slip},
+    {"shear_traction", "Pa", &InterfaceSample::shear_traction},
+    {"contact_pressure", "Pa", &InterfaceSample::contact_pressure},
+    {"strength", "Pa", &InterfaceSample::strength},
+}};
+
+std::string iso_time_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+} // namespace
+
+struct ResultFileWriter::Impl {
+  std::string final_path;
+  std::string temp_path;
+  bool finished = false;
+
+  hdf5::Handle file;
+  hdf5::Handle interface_group;
+  hdf5::RowAppender time;
+  std::array<hdf5::RowAppender, interface_fields.size()> fields;
+  hdf5::RowAppender state;
+
+  // Samples wait here until a chunk's worth of rows is complete.
+  std::size_t nodes = 0;
+  hsize_t chunk_rows = 1;
+  hsize_t buffered = 0;
+  std::vector<double> time_buffer;
+  std::array<std::vector<double>, interface_fields.size()> field_buffers;
+  std::vector<std::int8_t> state_buffer;
+
+  void open_file();
+  void create_interface(const InterfaceLayout& layout);
+  void flush();
+  void write_records(const RunResult& result);
+  void close();
+};
+
+void ResultFileWriter::Impl::open_file() {
+  if (file.valid()) return;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // failures become exceptions, not stderr noise
+  file = hdf5::create_file(temp_path);
+}
+
+void ResultFileWriter::Impl::create_interface(const InterfaceLayout& layout) {
+  open_file();
+  if (interface_group.valid()) throw std::logic_error("ResultFileWriter::begin called twice");
+  nodes = layout.x1.size();
+  const hsize_t row_bytes = std::max<hsize_t>(nodes, 1) * sizeof(double);
+  chunk_rows = std::clamp<hsize_t>(max_chunk_bytes / row_bytes, 1, max_chunk_rows);
+
+  interface_group = hdf5::create_group(file.get(), "interface");
+  const hid_t group = interface_group.get();
+  hdf5::write_attribute(group, "sample_interval", layout.sample_interval);
+  hdf5::write_attribute(group, "layout", "time-major: [n_samples, n_nodes]");
+  hdf5::write_vector(group, "x1", layout.x1, "m");
+  time = hdf5::RowAppender(group, "time", H5T_NATIVE_DOUBLE, std::nullopt, chunk_rows, "s");
+  for (std::size_t f = 0; f < interface_fields.size(); ++f) {
+    fields[f] = hdf5::RowAppender(group, interface_fields[f].name, H5T_NATIVE_DOUBLE, nodes,
+                                  chunk_rows, interface_fields[f].units);
+    field_buffers[f].reserve(chunk_rows * nodes);
+  }
+  state = hdf5::RowAppender(group, "state", H5T_NATIVE_INT8, nodes, chunk_rows, "1");
+  hdf5::write_attribute(state.id(), "meaning", "0 = stick, 1 = slip, 2 = open");
+  state_buffer.reserve(chunk_rows * nodes);
+}
+
+void ResultFileWriter::Impl::flush() {
+  if (buffered == 0) return;
+  time.append(time_buffer.data(), buffered);
+  for (std::size_t f = 0; f < interface_fields.size(); ++f) {
+    fields[f].append(field_buffers[f].data(), buffered);
+    field_buffers[f].clear();
+  }
+  state.append(state_buffer.data(), buffered);
+  time_buffer.clear();
+  state_buffer.clear();
+  buffered = 0;
+}
+
+void ResultFileWriter::Impl::write_records(const RunResult& result) {
+  const hid_t root = file.get();
+  {
+    hdf5::Handle front = hdf5::create_group(root, "front");
+    hdf5::write_vector(front.get(), "x1", result.front.x1, "m");
+    hdf5::write_vector(front.get(), "arrival_time", result.front.arrival_time, "s");
+    hdf5::write_vector(front.get(), "rupture_speed", result.front.rupture_speed, "m/s");
+  }
+  {
+    const ProbeRecords& p = result.probes;
+    hdf5::Handle probes = hdf5::create_group(root, "probes");
+    hdf5::write_attribute(probes.get(), "arrival_x1", p.arrival_node_x1);
+    hdf5::write_attribute(probes.get(), "spectrum_x1", p.spectrum_node_x1);
+    hdf5::write_vector(probes.get(), "time", p.time, "s");
+    hdf5::write_vector(probes.get(), "slip_velocity_arrival", p.slip_velocity_arrival, "m/s");
+    hdf5::write_vector(probes.get(), "slip_velocity_spectrum", p.slip_velocity_spectrum, "m/s");
+    hdf5::write_vector(probes.get(), "strength_spectrum", p.strength_spectrum, "Pa");
+  }
+  {
+    const EnergyRecords& e = result.energy;
+    hdf5::Handle energy = hdf5::create_group(root, "energy");
+    hdf5::write_vector(energy.get(), "time", e.time, "s");
+    hdf5::write_vector(energy.get(), "kinetic", e.kinetic, "J/m");
+    hdf5::write_vector(energy.get(), "strain", e.strain, "J/m");
+    hdf5::write_vector(energy.get(), "external_work", e.external_work, "J/m");
+    hdf5::write_vector(energy.get(), "dissipated", e.dissipated, "J/m");
+  }
+}
+
+void ResultFileWriter::Impl::close() {
+  time.close();
+  for (auto& field : fields)
+    field.close();
+  state.close();
+  interface_group.reset();
+  file.reset();
+}
+
+ResultFileWriter::ResultFileWriter(std::string final_path) : impl_(std::make_unique<Impl>()) {
+  impl_->temp_path = final_path + ".tmp." + std::to_string(::getpid());
+  impl_->final_path = std::move(final_path);
+}
+
+ResultFileWriter::~ResultFileWriter() {
+  if (!impl_->finished) abandon();
+}
+
+void ResultFileWriter::begin(const InterfaceLayout& layout) {
+  impl_->create_interface(layout);
+}
+
+void ResultFileWriter::write(const InterfaceSample& sample) {
+  Impl& w = *impl_;
+  if (!w.interface_group.valid()) throw std::logic_error("ResultFileWriter::write before begin");
+  for (std::size_t f = 0; f < interface_fields.size(); ++f) {
+    const std::vector<double>& values = sample.*interface_fields[f].values;
+    if (values.size() != w.nodes) {
+      throw std::invalid_argument(std::string("interface sample: ") + interface_fields[f].name +
+                                  " has " + std::to_string(values.size()) + " values, expected " +
+                                  std::to_string(w.nodes));
+    }
+    w.field_buffers[f].insert(w.field_buffers[f].end(), values.begin(), values.end());
+  }
+  if (sample.state.size() != w.nodes) {
+    throw std::invalid_argument("interface sample: state has " +
+                                std::to_string(sample.state.size()) + " values, expected " +
+                                std::to_string(w.nodes));
+  }
+  w.state_buffer.insert(w.state_buffer.end(), sample.state.begin(), sample.state.end());
+  w.time_buffer.push_back(sample.time);
+  if (++w.buffered == w.chunk_rows) w.flush();
+}
+
+void ResultFileWriter::finish(const RunResult& result, const nlohmann::json& canonical_spec,
+                              const nlohmann::json& metrics) {
+  Impl& w = *impl_;
+  if (w.finished) throw std::logic_error("ResultFileWriter::finish called twice");
+  if (!w.interface_group.valid()) w.create_interface(InterfaceLayout{});
+  w.flush();
+  w.write_records(result);
+
+  const hid_t root = w.file.get();
+  hdf5::write_attribute(root, "spec", canonical_text(canonical_spec));
+  hdf5::write_attribute(root, "spec_sha256", spec_hash(canonical_spec));
+  hdf5::write_attribute(root, "metrics", metrics.dump());
+  hdf5::write_attribute(root, "code_version", code_version());
+  const auto method = metrics.find("method");
+  hdf5::write_attribute(root, "method",
+                        method != metrics.end() && method->is_string() ? method->get<std::string>()
+                                                                       : std::string());
+  hdf5::write_attribute(root, "created", iso_time_now());
+  w.close();
+
+  if (std::rename(w.temp_path.c_str(), w.final_path.c_str()) != 0) {
+    throw std::runtime_error("cannot rename " + w.temp_path + " to " + w.final_path);
+  }
+  w.finished = true;
+}
+
+void ResultFileWriter::abandon() {
+  impl_->close();
+  std::remove(impl_->temp_path.c_str());
+  impl_->finished = true; // nothing is left to clean up
+}
+
+} // namespace slipfront::api

@@ -1,0 +1,67 @@
+#include "api/run_job.hpp"
+
+#include "api/result_file.hpp"
+
+#include <filesystem>
+#include <optional>
+
+namespace slipfront::api {
+
+namespace {
+
+// Passes every sample to two sinks (the result file and the caller's own sink).
+class TeeSink : public SampleSink {
+public:
+  TeeSink(SampleSink& first, SampleSink& second) : first_(first), second_(second) {}
+  void begin(const InterfaceLayout& layout) override {
+    first_.begin(layout);
+    second_.begin(layout);
+  }
+  void write(const InterfaceSample& sample) override {
+    first_.write(sample);
+    second_.write(sample);
+  }
+
+private:
+  SampleSink& first_;
+  SampleSink& second_;
+};
+
+bool leaves_a_result(const RunResult& result) {
+  return !result.cancelled && result.metrics.outcome != Outcome::diverged;
+}
+
+} // namespace
+
+JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunHooks& hooks) {
+  JobOutput output;
+  if (output_path.empty()) {
+    output.result = run_simulation(job.params, hooks);
+    output.metrics = metrics_json(output.result, job.params);
+    return output;
+  }
+
+  ResultFileWriter writer(output_path); // removes its temporary file unless finished
+  std::optional<TeeSink> tee;
+  RunHooks run_hooks = hooks;
+  if (hooks.sink != nullptr) {
+    tee.emplace(writer, *hooks.sink);
+    run_hooks.sink = &*tee;
+  } else {
+    run_hooks.sink = &writer;
+  }
+
+  output.result = run_simulation(job.params, run_hooks);
+  output.metrics = metrics_json(output.result, job.params);
+  if (!leaves_a_result(output.result)) {
+    writer.abandon();
+    return output;
+  }
+  writer.finish(output.result, job.canonical, output.metrics);
+  output.result_path = output_path;
+  output.result_size = std::filesystem::file_size(output_path);
+  output.result_sha256 = sha256_file(output_path);
+  return output;
+}
+
+} // namespace slipfront::api

@@ -1,0 +1,23 @@
+// The subcommands of the `slipfront` executable. Each takes the arguments after its own
+// name and returns the process exit code.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace slipfront::app {
+
+namespace exit_code {
+constexpr int success = 0;
+constexpr int failure = 1;       // the run could not be carried out (I/O, internal error)
+constexpr int bad_input = 2;     // invalid job or command line
+constexpr int diverged = 3;      // the run ended with outcome "diverged"
+constexpr int interrupted = 130; // SIGINT (128 + 2)
+} // namespace exit_code
+
+int run_command(const std::vector<std::string>& args);
+int validate_command(const std::vector<std::string>& args);
+void print_usage(std::ostream& out);
+
+} // namespace slipfront::app

@@ -1,0 +1,55 @@
+#include "app/job_input.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace slipfront::app {
+
+std::string read_job_text(const std::string& path) {
+  std::ostringstream text;
+  if (path == "-") {
+    text << std::cin.rdbuf();
+    return text.str();
+  }
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error("cannot open job file " + path);
+  text << file.rdbuf();
+  if (file.bad()) throw std::runtime_error("cannot read job file " + path);
+  return text.str();
+}
+
+void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors) {
+  for (const auto& error : errors) {
+    out << (error.pointer.empty() ? "(document)" : error.pointer) << ": " << error.reason << '\n';
+  }
+}
+
+std::optional<api::JobSpec> load_job(const std::string& path, std::optional<int> threads) {
+  std::string text;
+  try {
+    text = read_job_text(path);
+  } catch (const std::exception& e) {
+    std::cerr << "slipfront: " << e.what() << '\n';
+    return std::nullopt;
+  }
+
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) { // syntax errors, number overflow
+    print_errors(std::cerr, {{"", std::string("not valid JSON: ") + e.what()}});
+    return std::nullopt;
+  }
+  if (threads && document.is_object()) document["threads"] = *threads;
+
+  api::ParseResult parsed = api::parse_job(document);
+  if (!parsed.ok()) {
+    print_errors(std::cerr, parsed.errors);
+    return std::nullopt;
+  }
+  return std::move(parsed.spec);
+}
+
+} // namespace slipfront::app

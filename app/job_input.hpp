@@ -1,0 +1,24 @@
+// Reading and checking a job file for the CLI commands.
+#pragma once
+
+#include "api/job_spec.hpp"
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace slipfront::app {
+
+// The job text from `path`, or from standard input for "-". Throws std::runtime_error if
+// the file cannot be read.
+std::string read_job_text(const std::string& path);
+
+// Writes each error as "pointer: reason", one per line ("(document)" for the whole document).
+void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors);
+
+// Reads and validates the job at `path`. On any problem prints it to stderr and returns
+// nothing. `threads`, when given, overrides the job's "threads" field before validation.
+std::optional<api::JobSpec> load_job(const std::string& path,
+                                     std::optional<int> threads = std::nullopt);
+
+} // namespace slipfront::app

@@ -1,0 +1,34 @@
+// The `slipfront` executable: run, validate, serve (SPEC §4; usage in app/usage.cpp).
+#include "app/commands.hpp"
+
+#include "server/serve.hpp"
+#include "solver/simulation.hpp"
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv) {
+  using namespace slipfront::app;
+  if (argc < 2) {
+    print_usage(std::cerr);
+    return exit_code::bad_input;
+  }
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+
+  if (command == "run") return run_command(args);
+  if (command == "validate") return validate_command(args);
+  if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
+  if (command == "--version" || command == "version") {
+    std::cout << "slipfront " << slipfront::code_version() << '\n';
+    return exit_code::success;
+  }
+  if (command == "help" || command == "--help" || command == "-h") {
+    print_usage(std::cout);
+    return exit_code::success;
+  }
+  std::cerr << "slipfront: unknown command \"" << command << "\"\n\n";
+  print_usage(std::cerr);
+  return exit_code::bad_input;
+}

@@ -1,0 +1,60 @@
+#include "app/progress_display.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+namespace slipfront::app {
+
+namespace {
+
+constexpr int bar_width = 24;
+constexpr auto plain_line_interval = std::chrono::seconds(5);
+
+std::string format_duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0.0) return "?";
+  const long total = std::lround(seconds);
+  char text[32];
+  if (total >= 3600) {
+    std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", total / 3600, total / 60 % 60, total % 60);
+  } else {
+    std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
+  }
+  return text;
+}
+
+} // namespace
+
+std::string format_progress(const Progress& p) {
+  const double fraction = std::clamp(p.fraction, 0.0, 1.0);
+  const int filled = static_cast<int>(fraction * bar_width);
+  std::string bar = "[" + std::string(filled, '#') + std::string(bar_width - filled, '.') + "]";
+  char text[160];
+  std::snprintf(text, sizeof text, "%s %5.1f%%  t = %.3g / %.3g s  %.0f steps/s  ETA %s",
+                bar.c_str(), 100.0 * fraction, p.time, p.duration, p.steps_per_s,
+                format_duration(p.eta_s).c_str());
+  return text;
+}
+
+ProgressDisplay::ProgressDisplay(std::ostream& out, bool terminal)
+    : out_(out), terminal_(terminal), last_line_(std::chrono::steady_clock::now()) {}
+
+void ProgressDisplay::update(const Progress& progress) {
+  if (terminal_) {
+    out_ << '\r' << format_progress(progress) << "\x1b[K" << std::flush; // redraw, clear the rest
+    drawn_ = true;
+    return;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_line_ < plain_line_interval) return;
+  last_line_ = now;
+  out_ << format_progress(progress) << std::endl;
+}
+
+void ProgressDisplay::finish() {
+  if (terminal_ && drawn_) out_ << '\n' << std::flush;
+}
+
+} // namespace slipfront::app

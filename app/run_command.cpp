@@ -1,0 +1,124 @@
+// `slipfront run JOB.json [--output RESULT.h5] [--threads N] [--quiet]`
+#include "app/commands.hpp"
+#include "app/job_input.hpp"
+#include "app/progress_display.hpp"
+
+#include "api/run_job.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <iostream>
+#include <optional>
+
+namespace slipfront::app {
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_sigint(int) {
+  interrupted.store(true);
+}
+
+// The first SIGINT asks the run to stop (within one step); a second one kills the process.
+void install_sigint_handler() {
+  struct sigaction action {};
+  action.sa_handler = on_sigint;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+}
+
+struct RunOptions {
+  std::string job_path;
+  std::string output_path;
+  std::optional<int> threads;
+  bool quiet = false;
+};
+
+// Parses the arguments; prints the problem and returns nothing if they are wrong.
+std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
+  RunOptions options;
+  bool have_job = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    const bool has_value = i + 1 < args.size();
+    if (arg == "--output" && has_value) {
+      options.output_path = args[++i];
+    } else if (arg == "--threads" && has_value) {
+      try {
+        std::size_t used = 0;
+        options.threads = std::stoi(args[++i], &used);
+        if (used != args[i].size()) throw std::invalid_argument("trailing characters");
+      } catch (const std::exception&) {
+        std::cerr << "slipfront run: --threads needs an integer, got \"" << args[i] << "\"\n";
+        return std::nullopt;
+      }
+    } else if (arg == "--quiet") {
+      options.quiet = true;
+    } else if ((arg.starts_with("-") && arg != "-") || have_job) {
+      std::cerr << "slipfront run: unexpected argument \"" << arg << "\" (see slipfront help)\n";
+      return std::nullopt;
+    } else {
+      options.job_path = arg;
+      have_job = true;
+    }
+  }
+  if (!have_job) {
+    std::cerr << "slipfront run: missing JOB.json (see slipfront help)\n";
+    return std::nullopt;
+  }
+  return options;
+}
+
+} // namespace
+
+int run_command(const std::vector<std::string>& args) {
+  const std::optional<RunOptions> options = parse_options(args);
+  if (!options) return exit_code::bad_input;
+  const std::optional<api::JobSpec> job = load_job(options->job_path, options->threads);
+  if (!job) return exit_code::bad_input;
+
+  ProgressDisplay display(std::cerr, ::isatty(STDERR_FILENO) == 1);
+  RunHooks hooks;
+  hooks.cancel = &interrupted;
+  if (!options->quiet) hooks.on_progress = [&](const Progress& p) { display.update(p); };
+  install_sigint_handler();
+
+  api::JobOutput output;
+  try {
+    output = api::run_job(*job, options->output_path, hooks);
+  } catch (const std::exception& e) {
+    display.finish();
+    std::cerr << "slipfront run: " << e.what() << '\n';
+    return exit_code::failure;
+  }
+  display.finish();
+
+  if (output.result.cancelled) {
+    std::cerr << "slipfront run: interrupted at t = " << output.result.metrics.simulated_time
+              << " s; no result file written\n";
+    return exit_code::interrupted;
+  }
+
+  nlohmann::json printed = output.metrics;
+  printed["spec_sha256"] = job->sha256;
+  if (!output.result_path.empty()) {
+    printed["result_file"] = {{"path", output.result_path},
+                              {"bytes", output.result_size},
+                              {"sha256", output.result_sha256}};
+  }
+  std::cout << printed.dump() << std::endl;
+
+  if (output.result.metrics.outcome == Outcome::diverged) {
+    std::cerr << "slipfront run: the run diverged: " << output.result.metrics.message
+              << (options->output_path.empty() ? "" : "; no result file written") << '\n';
+    return exit_code::diverged;
+  }
+  return exit_code::success;
+}
+
+} // namespace slipfront::app

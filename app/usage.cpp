@@ -1,0 +1,32 @@
+#include "app/commands.hpp"
+
+#include <ostream>
+
+namespace slipfront::app {
+
+void print_usage(std::ostream& out) {
+  out << R"(slipfront: frictional interface rupture simulations (Kammer et al. 2014)
+
+usage:
+  slipfront run JOB.json [--output RESULT.h5] [--threads N] [--quiet]
+      Run one job in the foreground; progress on stderr, the metrics as one JSON object
+      on stdout. JOB.json may be "-" to read the job from standard input.
+  slipfront validate JOB.json
+      Check a job: prints "ok", its spec hash and memory estimate, or every error.
+  slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [...]
+      Run the HTTP job server (docs/server.md).
+  slipfront --version
+  slipfront help | --help
+
+exit codes:
+  0    success
+  1    the run failed (I/O or internal error)
+  2    invalid job or command line (each error as "pointer: reason" on stderr)
+  3    the run diverged (metrics still printed, no result file written)
+  130  interrupted by SIGINT (no result file written)
+
+The job JSON and the result file: docs/api-job-spec.md, docs/hdf5-layout.md.
+)";
+}
+
+} // namespace slipfront::app

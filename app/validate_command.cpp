@@ -1,0 +1,36 @@
+// `slipfront validate JOB.json`
+#include "app/commands.hpp"
+#include "app/job_input.hpp"
+
+#include "solver/simulation.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace slipfront::app {
+
+int validate_command(const std::vector<std::string>& args) {
+  if (args.size() != 1) {
+    std::cerr << "slipfront validate: expects exactly one JOB.json (see slipfront help)\n";
+    return exit_code::bad_input;
+  }
+  const std::optional<api::JobSpec> job = load_job(args[0]);
+  if (!job) return exit_code::bad_input;
+
+  const Geometry& g = job->params.geometry;
+  const double height = resolved_height(job->params);
+  char mesh[160];
+  std::snprintf(mesh, sizeof mesh, "%ld x %ld nodes, dx = %g m, height = %g m%s",
+                std::lround(g.width * g.nodes_per_meter),
+                std::lround(height * g.nodes_per_meter) + 1, 1.0 / g.nodes_per_meter, height,
+                g.auto_height ? " (auto)" : "");
+  std::cout << "ok\n"
+            << "spec_sha256: " << job->sha256 << '\n'
+            << "memory_estimate_bytes: " << std::llround(job->memory_estimate_bytes) << " ("
+            << job->memory_estimate_bytes / 1e6 << " MB)\n"
+            << "mesh: " << mesh << '\n';
+  return exit_code::success;
+}
+
+} // namespace slipfront::app

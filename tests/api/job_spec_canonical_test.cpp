@@ -1,0 +1,114 @@
+// The canonical form of a job and its hash: equal physics, equal hash.
+#include "api/job_spec.hpp"
+
+#include <gtest/gtest.h>
+
+using nlohmann::json;
+using slipfront::api::parse_job;
+using slipfront::api::parse_job_text;
+
+namespace {
+
+slipfront::api::JobSpec parsed(const json& job) {
+  auto result = parse_job(job);
+  if (!result.ok()) {
+    ADD_FAILURE() << result.errors.front().pointer << ": " << result.errors.front().reason;
+    return {};
+  }
+  return *result.spec;
+}
+
+std::string hash_of(const json& job) {
+  return parsed(job).sha256;
+}
+
+} // namespace
+
+TEST(JobCanonical, EveryFieldIsFilledWithItsDefault) {
+  const json canonical = parsed(json::object()).canonical;
+  const json expected = json::parse(R"({
+    "friction": {"L": 5e-05, "law": "prakash_clifton", "mu": 0.75,
+                 "strength_update": "exponential", "v_star": 0.0001},
+    "geometry": {"height": 20.0, "nodes_per_meter": 40.0, "top_boundary": "traction",
+                 "width": 40.0, "x_min": -10.0},
+    "loading": {"normal_stress": -0.015, "shear_stress": 0.0105},
+    "material": {"density": 1.0, "poisson_ratio": 0.25, "young_modulus": 2.5},
+    "name": "",
+    "nucleation": {"a": 0.6, "alpha": 0.8, "b": 3.6, "enabled": true, "v": 0.825},
+    "output": {"interval": 0.02, "space_stride": 1},
+    "probe": {"arrival_x1": 11.0, "front_threshold": 1e-06, "spectrum_x1": 6.0},
+    "tags": [],
+    "threads": 0,
+    "time": {"arrest_window": 1.0, "duration": 16.0, "safety_factor": 0.5,
+             "stop_on_arrest": true}
+  })");
+  EXPECT_EQ(canonical, expected) << canonical.dump(2);
+}
+
+TEST(JobCanonical, TextIsCompactWithSortedKeys) {
+  const json canonical = parsed({{"name", "n"}, {"friction", {{"mu", 0.8}}}}).canonical;
+  const std::string text = slipfront::api::canonical_text(canonical);
+  EXPECT_EQ(text.find(' '), std::string::npos);
+  EXPECT_EQ(text.find('\n'), std::string::npos);
+  EXPECT_LT(text.find("\"friction\""), text.find("\"geometry\""));
+  EXPECT_LT(text.find("\"L\""), text.find("\"law\"")); // byte order: upper case first
+}
+
+TEST(JobCanonical, AutoHeightStaysAuto) {
+  const json canonical = parsed({{"geometry", {{"height", "auto"}}}}).canonical;
+  EXPECT_EQ(canonical["geometry"]["height"], "auto");
+  EXPECT_NE(hash_of({{"geometry", {{"height", "auto"}}}}), hash_of(json::object()));
+}
+
+TEST(JobCanonical, HashIgnoresKeyOrderWhitespaceAndExplicitDefaults) {
+  const std::string empty = hash_of(json::object());
+  const auto a =
+      parse_job_text(R"({"friction": {"mu": 0.75, "L": 5e-5}, "time": {"duration": 16}})");
+  const auto b = parse_job_text(R"({ "time" : { "duration" : 16.0 },
+                                     "friction" : { "L" : 0.00005, "mu" : 0.75 } })");
+  ASSERT_TRUE(a.ok());
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(a.spec->sha256, b.spec->sha256);
+  EXPECT_EQ(a.spec->sha256, empty);
+  EXPECT_EQ(hash_of({{"geometry", {{"nodes_per_meter", 40}}}}), empty); // integer 40 == 40.0
+}
+
+TEST(JobCanonical, PhysicsChangesTheHash) {
+  const std::string reference = hash_of(json::object());
+  EXPECT_NE(hash_of({{"friction", {{"L", 1e-5}}}}), reference);
+  EXPECT_NE(hash_of({{"geometry", {{"nodes_per_meter", 20}}}}), reference);
+  EXPECT_NE(hash_of({{"probe", {{"arrival_x1", 10}}}}), reference);
+  EXPECT_NE(hash_of({{"friction", {{"law", "coulomb"}}}}), reference);
+  EXPECT_NE(hash_of({{"time", {{"stop_on_arrest", false}}}}), reference);
+  EXPECT_NE(hash_of({{"friction", {{"L", 1e-5}}}}), hash_of({{"friction", {{"L", 1.0001e-5}}}}));
+}
+
+TEST(JobCanonical, NameTagsThreadsAndOutputDoNotChangeTheHash) {
+  const std::string reference = hash_of(json::object());
+  EXPECT_EQ(hash_of({{"name", "paper run"}, {"tags", {"paper", "L=5e-5"}}}), reference);
+  EXPECT_EQ(hash_of({{"threads", 4}}), reference);
+  EXPECT_EQ(hash_of({{"output", {{"interval", 0.1}, {"space_stride", 4}}}}), reference);
+}
+
+TEST(JobCanonical, NameAndTagsAreKeptInTheSpec) {
+  const auto spec = parsed({{"name", "paper run"}, {"tags", {"paper", "nd40"}}});
+  EXPECT_EQ(spec.name, "paper run");
+  EXPECT_EQ(spec.canonical["name"], "paper run");
+  EXPECT_EQ(spec.canonical["tags"], json({"paper", "nd40"}));
+}
+
+TEST(JobCanonical, CanonicalFormParsesToTheSameJob) {
+  const auto first = parsed({{"friction", {{"L", 1e-5}}}, {"geometry", {{"height", "auto"}}}});
+  const auto second = parsed(first.canonical);
+  EXPECT_EQ(second.canonical, first.canonical);
+  EXPECT_EQ(second.sha256, first.sha256);
+}
+
+TEST(JobCanonical, SpecHashIsTheSha256OfThePhysicsText) {
+  const auto spec = parsed(json::object());
+  json physics = spec.canonical;
+  for (const char* key : {"name", "tags", "threads", "output"})
+    physics.erase(key);
+  EXPECT_EQ(spec.sha256, slipfront::api::sha256_hex(physics.dump()));
+  EXPECT_EQ(slipfront::api::spec_hash(spec.canonical), spec.sha256);
+}

@@ -1,0 +1,324 @@
+// Validation of the job JSON: every rule names the field by its JSON pointer.
+#include "api/job_spec.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+using nlohmann::json;
+using slipfront::api::FieldError;
+using slipfront::api::parse_job;
+using slipfront::api::parse_job_text;
+using slipfront::api::ParseResult;
+
+namespace {
+
+// The error at `pointer`, or a test failure listing every error got.
+const FieldError* error_at(const ParseResult& result, const std::string& pointer) {
+  const auto found = std::find_if(result.errors.begin(), result.errors.end(),
+                                  [&](const FieldError& e) { return e.pointer == pointer; });
+  if (found != result.errors.end()) return &*found;
+  std::string got;
+  for (const auto& e : result.errors)
+    got += "\n  " + e.pointer + ": " + e.reason;
+  ADD_FAILURE() << "no error at \"" << pointer << "\"; errors:" << got;
+  return nullptr;
+}
+
+// Expects `job` to be refused with exactly one error, at `pointer`, whose reason contains
+// `fragment`.
+void expect_single_error(const json& job, const std::string& pointer, const std::string& fragment) {
+  const ParseResult result = parse_job(job);
+  EXPECT_FALSE(result.ok());
+  EXPECT_FALSE(result.spec.has_value());
+  ASSERT_EQ(result.errors.size(), 1u) << job.dump();
+  if (const FieldError* e = error_at(result, pointer)) {
+    EXPECT_NE(e->reason.find(fragment), std::string::npos) << e->reason;
+  }
+}
+
+} // namespace
+
+TEST(JobValidation, EmptyObjectIsThePaperScene) {
+  const ParseResult result = parse_job(json::object());
+  ASSERT_TRUE(result.ok());
+  const auto& p = result.spec->params;
+  EXPECT_DOUBLE_EQ(p.friction.L, 5e-5);
+  EXPECT_DOUBLE_EQ(p.geometry.nodes_per_meter, 40.0);
+  EXPECT_DOUBLE_EQ(p.loading.normal_stress, -0.0150);
+  EXPECT_GT(result.spec->memory_estimate_bytes, 0.0);
+  EXPECT_EQ(result.spec->sha256.size(), 64u);
+}
+
+TEST(JobValidation, EveryFieldIsMappedOntoParams) {
+  const json job = json::parse(R"({
+    "material": {"density": 2, "young_modulus": 3, "poisson_ratio": 0.3},
+    "geometry": {"width": 20, "height": "auto", "x_min": -5, "nodes_per_meter": 10,
+                 "top_boundary": "absorbing"},
+    "loading": {"normal_stress": -0.02, "shear_stress": -0.01},
+    "friction": {"law": "coulomb", "mu": 0.6, "L": 1e-4, "v_star": 2e-4,
+                 "strength_update": "explicit_euler"},
+    "nucleation": {"enabled": false, "a": 0.5, "b": 3, "v": 0.5, "alpha": 0.5},
+    "time": {"duration": 8, "safety_factor": 0.4, "stop_on_arrest": false, "arrest_window": 2},
+    "output": {"interval": 0.05, "space_stride": 2},
+    "probe": {"arrival_x1": 5, "spectrum_x1": 3, "front_threshold": 1e-5},
+    "threads": 2, "name": "all fields", "tags": ["a", "b"]
+  })");
+  const ParseResult result = parse_job(job);
+  ASSERT_TRUE(result.ok()) << result.errors.front().pointer << ": " << result.errors.front().reason;
+  const slipfront::api::JobSpec& spec = *result.spec;
+  const slipfront::SimulationParams& p = spec.params;
+  EXPECT_EQ(p.material.density, 2.0);
+  EXPECT_EQ(p.material.young_modulus, 3.0);
+  EXPECT_EQ(p.material.poisson_ratio, 0.3);
+  EXPECT_EQ(p.geometry.width, 20.0);
+  EXPECT_TRUE(p.geometry.auto_height);
+  EXPECT_EQ(p.geometry.x_min, -5.0);
+  EXPECT_EQ(p.geometry.nodes_per_meter, 10.0);
+  EXPECT_EQ(p.top, slipfront::TopBoundary::absorbing);
+  EXPECT_EQ(p.loading.normal_stress, -0.02);
+  EXPECT_EQ(p.loading.shear_stress, -0.01);
+  EXPECT_EQ(p.friction.law, slipfront::FrictionLaw::coulomb);
+  EXPECT_EQ(p.friction.mu, 0.6);
+  EXPECT_EQ(p.friction.L, 1e-4);
+  EXPECT_EQ(p.friction.v_star, 2e-4);
+  EXPECT_EQ(p.friction.update, slipfront::StrengthUpdate::explicit_euler);
+  EXPECT_FALSE(p.nucleation.enabled);
+  EXPECT_EQ(p.nucleation.a, 0.5);
+  EXPECT_EQ(p.nucleation.b, 3.0);
+  EXPECT_EQ(p.nucleation.v, 0.5);
+  EXPECT_EQ(p.nucleation.alpha, 0.5);
+  EXPECT_EQ(p.time.duration, 8.0);
+  EXPECT_EQ(p.time.safety_factor, 0.4);
+  EXPECT_FALSE(p.time.stop_on_arrest);
+  EXPECT_EQ(p.time.arrest_window, 2.0);
+  EXPECT_EQ(p.output.interval, 0.05);
+  EXPECT_EQ(p.output.space_stride, 2);
+  EXPECT_EQ(p.probes.arrival_x1, 5.0);
+  EXPECT_EQ(p.probes.spectrum_x1, 3.0);
+  EXPECT_EQ(p.probes.front_threshold, 1e-5);
+  EXPECT_EQ(p.threads, 2);
+  EXPECT_EQ(spec.name, "all fields");
+  EXPECT_EQ(spec.tags, (std::vector<std::string>{"a", "b"}));
+}
+
+TEST(JobValidation, TopLevelMustBeAnObject) {
+  for (const json& document : {json::array(), json(3), json("job"), json(nullptr)}) {
+    const ParseResult result = parse_job(document);
+    ASSERT_EQ(result.errors.size(), 1u);
+    EXPECT_EQ(result.errors[0].pointer, "");
+    EXPECT_NE(result.errors[0].reason.find("must be a JSON object"), std::string::npos);
+  }
+}
+
+TEST(JobValidation, SyntaxErrorIsOneErrorAtTheRoot) {
+  const ParseResult result = parse_job_text(R"({"friction": {"L": 1e-5,}})");
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].pointer, "");
+  EXPECT_NE(result.errors[0].reason.find("not valid JSON"), std::string::npos);
+}
+
+TEST(JobValidation, UnknownFieldsAtEveryLevel) {
+  expect_single_error({{"frobnicate", 1}}, "/frobnicate", "unknown field");
+  expect_single_error({{"friction", {{"foo", 1}}}}, "/friction/foo", "unknown field");
+  expect_single_error({{"geometry", {{"depth", 1}}}}, "/geometry/depth", "unknown field");
+  // SPEC's "nucleation" is not "nucleus"; the pointer escapes '/' and '~'.
+  expect_single_error({{"nucleus", json::object()}}, "/nucleus", "unknown field");
+  expect_single_error({{"a/b~c", 1}}, "/a~1b~0c", "unknown field");
+}
+
+TEST(JobValidation, UnknownFieldReasonListsTheKnownOnes) {
+  const ParseResult result = parse_job({{"friction", {{"l", 1e-5}}}});
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_NE(result.errors[0].reason.find("L, law, mu, strength_update, v_star"), std::string::npos)
+      << result.errors[0].reason;
+}
+
+TEST(JobValidation, WrongTypesNameTheExpectedTypeAndTheValueGot) {
+  expect_single_error({{"friction", {{"L", "small"}}}}, "/friction/L",
+                      "must be a finite number > 0, got \"small\"");
+  expect_single_error({{"material", {{"density", true}}}}, "/material/density",
+                      "must be a finite number > 0, got true");
+  expect_single_error({{"material", 3}}, "/material", "must be an object, got 3");
+  expect_single_error({{"time", {{"stop_on_arrest", 1}}}}, "/time/stop_on_arrest",
+                      "must be true or false, got 1");
+  expect_single_error({{"nucleation", {{"enabled", "yes"}}}}, "/nucleation/enabled",
+                      "must be true or false");
+  expect_single_error({{"name", 42}}, "/name", "must be a string");
+  expect_single_error({{"tags", "fast"}}, "/tags", "must be an array");
+  expect_single_error({{"tags", {"ok", 3}}}, "/tags/1", "must be a non-empty string");
+  expect_single_error({{"geometry", {{"width", nullptr}}}}, "/geometry/width", "got null");
+  expect_single_error({{"probe", {{"arrival_x1", json::array()}}}}, "/probe/arrival_x1",
+                      "got an array");
+}
+
+TEST(JobValidation, EnumerationsListTheirSpellings) {
+  expect_single_error({{"friction", {{"law", "rate_and_state"}}}}, "/friction/law",
+                      R"(must be one of "prakash_clifton", "coulomb", got "rate_and_state")");
+  expect_single_error({{"friction", {{"strength_update", "rk4"}}}}, "/friction/strength_update",
+                      R"("exponential", "explicit_euler")");
+  expect_single_error({{"geometry", {{"top_boundary", "free"}}}}, "/geometry/top_boundary",
+                      R"("traction", "absorbing")");
+}
+
+TEST(JobValidation, MaterialRanges) {
+  expect_single_error({{"material", {{"density", 0}}}}, "/material/density", "> 0, got 0");
+  expect_single_error({{"material", {{"young_modulus", -2.5}}}}, "/material/young_modulus",
+                      "> 0, got -2.5");
+  expect_single_error({{"material", {{"poisson_ratio", 0.5}}}}, "/material/poisson_ratio",
+                      "in (0, 0.5), got 0.5");
+  expect_single_error({{"material", {{"poisson_ratio", 0}}}}, "/material/poisson_ratio",
+                      "in (0, 0.5)");
+  EXPECT_TRUE(parse_job({{"material", {{"poisson_ratio", 0.49}}}}).ok());
+}
+
+TEST(JobValidation, GeometryRanges) {
+  expect_single_error({{"geometry", {{"width", 0}}}}, "/geometry/width", "> 0");
+  expect_single_error({{"geometry", {{"height", -1}}}}, "/geometry/height",
+                      R"(> 0 or "auto", got -1)");
+  expect_single_error({{"geometry", {{"height", "tall"}}}}, "/geometry/height", R"("auto")");
+  expect_single_error({{"geometry", {{"nodes_per_meter", -40}}}}, "/geometry/nodes_per_meter",
+                      "> 0");
+  expect_single_error({{"geometry", {{"x_min", "left"}}}}, "/geometry/x_min",
+                      "must be a finite number, got");
+}
+
+TEST(JobValidation, NonFiniteNumbersAreRefused) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  expect_single_error({{"geometry", {{"x_min", infinity}}}}, "/geometry/x_min",
+                      "must be a finite number, got a non-finite number");
+  expect_single_error({{"friction", {{"L", std::nan("")}}}}, "/friction/L", "non-finite");
+  // In JSON text, 1e999 overflows in the parser: one error for the whole document.
+  const ParseResult result = parse_job_text(R"({"geometry": {"x_min": 1e999}})");
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].pointer, "");
+  EXPECT_NE(result.errors[0].reason.find("overflow"), std::string::npos) << result.errors[0].reason;
+}
+
+TEST(JobValidation, MeshMustHoldWholeElements) {
+  expect_single_error({{"geometry", {{"width", 40.01}}}}, "/geometry/width",
+                      "whole number of elements");
+  expect_single_error({{"geometry", {{"height", 20.01}}}}, "/geometry/height",
+                      "whole number of elements");
+  // 40 m * 10.05 nodes/m = 402 elements along x1, but 20 * 10.05 = 201 is fine too.
+  EXPECT_TRUE(parse_job({{"geometry", {{"nodes_per_meter", 10.05}}}}).ok());
+  // A product off by rounding noise only is accepted: 0.1 * 30 = 3.0000000000000004.
+  EXPECT_TRUE(parse_job({{"geometry",
+                          {{"width", 0.1}, {"height", 0.1}, {"nodes_per_meter", 30}, {"x_min", 0}}},
+                         {"probe", {{"arrival_x1", 0.05}, {"spectrum_x1", 0.05}}},
+                         {"nucleation", {{"enabled", false}}}})
+                  .ok());
+  expect_single_error({{"geometry", {{"width", 0.2}, {"nodes_per_meter", 10}, {"x_min", 0}}},
+                       {"probe", {{"arrival_x1", 0.1}, {"spectrum_x1", 0.1}}}},
+                      "/geometry/width", "need at least 3");
+  // "auto" height is resolved by the solver: no whole-element rule on the JSON value.
+  EXPECT_TRUE(parse_job({{"geometry", {{"height", "auto"}}}}).ok());
+}
+
+TEST(JobValidation, LoadingMustCompressAndStartStuck) {
+  expect_single_error({{"loading", {{"normal_stress", 0.015}}}}, "/loading/normal_stress",
+                      "< 0, got 0.015");
+  expect_single_error({{"loading", {{"normal_stress", 0}}}}, "/loading/normal_stress", "< 0");
+  // mu |p| = 0.75 * 0.015 = 0.01125 Pa: a larger shear load cannot start stuck.
+  expect_single_error({{"loading", {{"shear_stress", 0.012}}}}, "/loading/shear_stress",
+                      "static strength");
+  expect_single_error({{"loading", {{"shear_stress", -0.012}}}}, "/loading/shear_stress",
+                      "static strength");
+  expect_single_error({{"friction", {{"mu", 0.5}}}}, "/loading/shear_stress", "static strength");
+  EXPECT_TRUE(parse_job({{"loading", {{"shear_stress", -0.0105}}}}).ok());
+}
+
+TEST(JobValidation, FrictionRanges) {
+  expect_single_error({{"friction", {{"mu", -0.1}}}}, "/friction/mu", ">= 0, got -0.1");
+  expect_single_error({{"friction", {{"L", 0}}}}, "/friction/L", "> 0, got 0");
+  expect_single_error({{"friction", {{"v_star", -1e-4}}}}, "/friction/v_star", "> 0");
+  EXPECT_TRUE(parse_job({{"friction", {{"mu", 0}}}, {"loading", {{"shear_stress", 0}}}}).ok());
+}
+
+TEST(JobValidation, NucleationRanges) {
+  expect_single_error({{"nucleation", {{"a", 0}}}}, "/nucleation/a", "> 0");
+  expect_single_error({{"nucleation", {{"b", -3.6}}}}, "/nucleation/b", "> 0");
+  expect_single_error({{"nucleation", {{"v", -0.825}}}}, "/nucleation/v", ">= 0");
+  expect_single_error({{"nucleation", {{"alpha", 1.2}}}}, "/nucleation/alpha",
+                      "in [0, 1], got 1.2");
+  EXPECT_TRUE(parse_job({{"nucleation", {{"alpha", 0}}}}).ok());
+  EXPECT_TRUE(parse_job({{"nucleation", {{"alpha", 1}}}}).ok());
+}
+
+TEST(JobValidation, TimeRanges) {
+  expect_single_error({{"time", {{"duration", 0}}}}, "/time/duration", "> 0");
+  expect_single_error({{"time", {{"safety_factor", 0}}}}, "/time/safety_factor", "in (0, 1]");
+  expect_single_error({{"time", {{"safety_factor", 1.01}}}}, "/time/safety_factor", "in (0, 1]");
+  expect_single_error({{"time", {{"arrest_window", -1}}}}, "/time/arrest_window", "> 0");
+  EXPECT_TRUE(parse_job({{"time", {{"safety_factor", 1}}}}).ok());
+}
+
+TEST(JobValidation, OutputRanges) {
+  expect_single_error({{"output", {{"interval", 0}}}}, "/output/interval", "> 0");
+  expect_single_error({{"output", {{"space_stride", 0}}}}, "/output/space_stride",
+                      "must be an integer in [1, ");
+  expect_single_error({{"output", {{"space_stride", 1.5}}}}, "/output/space_stride", "got 1.5");
+  expect_single_error({{"output", {{"space_stride", 1601}}}}, "/output/space_stride",
+                      "number of interface nodes (1600)");
+  // An integral float is an integer.
+  const ParseResult result = parse_job({{"output", {{"space_stride", 4.0}}}});
+  ASSERT_TRUE(result.ok());
+  EXPECT_EQ(result.spec->params.output.space_stride, 4);
+}
+
+TEST(JobValidation, ProbesMustLieInTheDomain) {
+  expect_single_error({{"probe", {{"arrival_x1", 30}}}}, "/probe/arrival_x1",
+                      "[x_min, x_min + width) = [-10, 30), got 30");
+  expect_single_error({{"probe", {{"spectrum_x1", -10.5}}}}, "/probe/spectrum_x1", "got -10.5");
+  expect_single_error({{"probe", {{"front_threshold", 0}}}}, "/probe/front_threshold", "> 0");
+  EXPECT_TRUE(parse_job({{"probe", {{"arrival_x1", -10}}}}).ok());
+  // Moving the domain moves the allowed range.
+  expect_single_error({{"geometry", {{"x_min", 0}}}, {"probe", {{"spectrum_x1", -1}}}},
+                      "/probe/spectrum_x1", "[0, 40)");
+}
+
+TEST(JobValidation, ThreadsNameAndTags) {
+  expect_single_error({{"threads", -1}}, "/threads", "integer in [0, 256], got -1");
+  expect_single_error({{"threads", 257}}, "/threads", "got 257");
+  expect_single_error({{"threads", "all"}}, "/threads", "got \"all\"");
+  expect_single_error({{"name", std::string(300, 'x')}}, "/name", "at most 256 characters");
+  expect_single_error({{"tags", {""}}}, "/tags/0", "non-empty");
+  EXPECT_TRUE(parse_job({{"threads", 0}, {"tags", json::array()}}).ok());
+}
+
+TEST(JobValidation, AllErrorsAreReportedTogether) {
+  const json job = json::parse(R"({
+    "material": {"poisson_ratio": 0.5, "colour": "grey"},
+    "friction": {"L": -1, "foo": 2, "law": "static"},
+    "time": {"duration": "long"},
+    "threads": 1000,
+    "extra": true
+  })");
+  const ParseResult result = parse_job(job);
+  EXPECT_EQ(result.errors.size(), 8u);
+  for (const char* pointer :
+       {"/material/poisson_ratio", "/material/colour", "/friction/L", "/friction/foo",
+        "/friction/law", "/time/duration", "/threads", "/extra"}) {
+    EXPECT_NE(error_at(result, pointer), nullptr);
+  }
+}
+
+TEST(JobValidation, MemoryLimitRefusesHugeMeshes) {
+  slipfront::api::ValidationLimits limits;
+  limits.max_memory_bytes = 1e6;
+  const ParseResult result = parse_job({{"geometry", {{"nodes_per_meter", 40}}}}, limits);
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].pointer, "/geometry/nodes_per_meter");
+  EXPECT_NE(result.errors[0].reason.find("limit of 0.001 GB"), std::string::npos)
+      << result.errors[0].reason;
+  EXPECT_NE(result.errors[0].reason.find("GB of memory (estimate)"), std::string::npos);
+
+  // The default limit accepts the paper's finest mesh ...
+  EXPECT_TRUE(parse_job({{"geometry", {{"nodes_per_meter", 120}}}}).ok());
+  // ... and refuses an absurd one.
+  const ParseResult huge = parse_job({{"geometry", {{"nodes_per_meter", 4000}}}});
+  ASSERT_FALSE(huge.ok());
+  EXPECT_EQ(huge.errors[0].pointer, "/geometry/nodes_per_meter");
+}

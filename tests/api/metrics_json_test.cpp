@@ -1,0 +1,126 @@
+// The metrics JSON: SPEC §2 names, null for undefined values, the method that ran.
+#include "api/run_job.hpp"
+#include "synthetic_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using nlohmann::json;
+using slipfront::api::front_json;
+using slipfront::api::method_description;
+using slipfront::api::metrics_json;
+
+namespace {
+
+slipfront::RunResult example_result() {
+  slipfront::RunResult result =
+      slipfront::testing::synthetic_result(slipfront::testing::synthetic_layout(4));
+  auto& m = result.metrics;
+  m.front_threshold = 1e-6;
+  m.arrest_position = 12.5;
+  m.propagation_distance = 12.4;
+  m.arrival_time_at_probe = std::numeric_limits<double>::quiet_NaN();
+  m.probe_x1 = 11.0;
+  m.max_rupture_speed = 1.6;
+  m.mean_rupture_speed = 1.2;
+  m.max_slip_velocity = 8e-3;
+  m.outcome = slipfront::Outcome::arrested;
+  m.energy_error = 1e-4;
+  m.spectral_frequency = 2.0;
+  m.spectral_velocity = 1e-3;
+  m.spectral_critical_length = 1e-5;
+  m.wall_time_s = 3.5;
+  m.steps = 1234;
+  m.dt = 0.05;
+  m.simulated_time = 12.0;
+  m.warnings = {"energy error above 1 %"};
+  m.message = "arrested at t = 12 s";
+  return result;
+}
+
+} // namespace
+
+TEST(MetricsJson, HoldsEverySpecMetricByName) {
+  const json j = metrics_json(example_result());
+  for (const char* name : {"front_threshold",
+                           "arrest_position",
+                           "propagation_distance",
+                           "arrival_time_at_probe",
+                           "rupture_speed",
+                           "max_slip_velocity",
+                           "outcome",
+                           "energy_error",
+                           "wall_time_s",
+                           "steps",
+                           "dt",
+                           "stable_dt",
+                           "simulated_time",
+                           "spectral_critical_length",
+                           "spectral_frequency",
+                           "spectral_velocity",
+                           "warnings",
+                           "message",
+                           "mesh",
+                           "code_version",
+                           "method"}) {
+    EXPECT_TRUE(j.contains(name)) << name;
+  }
+  EXPECT_EQ(j["arrest_position"], 12.5);
+  EXPECT_EQ(j["propagation_distance"], 12.4);
+  EXPECT_EQ(j["rupture_speed"], json({{"max", 1.6}, {"mean", 1.2}}));
+  EXPECT_EQ(j["max_slip_velocity"], 8e-3);
+  EXPECT_EQ(j["outcome"], "arrested");
+  EXPECT_EQ(j["steps"], 1234);
+  EXPECT_EQ(j["dt"], 0.05);
+  EXPECT_EQ(j["stable_dt"], 0.1);
+  EXPECT_EQ(j["warnings"], json({"energy error above 1 %"}));
+  EXPECT_EQ(j["message"], "arrested at t = 12 s");
+  EXPECT_EQ(j["mesh"], json({{"nx", 4}, {"ny", 3}, {"dx", 0.25}, {"height", 0.5}, {"threads", 1}}));
+  EXPECT_EQ(j["code_version"], slipfront::code_version());
+}
+
+TEST(MetricsJson, UndefinedValuesAreNull) {
+  const json j = metrics_json(example_result());
+  EXPECT_TRUE(j["arrival_time_at_probe"].is_null());
+  // The text is valid JSON (no NaN literal) and parses back equal.
+  EXPECT_EQ(json::parse(j.dump()), j);
+}
+
+TEST(MetricsJson, EveryOutcomeHasItsSpecName) {
+  slipfront::RunResult result = example_result();
+  const std::vector<std::pair<slipfront::Outcome, std::string>> outcomes = {
+      {slipfront::Outcome::arrested, "arrested"},
+      {slipfront::Outcome::running_at_end, "running_at_end"},
+      {slipfront::Outcome::no_rupture, "no_rupture"},
+      {slipfront::Outcome::diverged, "diverged"}};
+  for (const auto& [outcome, name] : outcomes) {
+    result.metrics.outcome = outcome;
+    EXPECT_EQ(metrics_json(result)["outcome"], name);
+  }
+}
+
+TEST(MetricsJson, MethodNamesDiscretisationBoundaryAndFriction) {
+  slipfront::SimulationParams params;
+  EXPECT_EQ(method_description(params),
+            "Q4 2x2 Gauss, lumped mass, central differences; top boundary: traction; "
+            "friction: prakash_clifton, exponential strength update");
+  params.top = slipfront::TopBoundary::absorbing;
+  params.friction.law = slipfront::FrictionLaw::coulomb;
+  EXPECT_EQ(method_description(params),
+            "Q4 2x2 Gauss, lumped mass, central differences; top boundary: absorbing; "
+            "friction: coulomb");
+  EXPECT_EQ(metrics_json(example_result(), params)["method"], method_description(params));
+  EXPECT_EQ(metrics_json(example_result())["method"],
+            "Q4 2x2 Gauss, lumped mass, central differences");
+}
+
+TEST(FrontJson, ArraysWithNullWhereUndefined) {
+  const json j = front_json(example_result());
+  ASSERT_EQ(j["x1"].size(), 4u);
+  EXPECT_EQ(j["x1"][1], -9.75);
+  EXPECT_TRUE(j["arrival_time"][0].is_null());
+  EXPECT_EQ(j["arrival_time"][1], 0.5);
+  EXPECT_TRUE(j["rupture_speed"][3].is_null());
+  EXPECT_EQ(j["rupture_speed"][2], 1.5);
+}
