@@ -32,7 +32,8 @@ ElementStiffness q4_plane_strain_stiffness(const Material& material) {
         for (int c = 0; c < 8; ++c) {
           double sum = 0;
           for (int p = 0; p < 3; ++p)
-            for (int q = 0; q < 3; ++q) sum += B[p][r] * D[p][q] * B[q][c];
+            for (int q = 0; q < 3; ++q)
+              sum += B[p][r] * D[p][q] * B[q][c];
           K[r][c] += sum;
         }
     }

@@ -18,7 +18,8 @@ namespace slipfront {
 using ElementStiffness = std::array<std::array<double, 8>, 8>;
 
 // Offsets (column, row) of the local nodes from the element's lower-left node.
-inline constexpr std::array<std::array<int, 2>, 4> kQ4NodeOffset = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+inline constexpr std::array<std::array<int, 2>, 4> kQ4NodeOffset = {
+    {{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
 
 ElementStiffness q4_plane_strain_stiffness(const Material& material);
 

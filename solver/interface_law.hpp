@@ -16,7 +16,7 @@
 namespace slipfront {
 
 struct InterfaceNodeConstants {
-  double mass = 0;            // lumped mass of the node [kg/m]
+  double mass = 0; // lumped mass of the node [kg/m]
   double dt = 0;
   double tributary_length = 0; // dx
   Friction friction;

@@ -12,10 +12,14 @@ namespace slipfront {
 
 const char* to_string(Outcome outcome) {
   switch (outcome) {
-  case Outcome::arrested: return "arrested";
-  case Outcome::running_at_end: return "running_at_end";
-  case Outcome::no_rupture: return "no_rupture";
-  case Outcome::diverged: return "diverged";
+  case Outcome::arrested:
+    return "arrested";
+  case Outcome::running_at_end:
+    return "running_at_end";
+  case Outcome::no_rupture:
+    return "no_rupture";
+  case Outcome::diverged:
+    return "diverged";
   }
   return "unknown";
 }
@@ -32,7 +36,8 @@ std::vector<double> rupture_speed_profile(const std::vector<double>& x1,
     if (std::isnan(arrival_time[i])) continue;
     double sx = 0, st = 0, sxx = 0, sxt = 0;
     int count = 0;
-    for (int k = i - 1; k >= 0 && x1[i] - x1[k] <= half_window && !std::isnan(arrival_time[k]); --k) {
+    for (int k = i - 1; k >= 0 && x1[i] - x1[k] <= half_window && !std::isnan(arrival_time[k]);
+         --k) {
       sx += x1[k], st += arrival_time[k], sxx += x1[k] * x1[k], sxt += x1[k] * arrival_time[k];
       ++count;
     }
@@ -76,13 +81,18 @@ RupturedStretch ruptured_stretch(const std::vector<double>& x1,
   if (seed < 0) return out;
   out.any_slip = true;
   int lo = seed, hi = seed;
-  while (hi - lo + 1 < n && slipped(lo - 1)) --lo;
-  while (hi - lo + 1 < n && slipped(hi + 1)) ++hi;
+  while (hi - lo + 1 < n && slipped(lo - 1))
+    --lo;
+  while (hi - lo + 1 < n && slipped(hi + 1))
+    ++hi;
   const double dx = width / n;
-  auto unwrapped_x = [&](int i) { return x1[((i % n) + n) % n] + std::floor(double(i) / n) * width; };
+  auto unwrapped_x = [&](int i) {
+    return x1[((i % n) + n) % n] + std::floor(double(i) / n) * width;
+  };
   out.left = unwrapped_x(lo);
   out.right = unwrapped_x(hi);
-  for (int i = lo; i <= hi; ++i) out.nodes.push_back(((i % n) + n) % n);
+  for (int i = lo; i <= hi; ++i)
+    out.nodes.push_back(((i % n) + n) % n);
   out.ruptured = out.left < patch_lo - 0.5 * dx || out.right > patch_hi + 0.5 * dx;
   return out;
 }
@@ -104,7 +114,8 @@ double spectral_cutoff_frequency(const std::vector<double>& signal, double dt, d
   fft.fwd(spectrum, x);
   const std::size_t half = n / 2;
   double total = 0;
-  for (std::size_t k = 1; k <= half; ++k) total += std::norm(spectrum[k]);
+  for (std::size_t k = 1; k <= half; ++k)
+    total += std::norm(spectrum[k]);
   if (total <= 0) return std::numeric_limits<double>::quiet_NaN();
   double cumulative = 0;
   for (std::size_t k = 1; k <= half; ++k) {

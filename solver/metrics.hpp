@@ -19,8 +19,8 @@ struct FrontProfile {
 
 struct Metrics {
   double front_threshold = 1e-6;
-  double arrest_position = 0.0;      // NaN if no rupture
-  double propagation_distance = 0.0; // 0 if no rupture
+  double arrest_position = 0.0;       // NaN if no rupture
+  double propagation_distance = 0.0;  // 0 if no rupture
   double arrival_time_at_probe = 0.0; // NaN if the front never reached the probe
   double probe_x1 = 0.0;
   double max_rupture_speed = 0.0;  // NaN if no rupture
@@ -29,8 +29,8 @@ struct Metrics {
   Outcome outcome = Outcome::no_rupture;
   double energy_error = 0.0;
   // Spectral estimate of the critical length (paper eq. 6, see docs/metrics.md).
-  double spectral_frequency = 0.0; // f used [Hz]
-  double spectral_velocity = 0.0;  // |V| used [m/s]
+  double spectral_frequency = 0.0;       // f used [Hz]
+  double spectral_velocity = 0.0;        // |V| used [m/s]
   double spectral_critical_length = 0.0; // largest L with A/A0 >= 0.98 at that f and |V|
   // Cost.
   double wall_time_s = 0.0;

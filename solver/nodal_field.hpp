@@ -13,7 +13,8 @@ namespace slipfront {
 class NodalField {
 public:
   NodalField() = default;
-  NodalField(int nx, int ny) : nx_(nx), ny_(ny), stride_(nx + 2), data_(std::size_t(nx + 2) * ny, 0.0) {}
+  NodalField(int nx, int ny)
+      : nx_(nx), ny_(ny), stride_(nx + 2), data_(std::size_t(nx + 2) * ny, 0.0) {}
 
   int nx() const { return nx_; }
   int ny() const { return ny_; }
@@ -32,7 +33,8 @@ public:
     r[nx_] = r[0];
   }
   void refresh_all_ghosts() {
-    for (int j = 0; j < ny_; ++j) refresh_ghosts(j);
+    for (int j = 0; j < ny_; ++j)
+      refresh_ghosts(j);
   }
 
 private:

@@ -5,7 +5,9 @@
 namespace slipfront {
 
 namespace {
-double eta0(const Nucleation& n) { return std::sqrt(n.a * n.a + n.b * n.b) / n.b; }
+double eta0(const Nucleation& n) {
+  return std::sqrt(n.a * n.a + n.b * n.b) / n.b;
+}
 } // namespace
 
 double nucleation_traction(const Nucleation& n, double normal_stress, double x1, double t) {

@@ -20,7 +20,9 @@ struct Material {
     return young_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
   }
   // Plane-strain wave speeds: c_p = sqrt((lambda + 2 mu)/rho), c_s = sqrt(mu/rho).
-  double p_wave_speed() const { return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) / density); }
+  double p_wave_speed() const {
+    return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) / density);
+  }
   double s_wave_speed() const { return std::sqrt(shear_modulus() / density); }
 };
 
@@ -58,8 +60,8 @@ enum class StrengthUpdate {
 
 struct Friction {
   FrictionLaw law = FrictionLaw::prakash_clifton;
-  double mu = 0.75;    // static = kinetic coefficient
-  double L = 5e-5;     // characteristic length [m]
+  double mu = 0.75;     // static = kinetic coefficient
+  double L = 5e-5;      // characteristic length [m]
   double v_star = 1e-4; // reference velocity V* [m/s]
   StrengthUpdate update = StrengthUpdate::exponential;
 };
@@ -87,8 +89,8 @@ struct OutputSampling {
 };
 
 struct Probes {
-  double arrival_x1 = 11.0;  // arrival_time_at_probe
-  double spectrum_x1 = 6.0;  // tau_s(t) spectrum for the spectral L_c estimate
+  double arrival_x1 = 11.0;      // arrival_time_at_probe
+  double spectrum_x1 = 6.0;      // tau_s(t) spectrum for the spectral L_c estimate
   double front_threshold = 1e-6; // slip velocity that defines the front [m/s]
 };
 
@@ -111,7 +113,7 @@ struct SimulationParams {
   TimeControl time;
   OutputSampling output;
   Probes probes;
-  int threads = 0; // 0 = all hardware threads
+  int threads = 0;               // 0 = all hardware threads
   ExtraInterfaceLoad extra_load; // empty for every job; used by verification tests
 };
 

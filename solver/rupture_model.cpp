@@ -12,13 +12,13 @@ namespace slipfront {
 
 namespace {
 
-// v^{n+1/2} = v^{n-1/2} - dt/m (K u^n) for one bulk or top row (no dashpot). With kEnergy,
-// also the row's kinetic term 1/2 m |v^{n+1/2}|^2 and strain term 1/2 (K u^n).u^{n+1}.
-template <bool kEnergy>
-void free_row_update(const NodeStencil& s, const double* uxm, const double* uym, const double* ux0,
-                     const double* uy0, const double* uxp, const double* uyp, double* __restrict vx,
-                     double* __restrict vy, int nx, double dt, double mass, double& kinetic,
-                     double& strain) {
+// v^{n+1/2} = v^{n-1/2} - dt/m (K u^n) for one bulk or top row (no dashpot), with the row's
+// kinetic term 1/2 m |v^{n+1/2}|^2 and strain term 1/2 (K u^n).u^{n+1}. Used on the steps
+// that evaluate the energy balance; the other steps use stencil_velocity_update.
+void free_row_update_with_energy(const NodeStencil& s, const double* uxm, const double* uym,
+                                 const double* ux0, const double* uy0, const double* uxp,
+                                 const double* uyp, double* __restrict vx, double* __restrict vy,
+                                 int nx, double dt, double mass, double& kinetic, double& strain) {
   const double dt_over_m = dt / mass;
   double kin = 0, str = 0;
   for_each_node_force(s, uxm, uym, ux0, uy0, uxp, uyp, nx, [&](int i, double kx, double ky) {
@@ -26,15 +26,11 @@ void free_row_update(const NodeStencil& s, const double* uxm, const double* uym,
     const double vy_new = vy[i] - dt_over_m * ky;
     vx[i] = vx_new;
     vy[i] = vy_new;
-    if constexpr (kEnergy) {
-      kin += vx_new * vx_new + vy_new * vy_new;
-      str += kx * (ux0[i] + dt * vx_new) + ky * (uy0[i] + dt * vy_new);
-    }
+    kin += vx_new * vx_new + vy_new * vy_new;
+    str += kx * (ux0[i] + dt * vx_new) + ky * (uy0[i] + dt * vy_new);
   });
-  if constexpr (kEnergy) {
-    kinetic = 0.5 * mass * kin;
-    strain = 0.5 * str;
-  }
+  kinetic = 0.5 * mass * kin;
+  strain = 0.5 * str;
 }
 
 } // namespace
@@ -59,7 +55,8 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
 
   const double p0 = std::abs(params.loading.normal_stress);
   iface_.x1.resize(nx_);
-  for (int i = 0; i < nx_; ++i) iface_.x1[i] = params.geometry.x_min + i * dx_;
+  for (int i = 0; i < nx_; ++i)
+    iface_.x1[i] = params.geometry.x_min + i * dx_;
   iface_.velocity.assign(nx_, 0.0);
   iface_.half_velocity.assign(nx_, 0.0);
   iface_.slip.assign(nx_, 0.0);
@@ -94,7 +91,9 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
   // Rows at and above active_rows_ + 1 are exact zeros and stay so in this step.
   const int rows = std::min(ny_, active_rows_ + 1);
   const int members = rows >= 2 * team.size() ? team.size() : 1;
-  auto chunk = [&](int m) { return RowRange{int(long(rows) * m / members), int(long(rows) * (m + 1) / members)}; };
+  auto chunk = [&](int m) {
+    return RowRange{int(long(rows) * m / members), int(long(rows) * (m + 1) / members)};
+  };
   team.run([&](int member, int) {
     if (member < members) sweep_rows(chunk(member), compute_energy);
   });
@@ -109,7 +108,8 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
 
   // Sum the per-row terms in row order: the same result for any number of threads.
   double dissipated = 0;
-  for (int j = 0; j < rows; ++j) dissipated += row_dissipated_[j];
+  for (int j = 0; j < rows; ++j)
+    dissipated += row_dissipated_[j];
   energy_.dissipated += dissipated;
   energy_.external_work += step_work_;
   if (compute_energy) {
@@ -146,11 +146,11 @@ void RuptureModel::sweep_rows(RowRange range, bool compute_energy) {
     } else {
       const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
       if (compute_energy)
-        free_row_update<true>(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
-                              node_mass(j), row_kinetic_[j], row_strain_[j]);
+        free_row_update_with_energy(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_,
+                                    dt_, node_mass(j), row_kinetic_[j], row_strain_[j]);
       else
-        free_row_update<false>(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_,
-                               dt_, node_mass(j), row_kinetic_[j], row_strain_[j]);
+        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_,
+                                dt_ / node_mass(j));
     }
     // Row j-1 is no longer read by this member: advance its displacement now, while it is
     // still in cache (one streaming pass over u and v per step).
@@ -173,8 +173,8 @@ void RuptureModel::interface_row(bool compute_energy) {
     const double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
     const double f2 = -ky0_[i] + load2_[i] - c0_2;
     const double v1_old = vx[i], v2_old = vy[i];
-    const InterfaceNodeStep r = resolve_interface_node(node_, uy[i], v1_old, v2_old, f1, f2,
-                                                       iface_.strength[i]);
+    const InterfaceNodeStep r =
+        resolve_interface_node(node_, uy[i], v1_old, v2_old, f1, f2, iface_.strength[i]);
     const double v1_new = r.v1, v2_new = r.v2;
     vx[i] = v1_new;
     vy[i] = v2_new;
@@ -222,18 +222,19 @@ void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool 
   const double* uy0 = u_.y.row(j);
   const double* z = zero_row_.data() + 1;
   double dissipated = 0, kinetic = 0, strain = 0;
-  for_each_node_force(stencils_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
-    const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * kx) / (1 + a_x);
-    const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * ky) / (1 + a_y);
-    const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
-    dissipated += dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid);
-    vx[i] = vx_new;
-    vy[i] = vy_new;
-    if (compute_energy) {
-      kinetic += vx_new * vx_new + vy_new * vy_new;
-      strain += kx * (ux0[i] + dt_ * vx_new) + ky * (uy0[i] + dt_ * vy_new);
-    }
-  });
+  for_each_node_force(
+      stencils_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
+        const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * kx) / (1 + a_x);
+        const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * ky) / (1 + a_y);
+        const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
+        dissipated += dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid);
+        vx[i] = vx_new;
+        vy[i] = vy_new;
+        if (compute_energy) {
+          kinetic += vx_new * vx_new + vy_new * vy_new;
+          strain += kx * (ux0[i] + dt_ * vx_new) + ky * (uy0[i] + dt_ * vy_new);
+        }
+      });
   row_dissipated_[j] = dissipated;
   if (compute_energy) {
     row_kinetic_[j] = 0.5 * m * kinetic;

@@ -88,7 +88,7 @@ private:
   double dx_, height_, dt_, stable_dt_;
   MeshStencils stencils_;
   VectorField u_, v_;
-  std::vector<double> zero_row_; // nx + 2 zeros, a neighbour for boundary rows
+  std::vector<double> zero_row_;      // nx + 2 zeros, a neighbour for boundary rows
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   std::vector<double> kx0_, ky0_;     // K u on the interface row
   double step_work_ = 0;              // work of the load changes in this step

@@ -18,7 +18,8 @@ double lumped_mass(int j, int ny, double dx, double density) {
 double dot(const VectorField& a, const VectorField& b) {
   double s = 0;
   for (int j = 0; j < a.x.ny(); ++j)
-    for (int i = 0; i < a.x.nx(); ++i) s += a.x.at(i, j) * b.x.at(i, j) + a.y.at(i, j) * b.y.at(i, j);
+    for (int i = 0; i < a.x.nx(); ++i)
+      s += a.x.at(i, j) * b.x.at(i, j) + a.y.at(i, j) * b.y.at(i, j);
   return s;
 }
 

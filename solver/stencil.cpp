@@ -20,10 +20,40 @@ MeshStencils build_stencils(const ElementStiffness& K) {
   };
   MeshStencils s;
   // Elements above a node: the node is their local 0 or 1. Below: local 2 or 3.
-  for (int a : {0, 1}) add_element(s.bottom, a);
-  for (int a : {2, 3}) add_element(s.top, a);
-  for (int a : {0, 1, 2, 3}) add_element(s.interior, a);
+  for (int a : {0, 1})
+    add_element(s.bottom, a);
+  for (int a : {2, 3})
+    add_element(s.top, a);
+  for (int a : {0, 1, 2, 3})
+    add_element(s.interior, a);
   return s;
+}
+
+void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
+                             const double* __restrict uym, const double* __restrict ux0,
+                             const double* __restrict uy0, const double* __restrict uxp,
+                             const double* __restrict uyp, double* __restrict vx,
+                             double* __restrict vy, int nx, double dt_over_m) {
+  double cxx[3][3], cxy[3][3], cyx[3][3], cyy[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      cxx[r][c] = stencil.b[r][c].xx;
+      cxy[r][c] = stencil.b[r][c].xy;
+      cyx[r][c] = stencil.b[r][c].yx;
+      cyy[r][c] = stencil.b[r][c].yy;
+    }
+  for (int i = 0; i < nx; ++i) {
+    double kx = 0, ky = 0;
+    for (int c = 0; c < 3; ++c) { // columns i-1, i, i+1 of the rows below, same and above
+      const int k = i + c - 1;
+      kx += cxx[0][c] * uxm[k] + cxy[0][c] * uym[k] + cxx[1][c] * ux0[k] + cxy[1][c] * uy0[k] +
+            cxx[2][c] * uxp[k] + cxy[2][c] * uyp[k];
+      ky += cyx[0][c] * uxm[k] + cyy[0][c] * uym[k] + cyx[1][c] * ux0[k] + cyy[1][c] * uy0[k] +
+            cyx[2][c] * uxp[k] + cyy[2][c] * uyp[k];
+    }
+    vx[i] -= dt_over_m * kx;
+    vy[i] -= dt_over_m * ky;
+  }
 }
 
 void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku) {
@@ -31,7 +61,9 @@ void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorF
   const std::vector<double> zero(nx + 2, 0.0);
   const double* z = zero.data() + 1;
   for (int j = 0; j < ny; ++j) {
-    const NodeStencil& s = (j == 0) ? stencils.bottom : (j == ny - 1) ? stencils.top : stencils.interior;
+    const NodeStencil& s = (j == 0)        ? stencils.bottom
+                           : (j == ny - 1) ? stencils.top
+                                           : stencils.interior;
     const double* uxm = j > 0 ? u.x.row(j - 1) : z;
     const double* uym = j > 0 ? u.y.row(j - 1) : z;
     const double* uxp = j < ny - 1 ? u.x.row(j + 1) : z;

@@ -26,31 +26,47 @@ struct MeshStencils {
 
 MeshStencils build_stencils(const ElementStiffness& K);
 
-// Contribution of one neighbour row (blocks b[0..2] for columns i-1, i, i+1) to (K u)_i.
-inline void add_stencil_row(const Block2 (&b)[3], const double* __restrict ux,
-                            const double* __restrict uy, int i, double& kx, double& ky) {
-  kx += b[0].xx * ux[i - 1] + b[0].xy * uy[i - 1] + b[1].xx * ux[i] + b[1].xy * uy[i] +
-        b[2].xx * ux[i + 1] + b[2].xy * uy[i + 1];
-  ky += b[0].yx * ux[i - 1] + b[0].yy * uy[i - 1] + b[1].yx * ux[i] + b[1].yy * uy[i] +
-        b[2].yx * ux[i + 1] + b[2].yy * uy[i + 1];
-}
-
 // (K u) at every node i of one row, handed to visit(i, kx, ky). The rows below/above may be
 // any row (e.g. a zero row) where the stencil's blocks for them are zero. Reads the ghost
 // nodes of the three rows: they must be current.
 template <class Visit>
-inline void for_each_node_force(const NodeStencil& s, const double* __restrict uxm,
+inline void for_each_node_force(const NodeStencil& stencil, const double* __restrict uxm,
                                 const double* __restrict uym, const double* __restrict ux0,
                                 const double* __restrict uy0, const double* __restrict uxp,
                                 const double* __restrict uyp, int nx, Visit&& visit) {
+  // The coefficients as local arrays: the compiler then knows that they cannot alias the
+  // fields the visitor writes, keeps them in registers, and vectorises the loop.
+  double cxx[3][3], cxy[3][3], cyx[3][3], cyy[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      cxx[r][c] = stencil.b[r][c].xx;
+      cxy[r][c] = stencil.b[r][c].xy;
+      cyx[r][c] = stencil.b[r][c].yx;
+      cyy[r][c] = stencil.b[r][c].yy;
+    }
+  const double* ux[3] = {uxm, ux0, uxp}; // rows below, same, above
+  const double* uy[3] = {uym, uy0, uyp};
   for (int i = 0; i < nx; ++i) {
     double kx = 0, ky = 0;
-    add_stencil_row(s.b[0], uxm, uym, i, kx, ky); // row below
-    add_stencil_row(s.b[1], ux0, uy0, i, kx, ky); // same row
-    add_stencil_row(s.b[2], uxp, uyp, i, kx, ky); // row above
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) { // columns i-1, i, i+1
+        const double u1 = ux[r][i + c - 1], u2 = uy[r][i + c - 1];
+        kx += cxx[r][c] * u1 + cxy[r][c] * u2;
+        ky += cyx[r][c] * u1 + cyy[r][c] * u2;
+      }
     visit(i, kx, ky);
   }
 }
+
+// The hot loop of a step, for a bulk (or top) row without dashpots:
+//   v_i <- v_i - dt/m (K u)_i.
+// Written without the visitor so that the compiler sees every pointer as restrict and
+// vectorises it.
+void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
+                             const double* __restrict uym, const double* __restrict ux0,
+                             const double* __restrict uy0, const double* __restrict uxp,
+                             const double* __restrict uyp, double* __restrict vx,
+                             double* __restrict vy, int nx, double dt_over_m);
 
 // K u over the whole mesh (not the fast path: used by the stable time step estimate and
 // by tests). u's ghosts must be current; result has the layout of u (ghosts not set).

@@ -27,7 +27,8 @@ void restore_float_mode(unsigned state) {
 
 ThreadTeam::ThreadTeam(int size, bool flush_denormals)
     : size_(size < 1 ? 1 : size), flush_denormals_(flush_denormals) {
-  for (int m = 1; m < size_; ++m) threads_.emplace_back([this, m] { member_loop(m); });
+  for (int m = 1; m < size_; ++m)
+    threads_.emplace_back([this, m] { member_loop(m); });
 }
 
 ThreadTeam::~ThreadTeam() {
@@ -36,7 +37,8 @@ ThreadTeam::~ThreadTeam() {
     stopping_ = true;
   }
   wake_.notify_all();
-  for (auto& t : threads_) t.join();
+  for (auto& t : threads_)
+    t.join();
 }
 
 void ThreadTeam::run(const std::function<void(int, int)>& task) {
