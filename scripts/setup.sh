@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages slipfront needs (only the missing ones), then configures and
+# builds the Release tree in build/ (build/slipfront). Safe to run again.
+#   bash scripts/setup.sh            # packages + Release build
+#   BUILD_DIR=build-x bash scripts/setup.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake git pkg-config
+  libeigen3-dev libboost1.81-all-dev nlohmann-json3-dev libsqlite3-dev sqlite3
+  libhdf5-dev hdf5-tools libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
+  python3-numpy python3-h5py python3-matplotlib python3-requests
+  curl wrk
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}" >&2
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+build_dir="${BUILD_DIR:-build}"
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >&2
+cmake --build "$build_dir" -j"$(nproc)" >&2
+echo "setup: built $build_dir/slipfront" >&2
