@@ -10,30 +10,7 @@
 
 namespace slipfront {
 
-namespace {
-
-// v^{n+1/2} = v^{n-1/2} - dt/m (K u^n) for one bulk or top row (no dashpot), with the row's
-// kinetic term 1/2 m |v^{n+1/2}|^2 and strain term 1/2 (K u^n).u^{n+1}. Used on the steps
-// that evaluate the energy balance; the other steps use stencil_velocity_update.
-void free_row_update_with_energy(const NodeStencil& s, const double* uxm, const double* uym,
-                                 const double* ux0, const double* uy0, const double* uxp,
-                                 const double* uyp, double* __restrict vx, double* __restrict vy,
-                                 int nx, double dt, double mass, double& kinetic, double& strain) {
-  const double dt_over_m = dt / mass;
-  double kin = 0, str = 0;
-  for_each_node_force(s, uxm, uym, ux0, uy0, uxp, uyp, nx, [&](int i, double kx, double ky) {
-    const double vx_new = vx[i] - dt_over_m * kx;
-    const double vy_new = vy[i] - dt_over_m * ky;
-    vx[i] = vx_new;
-    vy[i] = vy_new;
-    kin += vx_new * vx_new + vy_new * vy_new;
-    str += kx * (ux0[i] + dt * vx_new) + ky * (uy0[i] + dt * vy_new);
-  });
-  kinetic = 0.5 * mass * kin;
-  strain = 0.5 * str;
-}
-
-} // namespace
+namespace {} // namespace
 
 RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   const MeshSize m = mesh_size(params);
@@ -70,6 +47,11 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   row_dissipated_.assign(ny_, 0.0);
 }
 
+void RuptureModel::reserve_scratch(int members) {
+  if (int(energy_scratch_.size()) < members)
+    energy_scratch_.resize(members, std::vector<double>(2 * nx_));
+}
+
 double RuptureModel::node_mass(int j) const {
   const double full = params_.material.density * dx_ * dx_;
   return (j == 0 || j == ny_ - 1) ? 0.5 * full : full;
@@ -91,11 +73,12 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
   // Rows at and above active_rows_ + 1 are exact zeros and stay so in this step.
   const int rows = std::min(ny_, active_rows_ + 1);
   const int members = rows >= 2 * team.size() ? team.size() : 1;
+  reserve_scratch(members);
   auto chunk = [&](int m) {
     return RowRange{int(long(rows) * m / members), int(long(rows) * (m + 1) / members)};
   };
   team.run([&](int member, int) {
-    if (member < members) sweep_rows(chunk(member), compute_energy);
+    if (member < members) sweep_rows(chunk(member), compute_energy, energy_scratch_[member]);
   });
   // The first and last row of each chunk are neighbours of another chunk: their
   // displacement is advanced only now that every member has read it.
@@ -124,7 +107,7 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
   ++step_;
 }
 
-void RuptureModel::sweep_rows(RowRange range, bool compute_energy) {
+void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<double>& scratch) {
   const double* z = zero_row_.data() + 1;
   for (int j = range.begin; j < range.end; ++j) {
     const double* uxm = j > 0 ? u_.x.row(j - 1) : z;
@@ -145,12 +128,23 @@ void RuptureModel::sweep_rows(RowRange range, bool compute_energy) {
       absorbing_top_row(uxm, uym, compute_energy);
     } else {
       const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
-      if (compute_energy)
-        free_row_update_with_energy(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_,
-                                    dt_, node_mass(j), row_kinetic_[j], row_strain_[j]);
-      else
-        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_,
-                                dt_ / node_mass(j));
+      if (!compute_energy) {
+        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
+                                node_mass(j));
+      } else {
+        // Per-node energy terms into this member's scratch rows, then summed in node order.
+        double* kin = scratch.data();
+        double* str = scratch.data() + nx_;
+        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
+                                node_mass(j), kin, str);
+        double kin_sum = 0, str_sum = 0;
+        for (int i = 0; i < nx_; ++i) {
+          kin_sum += kin[i];
+          str_sum += str[i];
+        }
+        row_kinetic_[j] = 0.5 * node_mass(j) * kin_sum;
+        row_strain_[j] = 0.5 * str_sum;
+      }
     }
     // Row j-1 is no longer read by this member: advance its displacement now, while it is
     // still in cache (one streaming pass over u and v per step).

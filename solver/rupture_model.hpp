@@ -77,7 +77,8 @@ private:
   struct RowRange {
     int begin, end;
   };
-  void sweep_rows(RowRange rows, bool compute_energy);
+  void sweep_rows(RowRange rows, bool compute_energy, std::vector<double>& scratch);
+  void reserve_scratch(int members);
   void interface_row(bool compute_energy);
   void absorbing_top_row(const double* uxm, const double* uym, bool compute_energy);
   void update_displacement_row(int j);
@@ -96,6 +97,7 @@ private:
   InterfaceFields iface_;
   EnergyBalance energy_;
   std::vector<double> row_kinetic_, row_strain_, row_dissipated_;
+  std::vector<std::vector<double>> energy_scratch_; // per team member: 2 rows of energy terms
   long step_ = 0;
   int active_rows_ = 1; // rows >= active_rows_ hold exact zeros in u and v
 };

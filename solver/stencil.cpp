@@ -29,11 +29,15 @@ MeshStencils build_stencils(const ElementStiffness& K) {
   return s;
 }
 
-void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
-                             const double* __restrict uym, const double* __restrict ux0,
-                             const double* __restrict uy0, const double* __restrict uxp,
-                             const double* __restrict uyp, double* __restrict vx,
-                             double* __restrict vy, int nx, double dt_over_m) {
+namespace {
+
+template <bool kEnergy>
+void velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
+                     const double* __restrict uym, const double* __restrict ux0,
+                     const double* __restrict uy0, const double* __restrict uxp,
+                     const double* __restrict uyp, double* __restrict vx, double* __restrict vy,
+                     int nx, double dt, double mass, double* __restrict kinetic,
+                     double* __restrict strain) {
   double cxx[3][3], cxy[3][3], cyx[3][3], cyy[3][3];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
@@ -42,6 +46,7 @@ void stencil_velocity_update(const NodeStencil& stencil, const double* __restric
       cyx[r][c] = stencil.b[r][c].yx;
       cyy[r][c] = stencil.b[r][c].yy;
     }
+  const double dt_over_m = dt / mass;
   for (int i = 0; i < nx; ++i) {
     double kx = 0, ky = 0;
     for (int c = 0; c < 3; ++c) { // columns i-1, i, i+1 of the rows below, same and above
@@ -51,9 +56,31 @@ void stencil_velocity_update(const NodeStencil& stencil, const double* __restric
       ky += cyx[0][c] * uxm[k] + cyy[0][c] * uym[k] + cyx[1][c] * ux0[k] + cyy[1][c] * uy0[k] +
             cyx[2][c] * uxp[k] + cyy[2][c] * uyp[k];
     }
-    vx[i] -= dt_over_m * kx;
-    vy[i] -= dt_over_m * ky;
+    const double vx_new = vx[i] - dt_over_m * kx;
+    const double vy_new = vy[i] - dt_over_m * ky;
+    vx[i] = vx_new;
+    vy[i] = vy_new;
+    if constexpr (kEnergy) {
+      kinetic[i] = vx_new * vx_new + vy_new * vy_new;
+      strain[i] = kx * (ux0[i] + dt * vx_new) + ky * (uy0[i] + dt * vy_new);
+    }
   }
+}
+
+} // namespace
+
+void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
+                             const double* __restrict uym, const double* __restrict ux0,
+                             const double* __restrict uy0, const double* __restrict uxp,
+                             const double* __restrict uyp, double* __restrict vx,
+                             double* __restrict vy, int nx, double dt, double mass,
+                             double* __restrict kinetic, double* __restrict strain) {
+  if (kinetic && strain)
+    velocity_update<true>(stencil, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, kinetic,
+                          strain);
+  else
+    velocity_update<false>(stencil, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, nullptr,
+                           nullptr);
 }
 
 void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku) {

@@ -61,12 +61,15 @@ inline void for_each_node_force(const NodeStencil& stencil, const double* __rest
 // The hot loop of a step, for a bulk (or top) row without dashpots:
 //   v_i <- v_i - dt/m (K u)_i.
 // Written without the visitor so that the compiler sees every pointer as restrict and
-// vectorises it.
+// vectorises it. If `kinetic` and `strain` are not null, it also writes each node's energy
+// terms v_i.v_i and (K u)_i.(u_i + dt v_i) there (summed by the caller in a fixed order).
 void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
                              const double* __restrict uym, const double* __restrict ux0,
                              const double* __restrict uy0, const double* __restrict uxp,
                              const double* __restrict uyp, double* __restrict vx,
-                             double* __restrict vy, int nx, double dt_over_m);
+                             double* __restrict vy, int nx, double dt, double mass,
+                             double* __restrict kinetic = nullptr,
+                             double* __restrict strain = nullptr);
 
 // K u over the whole mesh (not the fast path: used by the stable time step estimate and
 // by tests). u's ghosts must be current; result has the layout of u (ghosts not set).
