@@ -1,1 +1,111 @@
-// (being written)
+// Cases 7 and 8: the paper's scene (40 m x 20 m, periodic, nucleation of appendix A) on
+// coarse meshes. Published values (paper Sec. 2-3, SPEC §3) are read off text and figures
+// of a n_d = 40 run: they are targets with error bars, and the coarse meshes here are not
+// mesh-converged in the slip velocity. Tolerances, and why, are in docs/verification.md.
+#include "scene_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace slipfront {
+namespace {
+
+using verification::measure;
+
+// Case 7: without nucleation the uniform, stuck, pre-stressed state is an exact
+// equilibrium: nothing may move, not even by round-off.
+TEST(PaperScene, WithoutNucleationNothingMoves) {
+  for (double nd : {10.0, 20.0}) {
+    SimulationParams p = verification::paper_scene(nd, 5e-5);
+    p.nucleation.enabled = false;
+    p.time.stop_on_arrest = false;
+    p.time.duration = 8.0;
+    p.output.interval = 0.0; // sample every step
+    verification::RecordingSink sink;
+    RunHooks hooks;
+    hooks.sink = &sink;
+    const RunResult r = run_simulation(p, hooks);
+    const double p0 = std::abs(p.loading.normal_stress), tau0 = p.loading.shear_stress;
+    double vmax = 0, slipmax = 0, dtau = 0, dp = 0;
+    bool all_stick = true;
+    for (const InterfaceSample& s : sink.samples)
+      for (std::size_t i = 0; i < s.slip_velocity.size(); ++i) {
+        vmax = std::max(vmax, std::abs(s.slip_velocity[i]));
+        slipmax = std::max(slipmax, std::abs(s.slip[i]));
+        dtau = std::max(dtau, std::abs(s.shear_traction[i] - tau0) / tau0);
+        dp = std::max(dp, std::abs(s.contact_pressure[i] - p0) / p0);
+        all_stick = all_stick && s.state[i] == std::int8_t(NodeState::stick);
+      }
+    EXPECT_EQ(sink.samples.size(), std::size_t(r.metrics.steps));
+    EXPECT_EQ(vmax, 0.0);
+    EXPECT_EQ(slipmax, 0.0);
+    EXPECT_EQ(r.metrics.max_slip_velocity, 0.0);
+    EXPECT_TRUE(all_stick);
+    EXPECT_LT(dtau, 1e-13);
+    EXPECT_LT(dp, 1e-13);
+    for (double t : r.front.arrival_time)
+      EXPECT_TRUE(std::isnan(t));
+    EXPECT_EQ(r.metrics.outcome, Outcome::no_rupture);
+    EXPECT_EQ(r.energy.kinetic.back(), 0.0);
+    EXPECT_EQ(r.energy.strain.back(), 0.0);
+    measure("no nucleation n_d=%g: %ld steps, max |V| = %g, max |slip| = %g, traction drift %.1e, "
+            "pressure drift %.1e, outcome %s",
+            nd, r.metrics.steps, vmax, slipmax, dtau, dp, to_string(r.metrics.outcome));
+  }
+}
+
+// L = 1e-3 m: the regularisation is too strong for the nucleation to start a rupture
+// (paper Sec. 3: "no interface rupture anymore").
+TEST(PaperScene, LargeRegularisationLengthGivesNoRupture) {
+  for (double nd : {10.0, 20.0}) {
+    const SimulationParams p = verification::paper_scene(nd, 1e-3);
+    const RunResult r = run_simulation(p);
+    EXPECT_EQ(r.metrics.outcome, Outcome::no_rupture) << "n_d = " << nd;
+    EXPECT_TRUE(std::isnan(r.metrics.arrival_time_at_probe));
+    EXPECT_EQ(r.metrics.propagation_distance, 0.0);
+    measure("L=1e-3 n_d=%g: outcome %s, max |V| = %g m/s, propagation %g m", nd,
+            to_string(r.metrics.outcome), r.metrics.max_slip_velocity,
+            r.metrics.propagation_distance);
+  }
+}
+
+struct Band {
+  double nd, arrest_tol;
+};
+
+// L = 5e-5 m (paper Fig. 2): arrested super-shear rupture, arrest near x1 = 12.5 m,
+// front at x1 = 6 m near t = 4.5 s, energy balanced.
+TEST(PaperScene, CoarseMeshesReproduceTheArrestedSupershearRupture) {
+  // Arrest bands: the paper's 12.5 m is read off a figure (+- 0.1 m) of an n_d = 40 run;
+  // a coarse mesh lets the rupture run farther in the arrest phase (paper Sec. 3):
+  // n_d = 10 stops one node short of 13.0 m, n_d = 20 at 12.45 m.
+  for (const Band b : {Band{10.0, 0.75}, Band{20.0, 0.3}}) {
+    const SimulationParams p = verification::paper_scene(b.nd, 5e-5);
+    const RunResult r = run_simulation(p);
+    const Metrics& m = r.metrics;
+    const verification::SceneSummary s = verification::summarise(p, r);
+    const double cs = p.material.s_wave_speed(), cp = p.material.p_wave_speed();
+    EXPECT_EQ(m.outcome, Outcome::arrested) << "n_d = " << b.nd;
+    EXPECT_NEAR(m.arrest_position, 12.5, b.arrest_tol) << "n_d = " << b.nd;
+    EXPECT_GT(m.max_rupture_speed, cs);
+    EXPECT_LT(m.max_rupture_speed, cp);
+    EXPECT_GE(s.supershear_fraction, 0.95) << "super-shear between the patch and x1 = 10 m";
+    EXPECT_GT(s.vr_start, s.vr_end + 0.15) << "the rupture decelerates";
+    EXPECT_NEAR(m.arrival_time_at_probe, 4.5, 0.15) << "n_d = " << b.nd;
+    EXPECT_LT(m.energy_error, 1e-10);
+    EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+    measure("paper scene L=5e-5 n_d=%g: outcome %s, arrest %.4f m (paper ~12.5, band +-%.2f), "
+            "propagation %.3f m, arrival at 6 m %.4f s (paper ~4.5), max V_r %.4f, mean V_r "
+            "%.4f, super-shear fraction %.3f, V_r %.3f -> %.3f, max |V| %.4g m/s (paper ~8e-3), "
+            "peak |V| at 6 m %.4g m/s at %.3f s (paper ~3e-3), energy error %.2e, %ld steps, "
+            "wall %.2f s",
+            b.nd, to_string(m.outcome), m.arrest_position, b.arrest_tol, m.propagation_distance,
+            m.arrival_time_at_probe, m.max_rupture_speed, m.mean_rupture_speed,
+            s.supershear_fraction, s.vr_start, s.vr_end, m.max_slip_velocity, s.peak_v_at_probe,
+            s.peak_time_at_probe, m.energy_error, m.steps, m.wall_time_s);
+  }
+}
+
+} // namespace
+} // namespace slipfront
