@@ -1,0 +1,194 @@
+"""A thin HTTP client of the slipfront API (SPEC §4, under /api/v1).
+
+Every request goes through `Api.request`, which
+- sends the bearer token when one is configured,
+- retries 503 and 429 answers after the server's `Retry-After` (bounded), and idempotent
+  requests after a connection failure (bounded exponential back-off),
+- turns error answers (`application/problem+json`) into `UsageError` (400, 413, 422: the
+  request was wrong) or `ServerError` (everything else), listing each bad field as
+  "pointer: reason".
+"""
+
+import email.utils
+import time
+import uuid
+
+import requests
+
+from .errors import ServerError, UsageError
+
+API = "/api/v1"
+USER_AGENT = "slipfront-client/1"
+
+
+def parse_retry_after(value, default):
+    """Seconds to wait from a Retry-After header (delta-seconds or HTTP date)."""
+    if not value:
+        return default
+    value = value.strip()
+    try:
+        return max(0.0, float(value))
+    except ValueError:
+        pass
+    try:
+        when = email.utils.parsedate_to_datetime(value)
+        return max(0.0, when.timestamp() - time.time())
+    except (TypeError, ValueError):
+        return default
+
+
+def problem_details(response):
+    """(detail, ["pointer: reason", ...]) of an error response, whatever its body."""
+    try:
+        body = response.json()
+    except ValueError:
+        text = response.text.strip()
+        return (text[:300] or response.reason or "no detail"), [], {}
+    if not isinstance(body, dict):
+        return str(body)[:300], [], {}
+    detail = body.get("detail") or body.get("title") or response.reason or "no detail"
+    lines = []
+    for error in body.get("errors") or []:
+        if isinstance(error, dict):
+            pointer = error.get("pointer", "")
+            lines.append(f"{pointer or '(document)'}: {error.get('reason', '')}")
+        else:
+            lines.append(str(error))
+    return detail, lines, body
+
+
+class Api:
+    """The server at `base_url`, with an optional bearer `token`."""
+
+    def __init__(self, base_url, token=None, timeout=30.0, max_retries=6, max_retry_wait=60.0,
+                 sleep=time.sleep):
+        self.base_url = base_url.rstrip("/")
+        self.token = token
+        self.timeout = timeout
+        self.max_retries = max_retries
+        self.max_retry_wait = max_retry_wait
+        self.sleep = sleep
+        self.session = requests.Session()
+        self.session.headers["User-Agent"] = USER_AGENT
+        if token:
+            self.session.headers["Authorization"] = f"Bearer {token}"
+
+    def close(self):
+        self.session.close()
+
+    def url(self, path):
+        """Absolute URL of an API path ("/api/v1/jobs") or of an absolute URL."""
+        if path.startswith("http://") or path.startswith("https://"):
+            return path
+        return self.base_url + path
+
+    # -- the one place that talks HTTP --------------------------------------------------
+
+    def request(self, method, path, *, params=None, json_body=None, headers=None,
+                stream=False, ok=(200,), idempotent=None):
+        """Send a request; return the response when its status is in `ok`.
+
+        `idempotent` (default: GET/HEAD) says whether a connection failure may be retried.
+        503 and 429 are retried after Retry-After whatever the method: the server did not
+        act on the request.
+        """
+        if idempotent is None:
+            idempotent = method in ("GET", "HEAD")
+        backoff = 0.5
+        for attempt in range(self.max_retries + 1):
+            last = attempt == self.max_retries
+            try:
+                response = self.session.request(
+                    method, self.url(path), params=params, json=json_body, headers=headers,
+                    stream=stream, timeout=self.timeout)
+            except requests.RequestException as e:
+                if idempotent and not last:
+                    self.sleep(backoff)
+                    backoff = min(backoff * 2, 8.0)
+                    continue
+                raise ServerError(f"cannot reach the server at {self.base_url}: {e}") from e
+            if response.status_code in ok:
+                return response
+            if response.status_code in (429, 503) and not last:
+                wait = parse_retry_after(response.headers.get("Retry-After"), backoff)
+                response.close()
+                self.sleep(min(wait, self.max_retry_wait))
+                backoff = min(backoff * 2, 8.0)
+                continue
+            raise self.error_for(method, path, response)
+        raise AssertionError("unreachable")
+
+    def error_for(self, method, path, response):
+        """The exception an error response becomes."""
+        detail, lines, body = problem_details(response)
+        status = response.status_code
+        message = f"{method} {path}: {status} {response.reason}: {detail}"
+        if status in (400, 413, 422):
+            return UsageError(message, lines)
+        if status == 401:
+            message += " (pass --token or set SLIPFRONT_TOKEN)"
+        return ServerError(message, lines, status=status, problem=body)
+
+    def get_json(self, path, params=None):
+        return self.request("GET", path, params=params).json()
+
+    # -- endpoints -----------------------------------------------------------------------
+
+    def healthz(self):
+        return self.get_json("/healthz")
+
+    def submit(self, spec, fresh=None, priority=None, idempotency_key=None):
+        """POST /jobs. The Idempotency-Key (a fresh UUID by default) makes retries safe."""
+        params = {}
+        if fresh is not None:
+            params["fresh"] = "true" if fresh else "false"
+        if priority is not None:
+            params["priority"] = str(priority)
+        headers = {"Idempotency-Key": idempotency_key or uuid.uuid4().hex}
+        response = self.request("POST", f"{API}/jobs", params=params, json_body=spec,
+                                headers=headers, ok=(200, 201), idempotent=True)
+        return response.json()
+
+    def job(self, job_id, fields=None):
+        params = {"fields": ",".join(fields)} if fields else None
+        return self.get_json(f"{API}/jobs/{job_id}", params=params)
+
+    def cancel(self, job_id):
+        response = self.request("POST", f"{API}/jobs/{job_id}/cancel", ok=(200, 202),
+                                idempotent=True)
+        return response.json()
+
+    def list_jobs(self, filters=None, limit=None, page_size=100):
+        """Yield jobs newest first, following the pagination cursor until `limit` jobs
+        (None: all of them) have been yielded."""
+        params = {k: v for k, v in (filters or {}).items() if v is not None}
+        count = 0
+        while True:
+            want = page_size if limit is None else min(page_size, limit - count)
+            if want <= 0:
+                return
+            page = self.get_json(f"{API}/jobs", params={**params, "limit": str(want)})
+            for job in page.get("jobs", []):
+                yield job
+                count += 1
+            cursor = page.get("next_cursor")
+            if not cursor or not page.get("jobs"):
+                return
+            params["cursor"] = cursor
+
+    def metrics(self, job_id):
+        return self.get_json(f"{API}/jobs/{job_id}/metrics")
+
+    def front(self, job_id):
+        return self.get_json(f"{API}/jobs/{job_id}/front")
+
+    def create_study(self, study):
+        response = self.request("POST", f"{API}/studies", json_body=study, ok=(200, 201, 202),
+                                idempotent=False)
+        return response.json()
+
+    def study(self, study_id):
+        return self.get_json(f"{API}/studies/{study_id}")
+
+    def convergence_map(self, params=None):
+        return self.get_json(f"{API}/convergence-map", params=params)

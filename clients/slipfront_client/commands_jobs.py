@@ -1,0 +1,167 @@
+"""The job subcommands: submit, status, list, cancel, download."""
+
+import os
+
+from . import jobspec
+from .download import download_result
+from .errors import ServerError, UsageError
+from .output import job_summary, log, print_json, table
+from .waiting import FINAL, ProgressBar, check_outcome, wait_for_job
+
+
+def add_parsers(sub, common):
+    p = sub.add_parser("submit", parents=[common], help="submit a job (optionally wait and download)",
+                       description="Submit a job file (or '-' for stdin; none = the paper's scene) "
+                                   "with inline overrides. Prints the job id.")
+    p.add_argument("job", nargs="?", help="job JSON file, or - for stdin")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE",
+                   help="override a field, e.g. --set friction.L=1e-5 (value is JSON or text)")
+    p.add_argument("--name", help="job name")
+    p.add_argument("--tag", dest="tags", action="append", default=[], help="add a tag (repeatable)")
+    p.add_argument("--fresh", action="store_true", help="run even if an identical job succeeded")
+    p.add_argument("--priority", type=int, help="integer in [-100, 100]; higher runs first")
+    p.add_argument("--wait", action="store_true", help="wait for the job, with a progress bar")
+    p.add_argument("--wait-timeout", type=float, help="give up waiting after this many seconds")
+    p.add_argument("--download", metavar="FILE", help="after --wait, download the result here")
+    p.add_argument("--dry-run", action="store_true", help="print the job JSON and do not submit")
+    p.set_defaults(func=cmd_submit)
+
+    p = sub.add_parser("status", parents=[common], help="show a job")
+    p.add_argument("id")
+    p.add_argument("--fields", help="comma-separated top-level fields (JSON output)")
+    p.add_argument("--exit-status", action="store_true",
+                   help="exit 3 if the job failed or diverged, 4 if it was cancelled")
+    p.set_defaults(func=cmd_status)
+
+    p = sub.add_parser("list", parents=[common], help="list jobs, newest first")
+    p.add_argument("--status", help="comma-separated: queued,running,succeeded,failed,cancelled")
+    p.add_argument("--tag")
+    p.add_argument("--name")
+    p.add_argument("--outcome", choices=["arrested", "running_at_end", "no_rupture", "diverged"])
+    p.add_argument("--submitted-by")
+    p.add_argument("--spec-sha256")
+    p.add_argument("--L-min", type=float)
+    p.add_argument("--L-max", type=float)
+    p.add_argument("--n-d-min", type=float)
+    p.add_argument("--n-d-max", type=float)
+    p.add_argument("--limit", type=int, default=50, help="at most this many jobs (0 = all); "
+                   "pages are followed as needed")
+    p.add_argument("--fields", help="comma-separated fields to show (server-side projection)")
+    p.set_defaults(func=cmd_list)
+
+    p = sub.add_parser("cancel", parents=[common], help="cancel a job")
+    p.add_argument("id")
+    p.add_argument("--wait", action="store_true", help="wait until the job has stopped")
+    p.set_defaults(func=cmd_cancel)
+
+    p = sub.add_parser("download", parents=[common], help="download a job's HDF5 result")
+    p.add_argument("id")
+    p.add_argument("-o", "--output", help="file to write (default ID.h5)")
+    p.set_defaults(func=cmd_download)
+
+
+def cmd_submit(args, ctx):
+    if args.download and not args.wait:
+        raise UsageError("--download needs --wait")
+    if args.priority is not None and not -100 <= args.priority <= 100:
+        raise UsageError("--priority must be an integer in [-100, 100]")
+    spec = jobspec.build_job(args.job, args.overrides, args.name, args.tags)
+    if args.dry_run:
+        print_json(spec)
+        return 0
+    api = ctx.api()
+    job = api.submit(spec, fresh=True if args.fresh else None, priority=args.priority)
+    if not args.quiet:
+        cache = job.get("cache")
+        log(f"submitted job {job['id']} ({job['status']}"
+            + (f", cache {cache}" if cache and cache != "miss" else "") + ")")
+    if not args.wait:
+        print_json(job) if args.json else print(job["id"])
+        return 0
+    bar = ProgressBar(enabled=not args.quiet)
+    try:
+        job = wait_for_job(api, job["id"], progress=bar, timeout=args.wait_timeout)
+    finally:
+        bar.close()
+    print_json(job) if args.json else print(job["id"])
+    if not args.quiet and not args.json:
+        for line in job_summary(job)[1:]:
+            log(line)
+    check_outcome(job)
+    if args.download:
+        path, sha, _ = download_result(api, job["id"], args.download, log=log)
+        if not args.quiet:
+            log(f"result written to {path} (sha256 {sha})")
+    return 0
+
+
+def cmd_status(args, ctx):
+    fields = [f for f in (args.fields or "").split(",") if f]
+    job = ctx.api().job(args.id, fields=fields or None)
+    if args.json or fields:
+        print_json(job)
+    else:
+        print("\n".join(job_summary(job)))
+    if args.exit_status and job.get("status") in FINAL:
+        check_outcome(job)
+    return 0
+
+
+LIST_COLUMNS = [
+    ("id", lambda j: j.get("id")),
+    ("status", lambda j: j.get("status")),
+    ("L", lambda j: ((j.get("spec") or {}).get("friction") or {}).get("L")),
+    ("n_d", lambda j: ((j.get("spec") or {}).get("geometry") or {}).get("nodes_per_meter")),
+    ("outcome", lambda j: (j.get("metrics") or {}).get("outcome")),
+    ("wall_s", lambda j: j.get("wall_time_s")),
+    ("name", lambda j: j.get("name")),
+]
+
+
+def cmd_list(args, ctx):
+    if args.limit < 0:
+        raise UsageError("--limit must be >= 0")
+    filters = {"status": args.status, "tag": args.tag, "name": args.name, "outcome": args.outcome,
+               "submitted_by": args.submitted_by, "spec_sha256": args.spec_sha256,
+               "L_min": args.L_min, "L_max": args.L_max, "n_d_min": args.n_d_min,
+               "n_d_max": args.n_d_max}
+    fields = [f for f in (args.fields or "").split(",") if f]
+    if fields:
+        filters["fields"] = ",".join(fields)
+    filters = {k: (repr(v) if isinstance(v, float) else v) for k, v in filters.items()}
+    jobs = list(ctx.api().list_jobs(filters, limit=args.limit or None))
+    if args.json:
+        print_json(jobs)
+    elif fields:
+        cols = [("id", lambda j: j.get("id"))] + [(f, (lambda j, f=f: j.get(f))) for f in fields
+                                                   if f != "id"]
+        print("\n".join(table(jobs, cols)))
+    else:
+        print("\n".join(table(jobs, LIST_COLUMNS)))
+    return 0
+
+
+def cmd_cancel(args, ctx):
+    api = ctx.api()
+    try:
+        job = api.cancel(args.id)
+    except ServerError as e:
+        if e.status == 409:
+            raise ServerError(f"job {args.id} has already finished; nothing to cancel") from e
+        raise
+    if args.wait and job.get("status") not in FINAL:
+        job = wait_for_job(api, args.id)
+    print_json(job) if args.json else print(f"{job['id']} {job['status']}"
+                                            + ("" if job["status"] in FINAL else " (cancel requested)"))
+    return 0
+
+
+def cmd_download(args, ctx):
+    output = args.output or f"{args.id}.h5"
+    if os.path.isdir(output):
+        output = os.path.join(output, f"{args.id}.h5")
+    path, sha, fetched = download_result(ctx.api(), args.id, output, log=log)
+    if not args.quiet:
+        log(f"{path}: {'up to date' if fetched == 0 else f'{fetched} bytes fetched'}, sha256 {sha}")
+    print(path)
+    return 0

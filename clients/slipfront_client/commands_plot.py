@@ -1,0 +1,180 @@
+"""`plot map|velocity|speed|convergence|filter|cost`: the paper's figures from our runs.
+
+Sources are HDF5 result files or job ids (downloaded into the cache, see results.py);
+the convergence map and the cost chart also read JSON files, and can ask the server.
+"""
+
+import json
+import os
+
+from . import analysis, results
+from .errors import UsageError
+from .output import log
+from .plots import common, convergence, cost, filter_response, slip_map, speed, velocity
+
+
+def floats(text, option):
+    try:
+        return [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise UsageError(f"{option} {text!r}: expected comma-separated numbers") from None
+
+
+def add_parsers(sub, common_parent):
+    import argparse
+
+    out = argparse.ArgumentParser(add_help=False)
+    out.add_argument("-o", "--output-dir", default=".", help="directory for the figures (default .)")
+    out.add_argument("--format", default="png", help="comma-separated: png,pdf,svg (default png)")
+    out.add_argument("--stem", help="file name without extension (default: the figure's name)")
+    out.add_argument("--title", help="figure title")
+    out.add_argument("--cache-dir", help="where job ids are downloaded (default ~/.cache/slipfront)")
+    parents = [common_parent, out]
+
+    p = sub.add_parser("plot", parents=[common_parent], help="draw the paper's figures")
+    psub = p.add_subparsers(dest="plot_command", required=True,
+                            metavar="map|velocity|speed|convergence|filter|cost")
+
+    m = psub.add_parser("map", parents=parents, help="(a) |V| in the x1-t plane with the front")
+    m.add_argument("sources", nargs="+", help="HDF5 files or job ids (one figure each)")
+    m.add_argument("--probes", default="6,10", help="x1 of the vertical lines (default 6,10)")
+    m.add_argument("--vmax", type=float, help="upper end of the grey scale [m/s]")
+    m.set_defaults(func=cmd_map)
+
+    v = psub.add_parser("velocity", parents=parents, help="(b) |V| against time at given x1")
+    v.add_argument("sources", nargs="+")
+    v.add_argument("--x1", default="6,10", help="positions [m] (default 6,10)")
+    v.set_defaults(func=cmd_velocity)
+
+    s = psub.add_parser("speed", parents=parents, help="(c) rupture speed against x1")
+    s.add_argument("sources", nargs="+")
+    s.set_defaults(func=cmd_speed)
+
+    c = psub.add_parser("convergence", parents=parents, help="(d) convergence map in the L-n_d plane")
+    c.add_argument("sources", nargs="*", help="HDF5 files or job ids: statuses computed here")
+    c.add_argument("--map", dest="map_file", help="JSON: list of {L, n_d, status} or the server's map")
+    c.add_argument("--from-server", action="store_true", help="GET /api/v1/convergence-map")
+    c.add_argument("--tag", help="the server's jobs with this tag: statuses computed here")
+    c.add_argument("--critical-length", type=float, help="draw L_c as a horizontal line")
+    c.set_defaults(func=cmd_convergence)
+
+    f = psub.add_parser("filter", parents=parents, help="(e) A/A0 against frequency (eq. 6)")
+    f.add_argument("sources", nargs="*", help="runs whose L and stable_dt to use")
+    f.add_argument("--L", dest="lengths", help="comma-separated L [m] (default: runs' L, or the paper's)")
+    f.add_argument("--n-d", dest="densities", help="comma-separated n_d (f_max from dx/c_p)")
+    f.add_argument("--v-star", type=float, default=1e-4, help="V* [m/s] (default 1e-4)")
+    f.add_argument("--slip-velocity", type=float, default=3e-3,
+                   help="|V| in eq. 6 [m/s] (default 3e-3, the paper's peak at x1 = 6 m)")
+    f.set_defaults(func=cmd_filter)
+
+    k = psub.add_parser("cost", parents=parents, help="(f) wall time against error, per L")
+    k.add_argument("sources", nargs="*", help="HDF5 files or job ids (error vs finest n_d per L)")
+    k.add_argument("--data", help="JSON list of {L, n_d, wall_time_s, error}")
+    k.add_argument("--tag", help="the server's jobs with this tag (error vs finest n_d per L)")
+    k.set_defaults(func=cmd_cost)
+
+
+def _save(fig, args, stem):
+    paths = common.save_figure(fig, args.output_dir, args.stem or stem,
+                               common.parse_formats(args.format))
+    for path in paths:
+        print(path)
+    return paths
+
+
+def _results(args, ctx):
+    return results.load_results(args.sources, ctx.api, args.cache_dir,
+                                None if args.quiet else log)
+
+
+def _load_json(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except OSError as e:
+        raise UsageError(f"cannot read {path}: {e.strerror}") from e
+    except json.JSONDecodeError as e:
+        raise UsageError(f"{path}: not valid JSON: {e.msg} (line {e.lineno})") from e
+
+
+def _server_rows(ctx, tag):
+    jobs = ctx.api().list_jobs({"tag": tag}, limit=None)
+    return [results.row_from_job(j) for j in jobs]
+
+
+def cmd_map(args, ctx):
+    formats = common.parse_formats(args.format)
+    probes = floats(args.probes, "--probes")
+    for source, result in zip(args.sources, _results(args, ctx)):
+        fig, _ = slip_map.plot_map(result, probes, args.vmax, args.title)
+        stem = args.stem if args.stem and len(args.sources) == 1 else None
+        stem = stem or "map_" + os.path.splitext(os.path.basename(source))[0]
+        for path in common.save_figure(fig, args.output_dir, stem, formats):
+            print(path)
+    return 0
+
+
+def cmd_velocity(args, ctx):
+    fig, _ = velocity.plot_velocity(_results(args, ctx), floats(args.x1, "--x1"), args.title)
+    _save(fig, args, "velocity")
+    return 0
+
+
+def cmd_speed(args, ctx):
+    fig, _ = speed.plot_speed(_results(args, ctx), args.title)
+    _save(fig, args, "speed")
+    return 0
+
+
+def convergence_points(args, ctx):
+    """[{L, n_d, status}] from whichever input the command line names."""
+    inputs = sum(bool(x) for x in (args.sources, args.map_file, args.from_server, args.tag))
+    if inputs != 1:
+        raise UsageError("plot convergence: give exactly one of SOURCES, --map, --from-server, --tag")
+    if args.map_file:
+        return convergence.points_from_json(_load_json(args.map_file), args.map_file)
+    if args.from_server:
+        return convergence.points_from_json(ctx.api().convergence_map(), "server convergence map")
+    rows = (_server_rows(ctx, args.tag) if args.tag
+            else [results.row_from_result(r) for r in _results(args, ctx)])
+    return [{"L": r["L"], "n_d": r["n_d"], "status": r["convergence"]}
+            for r in analysis.convergence_statuses(rows) if r["L"] is not None]
+
+
+def cmd_convergence(args, ctx):
+    fig, _ = convergence.plot_convergence(convergence_points(args, ctx), args.critical_length,
+                                          args.title)
+    _save(fig, args, "convergence")
+    return 0
+
+
+def cmd_filter(args, ctx):
+    runs = _results(args, ctx) if args.sources else []
+    lengths = floats(args.lengths, "--L") if args.lengths else sorted(
+        {r.L for r in runs if r.L is not None and r.law != "coulomb"}) or list(filter_response.PAPER_L)
+    meshes = {r.n_d: r.metrics.get("stable_dt") for r in runs if r.n_d}
+    if args.densities:
+        meshes.update({n: meshes.get(n) for n in floats(args.densities, "--n-d")})
+    fig, _ = filter_response.plot_filter(lengths, meshes or None, args.v_star, args.slip_velocity,
+                                         title=args.title)
+    _save(fig, args, "filter")
+    return 0
+
+
+def cmd_cost(args, ctx):
+    inputs = sum(bool(x) for x in (args.sources, args.data, args.tag))
+    if inputs != 1:
+        raise UsageError("plot cost: give exactly one of SOURCES, --data, --tag")
+    if args.data:
+        rows = _load_json(args.data)
+        if isinstance(rows, dict):
+            rows = rows.get("runs") or rows.get("points") or []
+        if not isinstance(rows, list):
+            raise UsageError(f"{args.data}: expected a list of {{L, n_d, wall_time_s, error}}")
+    else:
+        base = (_server_rows(ctx, args.tag) if args.tag
+                else [results.row_from_result(r) for r in _results(args, ctx)])
+        rows = analysis.errors_against_finest(base)
+    fig, _ = cost.plot_cost(rows, args.title)
+    _save(fig, args, "cost")
+    return 0

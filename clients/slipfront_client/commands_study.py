@@ -1,0 +1,92 @@
+"""`study create|wait|show`: a grid of runs over L × n_d (SPEC §4 studies API)."""
+
+
+
+from . import jobspec, studies
+from .errors import UsageError
+from .output import log, print_json
+
+
+def floats(text, option):
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise UsageError(f"{option} {text!r}: expected comma-separated numbers") from None
+    if not values:
+        raise UsageError(f"{option}: give at least one value")
+    return values
+
+
+def add_parsers(sub, common):
+    p = sub.add_parser("study", parents=[common], help="studies: create, wait, show",
+                       description="Studies over L x n_d (needs the server's studies API).")
+    ssub = p.add_subparsers(dest="study_command", metavar="create|wait|show", required=True)
+
+    c = ssub.add_parser("create", parents=[common], help="create a study")
+    c.add_argument("file", nargs="?", help="a study JSON sent as is (else build one from --base)")
+    c.add_argument("--base", help="base job JSON file (default: the paper's scene)")
+    c.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE")
+    c.add_argument("--L", dest="lengths", help="comma-separated L values [m]")
+    c.add_argument("--n-d", dest="densities", help="comma-separated n_d values [nodes/m]")
+    c.add_argument("--name")
+    c.add_argument("--tag", dest="tags", action="append", default=[])
+    c.add_argument("--wait", action="store_true", help="wait for every run, then summarise")
+    c.add_argument("--wait-timeout", type=float)
+    c.set_defaults(func=cmd_create)
+
+    w = ssub.add_parser("wait", parents=[common], help="wait for a study, then summarise")
+    w.add_argument("id")
+    w.add_argument("--wait-timeout", type=float)
+    w.set_defaults(func=cmd_wait)
+
+    s = ssub.add_parser("show", parents=[common], help="summarise a study")
+    s.add_argument("id")
+    s.set_defaults(func=cmd_show)
+
+
+def build_body(args):
+    if args.file:
+        if args.base or args.lengths or args.densities:
+            raise UsageError("give either a study FILE or --base/--L/--n-d, not both")
+        body = jobspec.load_job(args.file)
+        return body
+    if not args.lengths or not args.densities:
+        raise UsageError("study create needs --L and --n-d (or a study FILE)")
+    base = jobspec.build_job(args.base, args.overrides)
+    return studies.study_request(base, floats(args.lengths, "--L"),
+                                 floats(args.densities, "--n-d"), args.name, args.tags)
+
+
+def show(study, args):
+    if args.json:
+        print_json(study)
+    else:
+        print("\n".join(studies.summary_lines(study)))
+
+
+def cmd_create(args, ctx):
+    api = ctx.api()
+    study = studies.create(api, build_body(args))
+    study_id = study.get("id")
+    if not args.quiet:
+        log(f"created study {study_id}")
+    if args.wait and study_id:
+        study = studies.wait(api, study_id, args.wait_timeout, None if args.quiet else log)
+        show(study, args)
+    else:
+        print_json(study) if args.json else print(study_id)
+    return 0
+
+
+def cmd_wait(args, ctx):
+    study = studies.wait(ctx.api(), args.id, args.wait_timeout, None if args.quiet else log)
+    show(study, args)
+    return 0
+
+
+def cmd_show(args, ctx):
+    show(studies.get(ctx.api(), args.id), args)
+    return 0
+
+
+

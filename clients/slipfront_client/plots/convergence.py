@@ -1,0 +1,79 @@
+"""(d) The convergence map in the L–n_d plane (paper Fig. 3c, 4c): one marker per run,
+by convergence status (converged, not_converged, diverged, pending, unknown).
+
+Accepted inputs (`points_from_json`): a list of {L, n_d, status}, or an object holding
+such a list under `points`, `runs`, `cells`, `jobs` or `map` (the server's
+GET /convergence-map); the status may also be called `convergence`, and L / n_d may sit
+in a nested `spec` (friction.L, geometry.nodes_per_meter).
+"""
+
+import math
+
+from ..analysis import STATUSES
+from ..errors import UsageError
+from .common import new_figure
+
+MARKERS = {
+    "converged": dict(marker="o", color="tab:green", fillstyle="full"),
+    "not_converged": dict(marker="X", color="tab:red", fillstyle="full"),
+    "diverged": dict(marker="v", color="black", fillstyle="full"),
+    "pending": dict(marker="s", color="tab:blue", fillstyle="none"),
+    "unknown": dict(marker="o", color="grey", fillstyle="none"),
+}
+LIST_KEYS = ("points", "runs", "cells", "jobs", "map")
+
+
+def _point(item, where):
+    if not isinstance(item, dict):
+        raise UsageError(f"{where}: expected an object with L, n_d and status, got {item!r}")
+    spec = item.get("spec") or {}
+    L = item.get("L", (spec.get("friction") or {}).get("L"))
+    n_d = item.get("n_d", item.get("nodes_per_meter",
+                                    (spec.get("geometry") or {}).get("nodes_per_meter")))
+    status = item.get("convergence", item.get("status", "unknown"))
+    if isinstance(status, dict):  # e.g. {"status": "converged", ...}
+        status = status.get("status", "unknown")
+    if L is None or n_d is None:
+        raise UsageError(f"{where}: needs L and n_d, got {item!r}")
+    if status not in STATUSES:
+        status = "unknown"
+    return {"L": float(L), "n_d": float(n_d), "status": status}
+
+
+def points_from_json(doc, where="convergence map"):
+    """Normalise a convergence-map document to [{L, n_d, status}]."""
+    items = doc
+    if isinstance(doc, dict):
+        for key in LIST_KEYS:
+            if isinstance(doc.get(key), list):
+                items = doc[key]
+                break
+        else:
+            raise UsageError(f"{where}: no list of points under any of {', '.join(LIST_KEYS)}")
+    if not isinstance(items, list):
+        raise UsageError(f"{where}: expected a list of {{L, n_d, status}}")
+    return [_point(item, f"{where}[{i}]") for i, item in enumerate(items)]
+
+
+def plot_convergence(points, critical_length=None, title=None):
+    """Markers by status on log L (vertical) against n_d (horizontal, log)."""
+    if not points:
+        raise UsageError("convergence map: no runs to draw")
+    fig, ax = new_figure()
+    data = {s: [] for s in STATUSES}
+    for p in points:
+        data[p["status"]].append((p["n_d"], p["L"]))
+    for status, xy in data.items():
+        if xy:
+            xs, ys = zip(*xy)
+            ax.plot(xs, ys, ls="none", ms=8, label=status.replace("_", " "), **MARKERS[status])
+    if critical_length and math.isfinite(critical_length):
+        ax.axhline(critical_length, color="black", ls=":", lw=1)
+        ax.text(ax.get_xlim()[1], critical_length, "L_c ", ha="right", va="bottom")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("n_d [nodes/m]")
+    ax.set_ylabel("L [m]")
+    ax.set_title(title or "Convergence map")
+    ax.legend(fontsize="small", loc="best")
+    return fig, data

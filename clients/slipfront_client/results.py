@@ -1,0 +1,151 @@
+"""Reading result files (docs/hdf5-layout.md / api/result_file.cpp) and run summaries.
+
+A `Result` holds what the plots need from one HDF5 file: the interface fields sampled in
+time (time-major [n_samples, n_nodes]), the front, the probes, the spec and the metrics.
+Sources may be local paths or job ids (downloaded once into a cache directory).
+"""
+
+import json
+import os
+import re
+from dataclasses import dataclass, field
+
+import h5py
+import numpy as np
+
+from .errors import UsageError
+
+JOB_ID = re.compile(r"^[0-9a-f]{32}$")
+
+
+@dataclass
+class Result:
+    path: str
+    x1: np.ndarray            # interface node positions [m]
+    time: np.ndarray          # sample times [s]
+    slip_velocity: np.ndarray  # [n_samples, n_nodes], m/s
+    strength: np.ndarray       # [n_samples, n_nodes], Pa
+    front_x1: np.ndarray
+    arrival_time: np.ndarray   # NaN where the front never arrived
+    rupture_speed: np.ndarray  # NaN where undefined
+    spec: dict = field(default_factory=dict)
+    metrics: dict = field(default_factory=dict)
+
+    @property
+    def L(self):
+        return (self.spec.get("friction") or {}).get("L")
+
+    @property
+    def n_d(self):
+        return (self.spec.get("geometry") or {}).get("nodes_per_meter")
+
+    @property
+    def law(self):
+        return (self.spec.get("friction") or {}).get("law", "prakash_clifton")
+
+    def label(self):
+        """'L = 5e-05 m, n_d = 40' (or 'Coulomb, n_d = 40')."""
+        n_d = self.n_d
+        nd_text = f"n_d = {n_d:g}" if n_d is not None else "n_d = ?"
+        if self.law == "coulomb":
+            return f"Coulomb, {nd_text}"
+        return f"L = {self.L:g} m, {nd_text}" if self.L is not None else nd_text
+
+    def wave_speeds(self):
+        """(c_s, c_p) of the run's material (plane strain)."""
+        m = self.spec.get("material") or {}
+        rho = m.get("density", 1.0)
+        E = m.get("young_modulus", 2.5)
+        nu = m.get("poisson_ratio", 0.25)
+        return wave_speeds(rho, E, nu)
+
+
+def wave_speeds(density=1.0, young_modulus=2.5, poisson_ratio=0.25):
+    """(c_s, c_p) of an isotropic elastic solid in plane strain."""
+    mu = young_modulus / (2 * (1 + poisson_ratio))
+    lam = young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio))
+    return float(np.sqrt(mu / density)), float(np.sqrt((lam + 2 * mu) / density))
+
+
+def _json_attr(f, name):
+    raw = f.attrs.get(name)
+    if raw is None:
+        return {}
+    if isinstance(raw, bytes):
+        raw = raw.decode()
+    try:
+        return json.loads(raw)
+    except (TypeError, ValueError):
+        return {}
+
+
+def load_result(path):
+    """Read one result file; UsageError if it is not a slipfront result."""
+    try:
+        with h5py.File(path, "r") as f:
+            i, fr = f["interface"], f["front"]
+            return Result(
+                path=path,
+                x1=i["x1"][()],
+                time=i["time"][()],
+                slip_velocity=i["slip_velocity"][()],
+                strength=i["strength"][()],
+                front_x1=fr["x1"][()],
+                arrival_time=fr["arrival_time"][()],
+                rupture_speed=fr["rupture_speed"][()],
+                spec=_json_attr(f, "spec"),
+                metrics=_json_attr(f, "metrics"),
+            )
+    except (OSError, KeyError) as e:
+        raise UsageError(f"{path}: not a readable slipfront result file ({e})") from e
+
+
+def cache_dir():
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "slipfront")
+
+
+def resolve_source(source, api_factory, cache=None, log=None):
+    """A local path for `source`: an existing file, or a job id downloaded into the cache."""
+    if os.path.exists(source):
+        return source
+    if not JOB_ID.match(source):
+        raise UsageError(f"{source}: no such file, and not a job id (32 hex characters)")
+    from .download import download_result  # here: plotting local files needs no HTTP
+
+    cache = cache or cache_dir()
+    os.makedirs(cache, exist_ok=True)
+    path, _, fetched = download_result(api_factory(), source, os.path.join(cache, source + ".h5"),
+                                       log=log)
+    if log and fetched:
+        log(f"downloaded job {source} ({fetched} bytes) to {path}")
+    return path
+
+
+def load_results(sources, api_factory, cache=None, log=None):
+    return [load_result(resolve_source(s, api_factory, cache, log)) for s in sources]
+
+
+def run_row(spec, metrics, wall_time_s=None, job_id=None, status=None):
+    """The summary of one run used by the convergence and cost figures."""
+    metrics = metrics or {}
+    return {
+        "id": job_id,
+        "L": (spec.get("friction") or {}).get("L"),
+        "n_d": (spec.get("geometry") or {}).get("nodes_per_meter"),
+        "status": status,
+        "outcome": metrics.get("outcome"),
+        "propagation_distance": metrics.get("propagation_distance"),
+        "arrival_time_at_probe": metrics.get("arrival_time_at_probe"),
+        "stable_dt": metrics.get("stable_dt"),
+        "wall_time_s": metrics.get("wall_time_s", wall_time_s),
+    }
+
+
+def row_from_job(job):
+    return run_row(job.get("spec") or {}, job.get("metrics"), job.get("wall_time_s"),
+                   job.get("id"), job.get("status"))
+
+
+def row_from_result(result):
+    return run_row(result.spec, result.metrics, job_id=os.path.basename(result.path))
