@@ -109,3 +109,49 @@ TEST(PaperScene, CoarseMeshesReproduceTheArrestedSupershearRupture) {
 
 } // namespace
 } // namespace slipfront
+
+namespace slipfront {
+namespace {
+
+// The strength is a running average of mu p (exponential update: a convex combination of
+// the old strength and mu p), so it must stay within [0, mu max p]. Explicit Euler at
+// dt (|V| + V*)/L > 2 (here up to ~8 during slip at n_d = 10, L = 5e-5 m) leaves that
+// range, without the run being flagged as diverged (docs/verification.md).
+struct StrengthRange : SampleSink {
+  double lo = 1e300, hi = -1e300, p_max = 0;
+  void begin(const InterfaceLayout&) override {}
+  void write(const InterfaceSample& s) override {
+    for (std::size_t i = 0; i < s.strength.size(); ++i) {
+      lo = std::min(lo, s.strength[i]);
+      hi = std::max(hi, s.strength[i]);
+      p_max = std::max(p_max, s.contact_pressure[i]);
+    }
+  }
+};
+
+TEST(PaperScene, StrengthStaysBetweenZeroAndMuMaxPressure) {
+  StrengthRange ranges[2];
+  RunResult runs[2];
+  for (int k = 0; k < 2; ++k) {
+    SimulationParams p = verification::paper_scene(10.0, 5e-5);
+    p.output.interval = 0.0;
+    if (k == 1) p.friction.update = StrengthUpdate::explicit_euler;
+    RunHooks hooks;
+    hooks.sink = &ranges[k];
+    runs[k] = run_simulation(p, hooks);
+  }
+  const double mu = 0.75;
+  EXPECT_GE(ranges[0].lo, 0.0);
+  EXPECT_LE(ranges[0].hi, mu * ranges[0].p_max * (1 + 1e-12));
+  // The known failure of explicit Euler (paper scene, n_d = 10): outside the physical range.
+  EXPECT_TRUE(ranges[1].lo < 0.0 || ranges[1].hi > mu * ranges[1].p_max);
+  measure("strength range n_d=10 L=5e-5: exponential [%.4g, %.4g] Pa within [0, mu max p = %.4g], "
+          "arrest %.3f m; explicit Euler [%.4g, %.4g] Pa (mu max p = %.4g), outcome %s, arrest "
+          "%.3f m, max |V| %.4g m/s",
+          ranges[0].lo, ranges[0].hi, mu * ranges[0].p_max, runs[0].metrics.arrest_position,
+          ranges[1].lo, ranges[1].hi, mu * ranges[1].p_max, to_string(runs[1].metrics.outcome),
+          runs[1].metrics.arrest_position, runs[1].metrics.max_slip_velocity);
+}
+
+} // namespace
+} // namespace slipfront
