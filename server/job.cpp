@@ -1,0 +1,103 @@
+#include "server/job.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slipfront::server {
+
+const char* to_string(JobStatus status) {
+  switch (status) {
+  case JobStatus::queued:
+    return "queued";
+  case JobStatus::running:
+    return "running";
+  case JobStatus::succeeded:
+    return "succeeded";
+  case JobStatus::failed:
+    return "failed";
+  case JobStatus::cancelled:
+    return "cancelled";
+  }
+  return "unknown";
+}
+
+std::optional<JobStatus> parse_status(std::string_view text) {
+  for (JobStatus s : {JobStatus::queued, JobStatus::running, JobStatus::succeeded,
+                      JobStatus::failed, JobStatus::cancelled})
+    if (text == to_string(s)) return s;
+  return std::nullopt;
+}
+
+bool is_final(JobStatus status) {
+  return status == JobStatus::succeeded || status == JobStatus::failed ||
+         status == JobStatus::cancelled;
+}
+
+bool transition_allowed(JobStatus from, JobStatus to, TransitionKind kind) {
+  switch (from) {
+  case JobStatus::queued:
+    return to == JobStatus::running || to == JobStatus::cancelled;
+  case JobStatus::running:
+    if (to == JobStatus::queued) return kind == TransitionKind::recovery;
+    return is_final(to);
+  default:
+    return false;
+  }
+}
+
+namespace {
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+nlohmann::json text_or_null(const std::string& value) {
+  return value.empty() ? nlohmann::json(nullptr) : nlohmann::json(value);
+}
+} // namespace
+
+nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& fields) {
+  nlohmann::json j;
+  j["id"] = job.id;
+  j["status"] = to_string(job.status);
+  j["name"] = job.name;
+  j["tags"] = job.tags;
+  j["spec"] = job.spec;
+  j["spec_sha256"] = job.spec_sha256;
+  j["submitted_by"] = text_or_null(job.submitted_by);
+  j["priority"] = job.priority;
+  j["created_at"] = text_or_null(job.created_at);
+  j["started_at"] = text_or_null(job.started_at);
+  j["finished_at"] = text_or_null(job.finished_at);
+  j["progress"] = {{"fraction", job.progress.fraction},
+                   {"time", job.progress.time},
+                   {"duration", job.progress.duration},
+                   {"steps", job.progress.steps},
+                   {"eta_s", number_or_null(job.progress.eta_s)},
+                   {"updated_at", text_or_null(job.progress.updated_at)}};
+  j["metrics"] = job.metrics;
+  j["error"] = text_or_null(job.error);
+  j["wall_time_s"] =
+      job.started_at.empty() ? nlohmann::json(nullptr) : number_or_null(job.wall_time_s);
+  j["code_version"] = text_or_null(job.code_version);
+  j["host"] = text_or_null(job.host);
+  if (job.status == JobStatus::succeeded && !job.result.path.empty())
+    j["result"] = {{"url", "/api/v1/jobs/" + job.id + "/result.h5"},
+                   {"size", job.result.size},
+                   {"sha256", job.result.sha256}};
+  else
+    j["result"] = nullptr;
+  j["cached_from"] = text_or_null(job.cached_from);
+  j["memory_estimate_bytes"] = job.memory_estimate_bytes;
+  j["attempts"] = job.attempts;
+  j["links"] = {{"self", "/api/v1/jobs/" + job.id},
+                {"metrics", "/api/v1/jobs/" + job.id + "/metrics"},
+                {"front", "/api/v1/jobs/" + job.id + "/front"},
+                {"cancel", "/api/v1/jobs/" + job.id + "/cancel"}};
+  if (fields.empty()) return j;
+  nlohmann::json projected;
+  projected["id"] = job.id;
+  for (const auto& field : fields)
+    if (j.contains(field)) projected[field] = j[field];
+  return projected;
+}
+
+} // namespace slipfront::server

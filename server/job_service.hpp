@@ -1,0 +1,68 @@
+// What the HTTP handlers ask of the server: submit, read, list and cancel jobs.
+// Nothing here waits for a simulation: every call is a few short database operations.
+#pragma once
+
+#include "api/job_spec.hpp"
+#include "server/job_queue.hpp"
+#include "server/job_store.hpp"
+#include "server/running_jobs.hpp"
+
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct SubmitOptions {
+  std::string user;            // who submits ("anonymous" without a token file)
+  std::string idempotency_key; // "" = none
+  std::optional<bool> fresh;   // ?fresh=... (the body's "fresh" is read by submit())
+  std::optional<int> priority; // ?priority=...
+};
+
+struct SubmitResult {
+  enum class Kind {
+    created,      // 201: queued
+    reused,       // 201: a succeeded job with the same physics and code version was reused
+    replayed,     // 200: same Idempotency-Key as an earlier submission: that job
+    bad_json,     // 400
+    invalid,      // 422 (errors)
+    key_conflict, // 422: Idempotency-Key reused with a different spec
+    queue_full,   // 503
+  } kind = Kind::created;
+  std::vector<api::FieldError> errors;
+  std::optional<Job> job;
+};
+
+struct CancelResult {
+  enum class Kind { cancelled, cancel_requested, not_found, forbidden, already_final } kind;
+  std::optional<Job> job;
+};
+
+struct ServiceOptions {
+  double max_memory_bytes = 8.0e9;
+  std::string code_version;
+  bool auth_enabled = false;
+};
+
+class JobService {
+public:
+  JobService(ServiceOptions options, JobStore& store, JobQueue& queue, RunningJobs& running);
+
+  SubmitResult submit(const std::string& body, const SubmitOptions& options);
+  std::optional<Job> get(const std::string& id); // with live progress if running
+  JobPage list(const JobFilter& filter);
+  CancelResult cancel(const std::string& id, const std::string& user);
+  bool auth_enabled() const { return options_.auth_enabled; }
+  const ServiceOptions& options() const { return options_; }
+
+private:
+  ServiceOptions options_;
+  JobStore& store_;
+  JobQueue& queue_;
+  RunningJobs& running_;
+  std::mutex submit_mutex_; // queue-limit check, insert and push are one step
+};
+
+} // namespace slipfront::server

@@ -1,0 +1,100 @@
+// The SQLite store of jobs and their metrics: one database file in the data dir, WAL mode,
+// a busy timeout, a schema versioned by PRAGMA user_version and upgraded by migrations.
+//
+// One connection guarded by a mutex: every call is one short transaction, so HTTP handlers
+// and workers can share it. Every state change is a conditional UPDATE (`WHERE status = ...`)
+// so the transitions of job.hpp hold even when a cancel races a worker.
+#pragma once
+
+#include "server/job.hpp"
+#include "server/sqlite_db.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct JobFilter {
+  std::vector<JobStatus> statuses; // any of these (empty = all)
+  std::string tag;                 // jobs carrying this tag
+  std::string name;                // exact name
+  std::string outcome;             // metrics outcome (finished jobs only)
+  std::string submitted_by;
+  std::string spec_sha256;
+  std::optional<double> L_min, L_max, n_d_min, n_d_max; // inclusive ranges
+  std::optional<std::int64_t> before_seq;               // cursor: jobs older than this
+  int limit = 50;
+};
+
+struct JobPage {
+  std::vector<Job> jobs; // newest first
+  std::optional<std::int64_t> next_cursor;
+};
+
+// What a finished run leaves behind.
+struct RunRecord {
+  JobStatus status = JobStatus::succeeded;
+  std::string error;
+  nlohmann::json metrics; // null if none
+  nlohmann::json front;   // null if none
+  ResultFile result;
+  double wall_time_s = 0.0;
+  std::string finished_at;
+};
+
+class JobStore {
+public:
+  static constexpr int schema_version = 2;
+
+  explicit JobStore(const std::string& path);
+  ~JobStore();
+
+  // Inserts a new job (status queued, or succeeded with cached_from set: then the metrics
+  // and front of cached_from are copied in the same transaction). Returns its seq.
+  std::int64_t insert(const Job& job);
+
+  std::optional<Job> get(const std::string& id);
+  std::optional<Job> find_by_idempotency_key(const std::string& user, const std::string& key);
+  // The newest succeeded job with this physics hash and code version that has a result.
+  std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version);
+
+  // queued -> running (attempts + 1). False if the job is no longer queued.
+  bool mark_running(const std::string& id, const std::string& started_at, const std::string& host,
+                    const std::string& code_version);
+  void update_progress(const std::string& id, const JobProgress& progress);
+  // running -> final status, with the metrics row. False if the job was not running.
+  bool finish(const std::string& id, const RunRecord& record);
+  // queued -> cancelled. False if the job was not queued.
+  bool cancel_queued(const std::string& id, const std::string& finished_at);
+  // running -> queued: only for drain (SIGTERM) and crash recovery. False if not running.
+  bool requeue(const std::string& id);
+  // Crash recovery at start-up: every running job goes back to queued. Returns the count.
+  int requeue_all_running();
+  // Queued jobs in run order: priority (high first), then submission order.
+  std::vector<Job> queued_jobs();
+
+  JobPage list(const JobFilter& filter);
+  std::map<std::string, std::int64_t> count_by_status();
+  std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
+
+  std::string path() const { return db_.path(); }
+  std::int64_t user_version();
+
+private:
+  void migrate();
+  std::optional<Job> query_one(const std::string& where, const std::vector<std::string>& args);
+
+  std::mutex mutex_;
+  Database db_;
+};
+
+// The schema migrations: entry i takes user_version i to i + 1.
+const std::vector<std::string>& schema_migrations();
+
+} // namespace slipfront::server

@@ -1,0 +1,33 @@
+// Accepts connections and starts an HttpSession on its own strand for each.
+#pragma once
+
+#include "server/http_session.hpp"
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+
+#include <memory>
+
+namespace slipfront::server {
+
+class Listener : public std::enable_shared_from_this<Listener> {
+public:
+  // Binds and listens at once (throws with the address on failure).
+  Listener(boost::asio::io_context& ioc, const boost::asio::ip::tcp::endpoint& endpoint,
+           const Router& router, ServerStats& stats, SessionLimits limits);
+  void run();
+  void stop(); // stop accepting; open connections finish their current request
+  boost::asio::ip::tcp::endpoint local_endpoint() const { return acceptor_.local_endpoint(); }
+
+private:
+  void accept();
+  void on_accept(beast::error_code ec, boost::asio::ip::tcp::socket socket);
+
+  boost::asio::io_context& ioc_;
+  boost::asio::ip::tcp::acceptor acceptor_;
+  const Router& router_;
+  ServerStats& stats_;
+  SessionLimits limits_;
+};
+
+} // namespace slipfront::server

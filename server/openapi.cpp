@@ -1,0 +1,142 @@
+// The OpenAPI 3.0 description served at GET /api/v1/openapi.json.
+#include "server/handlers.hpp"
+
+namespace slipfront::server {
+
+namespace {
+const char* document = R"json({
+  "openapi": "3.0.3",
+  "info": {
+    "title": "slipfront",
+    "version": "1",
+    "description": "Simulation service for frictional interface rupture: submit FE rupture jobs, follow them, fetch metrics, fronts and HDF5 results (SPEC §4, docs/server.md)."
+  },
+  "servers": [{"url": "/"}],
+  "components": {
+    "securitySchemes": {"bearer": {"type": "http", "scheme": "bearer",
+      "description": "Needed to submit and cancel when the server runs with --token-file."}},
+    "parameters": {
+      "id": {"name": "id", "in": "path", "required": true,
+             "schema": {"type": "string", "pattern": "^[0-9a-f]{32}$"}}
+    },
+    "schemas": {
+      "Problem": {"type": "object", "description": "application/problem+json (RFC 9457)",
+        "properties": {"type": {"type": "string"}, "title": {"type": "string"},
+          "status": {"type": "integer"}, "detail": {"type": "string"},
+          "instance": {"type": "string"},
+          "errors": {"type": "array", "items": {"type": "object", "properties": {
+            "pointer": {"type": "string", "description": "JSON pointer of the bad field"},
+            "reason": {"type": "string"}}}}}},
+      "JobSpec": {"type": "object", "description": "The job JSON of SPEC §4 (every field optional; unknown fields are errors). The server also reads and removes \"fresh\" (boolean) and \"priority\" (integer -100..100).",
+        "properties": {"name": {"type": "string"}, "tags": {"type": "array", "items": {"type": "string"}},
+          "material": {"type": "object"}, "geometry": {"type": "object"}, "loading": {"type": "object"},
+          "friction": {"type": "object"}, "nucleation": {"type": "object"}, "time": {"type": "object"},
+          "output": {"type": "object"}, "probe": {"type": "object"}, "threads": {"type": "integer"},
+          "fresh": {"type": "boolean"}, "priority": {"type": "integer"}}},
+      "Progress": {"type": "object", "properties": {"fraction": {"type": "number"},
+        "time": {"type": "number"}, "duration": {"type": "number"}, "steps": {"type": "integer"},
+        "eta_s": {"type": "number", "nullable": true}, "updated_at": {"type": "string", "nullable": true}}},
+      "Job": {"type": "object", "properties": {
+        "id": {"type": "string"},
+        "status": {"type": "string", "enum": ["queued", "running", "succeeded", "failed", "cancelled"]},
+        "name": {"type": "string"}, "tags": {"type": "array", "items": {"type": "string"}},
+        "spec": {"type": "object"}, "spec_sha256": {"type": "string"},
+        "submitted_by": {"type": "string", "nullable": true}, "priority": {"type": "integer"},
+        "created_at": {"type": "string"}, "started_at": {"type": "string", "nullable": true},
+        "finished_at": {"type": "string", "nullable": true},
+        "progress": {"$ref": "#/components/schemas/Progress"},
+        "metrics": {"type": "object", "nullable": true}, "error": {"type": "string", "nullable": true},
+        "wall_time_s": {"type": "number", "nullable": true}, "code_version": {"type": "string", "nullable": true},
+        "host": {"type": "string", "nullable": true},
+        "result": {"type": "object", "nullable": true, "properties": {"url": {"type": "string"},
+          "size": {"type": "integer"}, "sha256": {"type": "string"}}},
+        "cached_from": {"type": "string", "nullable": true},
+        "memory_estimate_bytes": {"type": "number"}, "attempts": {"type": "integer"},
+        "links": {"type": "object"}}}
+    },
+    "responses": {
+      "Problem": {"description": "Error", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+      "Job": {"description": "The job", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Job"}}}}
+    }
+  },
+  "paths": {
+    "/api/v1/jobs": {
+      "post": {"summary": "Submit a job", "security": [{"bearer": []}],
+        "parameters": [
+          {"name": "fresh", "in": "query", "schema": {"type": "boolean"}, "description": "run even if an identical succeeded job exists"},
+          {"name": "priority", "in": "query", "schema": {"type": "integer", "minimum": -100, "maximum": 100}},
+          {"name": "Idempotency-Key", "in": "header", "schema": {"type": "string", "maxLength": 200}, "description": "a retried POST with the same key returns the first job (200)"}],
+        "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/JobSpec"}}}},
+        "responses": {
+          "201": {"description": "Created (queued, or reused: cache = hit, cached_from set); Location names the job", "headers": {"Location": {"schema": {"type": "string"}}}, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Job"}}}},
+          "200": {"$ref": "#/components/responses/Job"},
+          "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+          "413": {"$ref": "#/components/responses/Problem"}, "422": {"$ref": "#/components/responses/Problem"},
+          "503": {"description": "Queue full or shutting down (Retry-After)", "headers": {"Retry-After": {"schema": {"type": "integer"}}}}}},
+      "get": {"summary": "List jobs, newest first",
+        "parameters": [
+          {"name": "status", "in": "query", "schema": {"type": "string"}, "description": "comma-separated statuses"},
+          {"name": "tag", "in": "query", "schema": {"type": "string"}},
+          {"name": "name", "in": "query", "schema": {"type": "string"}},
+          {"name": "outcome", "in": "query", "schema": {"type": "string", "enum": ["arrested", "running_at_end", "no_rupture", "diverged"]}},
+          {"name": "submitted_by", "in": "query", "schema": {"type": "string"}},
+          {"name": "spec_sha256", "in": "query", "schema": {"type": "string"}},
+          {"name": "L_min", "in": "query", "schema": {"type": "number"}},
+          {"name": "L_max", "in": "query", "schema": {"type": "number"}},
+          {"name": "n_d_min", "in": "query", "schema": {"type": "number"}},
+          {"name": "n_d_max", "in": "query", "schema": {"type": "number"}},
+          {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 50}},
+          {"name": "cursor", "in": "query", "schema": {"type": "string"}, "description": "next_cursor of the previous page"},
+          {"name": "fields", "in": "query", "schema": {"type": "string"}, "description": "comma-separated top-level fields to keep (id is always kept)"}],
+        "responses": {"200": {"description": "A page", "content": {"application/json": {"schema": {"type": "object", "properties": {
+          "jobs": {"type": "array", "items": {"$ref": "#/components/schemas/Job"}}, "count": {"type": "integer"},
+          "next_cursor": {"type": "string", "nullable": true}, "next": {"type": "string", "nullable": true}}}}}},
+          "400": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}": {
+      "get": {"summary": "A job: status, progress, spec, metrics, timing",
+        "parameters": [{"$ref": "#/components/parameters/id"},
+          {"name": "fields", "in": "query", "schema": {"type": "string"}}],
+        "responses": {"200": {"$ref": "#/components/responses/Job"}, "404": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}/cancel": {
+      "post": {"summary": "Cancel a job (queued: at once; running: within about a second)", "security": [{"bearer": []}],
+        "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"$ref": "#/components/responses/Job"}, "202": {"$ref": "#/components/responses/Job"},
+          "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}/result.h5": {
+      "get": {"summary": "The HDF5 result file (strong ETag = sha256; Range; If-None-Match)",
+        "parameters": [{"$ref": "#/components/parameters/id"},
+          {"name": "Range", "in": "header", "schema": {"type": "string"}},
+          {"name": "If-None-Match", "in": "header", "schema": {"type": "string"}},
+          {"name": "If-Range", "in": "header", "schema": {"type": "string"}}],
+        "responses": {"200": {"description": "The file", "content": {"application/x-hdf5": {}}},
+          "206": {"description": "One byte range", "content": {"application/x-hdf5": {}}},
+          "304": {"description": "Not modified"},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
+          "416": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}/metrics": {
+      "get": {"summary": "The metrics of SPEC §2 as JSON", "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "Metrics", "content": {"application/json": {}}},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}/front": {
+      "get": {"summary": "The slip front: x1, arrival_time, rupture_speed (null where undefined)", "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "Front", "content": {"application/json": {}}},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/openapi.json": {"get": {"summary": "This document", "responses": {"200": {"description": "OpenAPI 3"}}}},
+    "/healthz": {"get": {"summary": "Liveness and readiness", "responses": {"200": {"description": "ok"}, "503": {"description": "draining or database error"}}}},
+    "/metrics": {"get": {"summary": "Prometheus metrics: queue depth, running, jobs by status, run durations, HTTP requests", "responses": {"200": {"description": "text/plain; version=0.0.4"}}}}
+  }
+})json";
+} // namespace
+
+nlohmann::json openapi_document() {
+  return nlohmann::json::parse(document);
+}
+
+} // namespace slipfront::server

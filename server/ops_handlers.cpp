@@ -1,0 +1,65 @@
+// GET /healthz, GET /metrics (Prometheus text), GET /api/v1/openapi.json.
+#include "server/handlers.hpp"
+#include "server/responses.hpp"
+
+#include <sstream>
+
+namespace slipfront::server {
+
+namespace {
+
+Response healthz(ServerContext& ctx, RequestContext& rc) {
+  nlohmann::json body = {{"status", ctx.draining ? "draining" : "ok"},
+                         {"code_version", ctx.service.options().code_version},
+                         {"workers", ctx.workers},
+                         {"running", ctx.running.size()},
+                         {"queue_depth", ctx.queue.size()},
+                         {"queue_limit", ctx.queue.limit()},
+                         {"auth", ctx.tokens.has_value()}};
+  try {
+    ctx.store.user_version(); // the database answers
+    body["database"] = "ok";
+  } catch (const std::exception& e) {
+    body["status"] = "error";
+    body["database"] = e.what();
+  }
+  bool ok = body["status"] == "ok";
+  return json_response(rc.request, ok ? http::status::ok : http::status::service_unavailable, body);
+}
+
+Response prometheus(ServerContext& ctx, RequestContext& rc) {
+  std::ostringstream out;
+  out << "# HELP slipfront_queue_depth Jobs waiting in the run queue.\n"
+      << "# TYPE slipfront_queue_depth gauge\n"
+      << "slipfront_queue_depth " << ctx.queue.size() << "\n"
+      << "# HELP slipfront_queue_limit Queue size above which submissions get 503.\n"
+      << "# TYPE slipfront_queue_limit gauge\n"
+      << "slipfront_queue_limit " << ctx.queue.limit() << "\n"
+      << "# HELP slipfront_jobs_running Jobs running now.\n"
+      << "# TYPE slipfront_jobs_running gauge\n"
+      << "slipfront_jobs_running " << ctx.running.size() << "\n"
+      << "# HELP slipfront_workers Worker threads.\n"
+      << "# TYPE slipfront_workers gauge\n"
+      << "slipfront_workers " << ctx.workers << "\n"
+      << "# HELP slipfront_jobs Jobs in the database, by status.\n"
+      << "# TYPE slipfront_jobs gauge\n";
+  for (const auto& [status, n] : ctx.store.count_by_status())
+    out << "slipfront_jobs{status=\"" << status << "\"} " << n << "\n";
+  out << ctx.stats.prometheus_text();
+  return text_response(rc.request, http::status::ok, out.str(),
+                       "text/plain; version=0.0.4; charset=utf-8");
+}
+
+} // namespace
+
+void add_ops_routes(Router& router, ServerContext& ctx) {
+  router.add(http::verb::get, "/healthz", [&ctx](RequestContext& rc) { return healthz(ctx, rc); });
+  router.add(http::verb::get, "/metrics",
+             [&ctx](RequestContext& rc) { return prometheus(ctx, rc); });
+  router.add(http::verb::get, "/api/v1/openapi.json", [](RequestContext& rc) {
+    static const nlohmann::json doc = openapi_document();
+    return Response(json_response(rc.request, http::status::ok, doc));
+  });
+}
+
+} // namespace slipfront::server

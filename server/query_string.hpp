@@ -1,0 +1,22 @@
+// Splitting a request target into its path and its decoded query parameters.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace slipfront::server {
+
+// Percent-decoding ('+' is a space in queries). nullopt on a malformed escape.
+std::optional<std::string> percent_decode(std::string_view text, bool plus_is_space);
+
+struct Target {
+  std::string path;                         // decoded
+  std::map<std::string, std::string> query; // decoded; the last value of a repeated key wins
+};
+
+// nullopt on a malformed target (bad escapes, not starting with '/').
+std::optional<Target> parse_target(std::string_view target);
+
+} // namespace slipfront::server

@@ -1,0 +1,24 @@
+// Building responses: JSON, plain text, and errors as application/problem+json (RFC 9457)
+// naming each bad field by its JSON pointer.
+#pragma once
+
+#include "api/job_spec.hpp"
+#include "server/http_types.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+http::response<http::string_body> json_response(const Request& req, http::status status,
+                                                const nlohmann::json& body);
+http::response<http::string_body> text_response(const Request& req, http::status status,
+                                                std::string body, const std::string& content_type);
+// errors: [{"pointer": ..., "reason": ...}]
+http::response<http::string_body> problem_response(const Request& req, http::status status,
+                                                   const std::string& detail,
+                                                   const std::vector<api::FieldError>& errors = {});
+
+} // namespace slipfront::server

@@ -1,0 +1,166 @@
+// GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/metrics, /jobs/{id}/front.
+#include "server/byte_range.hpp"
+#include "server/handlers.hpp"
+#include "server/job_id.hpp"
+#include "server/range_file.hpp"
+#include "server/responses.hpp"
+
+#include <boost/beast/http/basic_file_body.hpp>
+
+namespace slipfront::server {
+
+namespace {
+
+const std::string prefix = "/api/v1";
+using RangeFileBody = http::basic_file_body<RangeFile>;
+
+// The job of the path, or the response to send instead (404 for malformed or unknown ids:
+// a malformed id never reaches the store or the file system).
+std::variant<Job, Response> find_job(ServerContext& ctx, RequestContext& rc) {
+  const auto& id = rc.path_params.at("id");
+  if (!is_valid_job_id(id))
+    return Response(problem_response(rc.request, http::status::not_found, "no job with id " + id));
+  auto job = ctx.service.get(id);
+  if (!job)
+    return Response(problem_response(rc.request, http::status::not_found, "no job with id " + id));
+  return *job;
+}
+
+Response not_finished(const Request& req, const Job& job, const std::string& what) {
+  return problem_response(req, http::status::conflict,
+                          "job " + job.id + " is " + to_string(job.status) + "; no " + what +
+                              " yet");
+}
+
+bool etag_matches(std::string_view header, const std::string& etag) {
+  if (header == "*") return true;
+  std::size_t start = 0;
+  while (start < header.size()) {
+    auto comma = header.find(',', start);
+    if (comma == std::string_view::npos) comma = header.size();
+    auto item = header.substr(start, comma - start);
+    while (!item.empty() && item.front() == ' ')
+      item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ')
+      item.remove_suffix(1);
+    if (item.substr(0, 2) == "W/") item.remove_prefix(2);
+    if (item == etag) return true;
+    start = comma + 1;
+  }
+  return false;
+}
+
+Response download(ServerContext& ctx, RequestContext& rc) {
+  auto found = find_job(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<Job>(found);
+  const auto& req = rc.request;
+  if (!is_final(job.status)) return not_finished(req, job, "result file");
+  if (job.status != JobStatus::succeeded || job.result.path.empty())
+    return problem_response(req, http::status::not_found,
+                            "job " + job.id + " has no result file (" + to_string(job.status) +
+                                (job.error.empty() ? "" : ": " + job.error) + ")");
+  const std::string etag = "\"" + job.result.sha256 + "\"";
+  if (req.count(http::field::if_none_match) &&
+      etag_matches(req[http::field::if_none_match], etag)) {
+    http::response<http::empty_body> res{http::status::not_modified, req.version()};
+    res.set(http::field::server, "slipfront");
+    res.set(http::field::etag, etag);
+    res.keep_alive(req.keep_alive());
+    return res;
+  }
+  // The stored path is relative to the data dir and made of a validated id only.
+  const std::string path = ctx.data_dir + "/" + job.result.path;
+  beast::error_code ec;
+  RangeFile file;
+  file.open(path.c_str(), beast::file_mode::scan, ec);
+  if (ec)
+    return problem_response(req, http::status::internal_server_error,
+                            "result file of job " + job.id + " cannot be opened: " + ec.message());
+  const std::uint64_t size = file.size(ec);
+  RangeRequest range;
+  if (req.count(http::field::range)) {
+    bool if_range_ok = !req.count(http::field::if_range) || req[http::field::if_range] == etag;
+    if (if_range_ok) range = parse_range(req[http::field::range], size);
+  }
+  if (range.kind == RangeRequest::Kind::unsatisfiable) {
+    auto res = problem_response(req, http::status::range_not_satisfiable,
+                                "range " + std::string(req[http::field::range]) +
+                                    " is outside the file (" + std::to_string(size) + " bytes)");
+    res.set(http::field::content_range, "bytes */" + std::to_string(size));
+    return res;
+  }
+  auto status = http::status::ok;
+  if (range.kind == RangeRequest::Kind::partial) {
+    status = http::status::partial_content;
+    file.set_range(range.range.first, range.range.length, ec);
+    if (ec)
+      return problem_response(req, http::status::internal_server_error,
+                              "seeking in the result file of job " + job.id + ": " + ec.message());
+  }
+  http::response<RangeFileBody> res{status, req.version()};
+  res.set(http::field::server, "slipfront");
+  res.set(http::field::content_type, "application/x-hdf5");
+  res.set(http::field::content_disposition, "attachment; filename=\"" + job.id + ".h5\"");
+  res.set(http::field::etag, etag);
+  res.set(http::field::accept_ranges, "bytes");
+  res.set(http::field::cache_control, "private, max-age=31536000, immutable");
+  if (status == http::status::partial_content)
+    res.set(http::field::content_range,
+            "bytes " + std::to_string(range.range.first) + "-" +
+                std::to_string(range.range.first + range.range.length - 1) + "/" +
+                std::to_string(size));
+  res.body().reset(std::move(file), ec);
+  if (ec)
+    return problem_response(req, http::status::internal_server_error,
+                            "result file of job " + job.id + ": " + ec.message());
+  res.keep_alive(req.keep_alive());
+  res.prepare_payload();
+  return res;
+}
+
+Response metrics(ServerContext& ctx, RequestContext& rc) {
+  auto found = find_job(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<Job>(found);
+  if (!is_final(job.status)) return not_finished(rc.request, job, "metrics");
+  if (job.metrics.is_null())
+    return problem_response(rc.request, http::status::not_found,
+                            "job " + job.id + " has no metrics (" + to_string(job.status) + ")");
+  return json_response(rc.request, http::status::ok,
+                       {{"id", job.id},
+                        {"status", to_string(job.status)},
+                        {"spec_sha256", job.spec_sha256},
+                        {"code_version", job.code_version},
+                        {"metrics", job.metrics}});
+}
+
+Response front(ServerContext& ctx, RequestContext& rc) {
+  auto found = find_job(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<Job>(found);
+  if (!is_final(job.status)) return not_finished(rc.request, job, "front");
+  auto stored = ctx.store.front(job.id);
+  if (!stored || stored->is_null())
+    return problem_response(rc.request, http::status::not_found,
+                            "job " + job.id + " has no front (" + to_string(job.status) + ")");
+  nlohmann::json body = *stored;
+  if (body.is_object()) {
+    body["id"] = job.id;
+    body["units"] = {{"x1", "m"}, {"arrival_time", "s"}, {"rupture_speed", "m/s"}};
+  }
+  return json_response(rc.request, http::status::ok, body);
+}
+
+} // namespace
+
+void add_result_routes(Router& router, ServerContext& ctx) {
+  router.add(http::verb::get, prefix + "/jobs/{id}/result.h5",
+             [&ctx](RequestContext& rc) { return download(ctx, rc); });
+  router.add(http::verb::get, prefix + "/jobs/{id}/metrics",
+             [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
+  router.add(http::verb::get, prefix + "/jobs/{id}/front",
+             [&ctx](RequestContext& rc) { return front(ctx, rc); });
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,73 @@
+#include "server/router.hpp"
+
+#include "server/log.hpp"
+#include "server/query_string.hpp"
+#include "server/responses.hpp"
+
+namespace slipfront::server {
+
+namespace {
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> out;
+  std::size_t start = 1;
+  while (start <= path.size()) {
+    auto slash = path.find('/', start);
+    if (slash == std::string::npos) slash = path.size();
+    out.push_back(path.substr(start, slash - start));
+    start = slash + 1;
+  }
+  return out;
+}
+
+bool match(const std::vector<std::string>& pattern, const std::vector<std::string>& path,
+           std::map<std::string, std::string>& params) {
+  if (pattern.size() != path.size()) return false;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const auto& p = pattern[i];
+    if (p.size() > 2 && p.front() == '{' && p.back() == '}')
+      params[p.substr(1, p.size() - 2)] = path[i];
+    else if (p != path[i])
+      return false;
+  }
+  return true;
+}
+} // namespace
+
+void Router::add(http::verb method, const std::string& pattern, Handler handler) {
+  routes_.push_back({method, pattern, split_path(pattern), std::move(handler)});
+}
+
+Response Router::dispatch(const Request& request) const {
+  auto target = parse_target(request.target());
+  if (!target)
+    return problem_response(request, http::status::bad_request, "malformed request target");
+  auto segments = split_path(target->path);
+  std::string allow;
+  for (const auto& route : routes_) {
+    std::map<std::string, std::string> params;
+    if (!match(route.segments, segments, params)) continue;
+    if (route.method != request.method()) {
+      allow += (allow.empty() ? "" : ", ") + std::string(http::to_string(route.method));
+      continue;
+    }
+    RequestContext ctx{request, target->path, std::move(params), target->query, {}};
+    try {
+      return route.handler(ctx);
+    } catch (const std::exception& e) {
+      log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
+                e.what());
+      return problem_response(request, http::status::internal_server_error,
+                              std::string("internal error: ") + e.what());
+    }
+  }
+  if (!allow.empty()) {
+    auto res = problem_response(request, http::status::method_not_allowed,
+                                "method " + std::string(request.method_string()) +
+                                    " is not allowed here; allowed: " + allow);
+    res.set(http::field::allow, allow);
+    return res;
+  }
+  return problem_response(request, http::status::not_found, "no such resource: " + target->path);
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,137 @@
+#include "server/server_app.hpp"
+
+#include "server/clock.hpp"
+#include "server/log.hpp"
+#include "solver/simulation.hpp"
+
+#include <boost/asio/ip/address.hpp>
+
+#include <filesystem>
+
+namespace slipfront::server {
+
+namespace net = boost::asio;
+
+ServerApp::ServerApp(ServerConfig config, std::unique_ptr<JobRunner> runner,
+                     std::string code_version)
+    : config_(std::move(config)), code_version_(std::move(code_version)),
+      runner_(std::move(runner)) {
+  resolve_defaults(config_);
+  if (!runner_) runner_ = std::make_unique<SolverJobRunner>();
+  if (code_version_.empty()) code_version_ = slipfront::code_version();
+}
+
+ServerApp::~ServerApp() {
+  shutdown();
+}
+
+void ServerApp::start() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(fs::path(config_.data_dir) / "results", ec);
+  if (ec)
+    throw std::runtime_error("cannot create data dir " + config_.data_dir +
+                             "/results: " + ec.message());
+  config_.data_dir = fs::canonical(config_.data_dir).string();
+  if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
+
+  store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db");
+  queue_ = std::make_unique<JobQueue>(config_.queue_limit);
+  int recovered = store_->requeue_all_running();
+  if (recovered > 0)
+    log_info("recovery: " + std::to_string(recovered) +
+             " job(s) left running by the last process are queued again");
+  auto queued = store_->queued_jobs();
+  for (const auto& job : queued)
+    queue_->push_unbounded(job.id, job.priority);
+  // Temporary results of runs a crash interrupted are garbage.
+  for (const auto& entry : fs::directory_iterator(fs::path(config_.data_dir) / "results", ec))
+    if (entry.path().filename().string().find(".tmp") != std::string::npos)
+      fs::remove(entry.path(), ec);
+
+  ServiceOptions so;
+  so.max_memory_bytes = config_.max_memory_bytes;
+  so.code_version = code_version_;
+  so.auth_enabled = tokens_.has_value();
+  service_ = std::make_unique<JobService>(so, *store_, *queue_, running_);
+
+  WorkerOptions wo;
+  wo.workers = config_.workers;
+  wo.data_dir = config_.data_dir;
+  wo.code_version = code_version_;
+  wo.host = host_name();
+  wo.db_progress_interval_s = config_.db_progress_interval_s;
+  pool_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
+
+  context_.reset(new ServerContext{*service_, *store_, *queue_, running_, stats_, tokens_,
+                                   config_.data_dir, config_.workers, config_.retry_after_s,
+                                   draining_});
+  add_job_routes(router_, *context_);
+  add_result_routes(router_, *context_);
+  add_ops_routes(router_, *context_);
+
+  beast::error_code aec;
+  auto address = net::ip::make_address(config_.host, aec);
+  if (aec) throw std::runtime_error("--host " + config_.host + ": " + aec.message());
+  SessionLimits limits;
+  limits.max_body_bytes = config_.max_body_bytes;
+  limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
+  listener_ = std::make_shared<Listener>(
+      ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
+      stats_, limits);
+
+  pool_->start();
+  listener_->run();
+  work_.emplace(ioc_.get_executor());
+  for (int i = 0; i < config_.io_threads; ++i)
+    io_threads_.emplace_back([this] {
+      for (;;) {
+        try {
+          ioc_.run();
+          return;
+        } catch (const std::exception& e) { // a handler threw past the router: log, go on
+          log_error(std::string("io thread: ") + e.what());
+        }
+      }
+    });
+  log_info("slipfront " + code_version_ + ": " + std::to_string(config_.workers) +
+           " worker(s), data dir " + config_.data_dir + ", " + std::to_string(queued.size()) +
+           " job(s) queued, memory limit per job " +
+           std::to_string(static_cast<long long>(config_.max_memory_bytes)) + " bytes" +
+           (tokens_ ? ", " + std::to_string(tokens_->size()) + " token(s)" : ", no auth"));
+}
+
+void ServerApp::request_stop() {
+  {
+    std::lock_guard lock(stop_mutex_);
+    stop_requested_ = true;
+  }
+  stop_cv_.notify_all();
+}
+
+void ServerApp::run_until_stopped() {
+  {
+    std::unique_lock lock(stop_mutex_);
+    stop_cv_.wait(lock, [&] { return stop_requested_; });
+  }
+  shutdown();
+}
+
+void ServerApp::shutdown() {
+  if (shut_down_) return;
+  shut_down_ = true;
+  draining_ = true;
+  log_info("shutting down: no new connections; running jobs stop and are queued again");
+  if (listener_) listener_->stop();
+  if (pool_) pool_->drain(); // each running job stops at its next step
+  work_.reset();
+  ioc_.stop();
+  for (auto& t : io_threads_)
+    if (t.joinable()) t.join();
+  io_threads_.clear();
+  pool_.reset();
+  store_.reset(); // checkpoints the WAL and closes the database
+  log_info("stopped");
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,73 @@
+// The whole server: store, queue, workers, HTTP. serve_main() builds one from the flags;
+// tests may build one with another JobRunner.
+//
+// start(): open (and migrate) the database, re-queue jobs a crash left running, queue every
+// queued job, start the workers, bind the listener. shutdown(): stop accepting, stop the
+// running jobs at their next step and put them back to queued, close the database.
+#pragma once
+
+#include "server/auth.hpp"
+#include "server/handlers.hpp"
+#include "server/job_queue.hpp"
+#include "server/job_runner.hpp"
+#include "server/job_service.hpp"
+#include "server/job_store.hpp"
+#include "server/listener.hpp"
+#include "server/router.hpp"
+#include "server/running_jobs.hpp"
+#include "server/server_config.hpp"
+#include "server/server_stats.hpp"
+#include "server/worker_pool.hpp"
+
+#include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/io_context.hpp>
+
+#include <atomic>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+namespace slipfront::server {
+
+class ServerApp {
+public:
+  // runner: nullptr = the solver (SolverJobRunner). code_version: "" = the solver's.
+  explicit ServerApp(ServerConfig config, std::unique_ptr<JobRunner> runner = nullptr,
+                     std::string code_version = "");
+  ~ServerApp();
+
+  void start();
+  boost::asio::ip::tcp::endpoint endpoint() const { return listener_->local_endpoint(); }
+  // Blocks until request_stop() (from any thread or a signal handler), then shuts down.
+  void run_until_stopped();
+  void request_stop();
+  void shutdown();
+
+private:
+  ServerConfig config_;
+  std::string code_version_;
+  std::unique_ptr<JobRunner> runner_;
+  std::optional<TokenTable> tokens_;
+  std::unique_ptr<JobStore> store_;
+  std::unique_ptr<JobQueue> queue_;
+  RunningJobs running_;
+  ServerStats stats_;
+  std::atomic<bool> draining_{false};
+  std::unique_ptr<JobService> service_;
+  std::unique_ptr<WorkerPool> pool_;
+  std::unique_ptr<ServerContext> context_;
+  Router router_;
+  boost::asio::io_context ioc_;
+  std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> work_;
+  std::shared_ptr<Listener> listener_;
+  std::vector<std::thread> io_threads_;
+  std::mutex stop_mutex_;
+  std::condition_variable stop_cv_;
+  bool stop_requested_ = false;
+  bool shut_down_ = false;
+};
+
+} // namespace slipfront::server

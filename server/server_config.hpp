@@ -1,0 +1,42 @@
+// The server's settings: defaults, then a JSON config file (--config), then flags.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace slipfront::server {
+
+struct ServerConfig {
+  std::string host = "127.0.0.1";
+  int port = 8080; // 0 = an ephemeral port
+  std::string data_dir = "slipfront-data";
+  int workers = 0;                // 0 = one per hardware thread
+  std::size_t queue_limit = 1000; // queued jobs above which POST /jobs answers 503
+  double max_memory_bytes = 0.0;  // 0 = 3/4 of physical memory shared by the workers
+  std::uint64_t max_body_bytes = 1 << 20;
+  std::string token_file;     // "" = no authentication
+  int io_threads = 2;         // threads answering HTTP
+  int request_timeout_s = 30; // to receive a request; idle keep-alive connections
+  int retry_after_s = 30;     // Retry-After of 503 answers
+  double db_progress_interval_s = 3.0;
+};
+
+class UsageError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+// Flags of `slipfront serve` (argv after "serve"). Throws UsageError with the reason.
+ServerConfig parse_server_args(int argc, char** argv);
+
+// Keys of the config file: the flag names with '_' for '-', e.g. {"port": 8080,
+// "data_dir": "/var/lib/slipfront", "workers": 4}. Unknown keys are errors.
+void apply_config_file(const std::string& path, ServerConfig& config);
+
+// Fills the 0 defaults (workers, memory limit) from the machine.
+void resolve_defaults(ServerConfig& config);
+
+std::string usage_text();
+
+} // namespace slipfront::server

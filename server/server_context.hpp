@@ -1,0 +1,30 @@
+// Everything the HTTP handlers use, owned by ServerApp.
+#pragma once
+
+#include "server/auth.hpp"
+#include "server/job_queue.hpp"
+#include "server/job_service.hpp"
+#include "server/job_store.hpp"
+#include "server/running_jobs.hpp"
+#include "server/server_stats.hpp"
+
+#include <atomic>
+#include <optional>
+#include <string>
+
+namespace slipfront::server {
+
+struct ServerContext {
+  JobService& service;
+  JobStore& store;
+  JobQueue& queue;
+  RunningJobs& running;
+  ServerStats& stats;
+  const std::optional<TokenTable>& tokens;
+  std::string data_dir;
+  int workers = 1;
+  int retry_after_s = 30;
+  std::atomic<bool>& draining;
+};
+
+} // namespace slipfront::server

@@ -1,0 +1,88 @@
+// Thin RAII wrappers over the SQLite C API: a connection and prepared statements.
+// Every failure throws SqliteError carrying SQLite's message and the SQL that failed.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+struct sqlite3;
+struct sqlite3_stmt;
+
+namespace slipfront::server {
+
+class SqliteError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+class Statement {
+public:
+  Statement(sqlite3* db, const std::string& sql);
+  ~Statement();
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  Statement(Statement&& other) noexcept;
+
+  // Binding (1-based index). Empty optionals and NaN doubles bind NULL.
+  Statement& bind(int index, const std::string& value);
+  Statement& bind(int index, std::int64_t value);
+  Statement& bind(int index, double value);
+  Statement& bind_null(int index);
+  Statement& bind(int index, const std::optional<std::string>& value);
+  Statement& bind(int index, const std::optional<double>& value);
+
+  bool step();  // true while a row is available
+  void run();   // step to completion (for statements returning no rows)
+  void reset(); // ready to run again; bindings cleared
+  int changes() const;
+
+  bool is_null(int column) const;
+  std::string text(int column) const; // "" for NULL
+  std::int64_t integer(int column) const;
+  double real(int column) const; // NaN for NULL
+  std::optional<double> optional_real(int column) const;
+
+private:
+  void check(int rc, const char* what) const;
+  sqlite3* db_ = nullptr;
+  sqlite3_stmt* stmt_ = nullptr;
+  std::string sql_;
+};
+
+class Database {
+public:
+  explicit Database(const std::string& path);
+  ~Database();
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  void exec(const std::string& sql); // one or more statements, no rows
+  Statement prepare(const std::string& sql) { return Statement(db_, sql); }
+  std::int64_t user_version();
+  std::int64_t last_insert_rowid();
+  void set_user_version(std::int64_t version);
+  std::string path() const { return path_; }
+  sqlite3* handle() { return db_; }
+
+private:
+  sqlite3* db_ = nullptr;
+  std::string path_;
+};
+
+// BEGIN IMMEDIATE ... COMMIT; rolls back when destroyed without commit().
+class Transaction {
+public:
+  explicit Transaction(Database& db);
+  ~Transaction();
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  void commit();
+
+private:
+  Database& db_;
+  bool done_ = false;
+};
+
+} // namespace slipfront::server

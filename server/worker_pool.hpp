@@ -1,0 +1,61 @@
+// N worker threads that pop jobs from the queue and run them, one at a time each.
+//
+// Progress goes to RunningJobs at every solver callback (about twice a second) and to the
+// database at most every `db_progress_interval_s`. A cancel from the API ends the job as
+// cancelled; a drain (SIGTERM) stops the run at its next step and puts the job back to
+// queued, to be run again from the start by the next server process.
+#pragma once
+
+#include "server/job_queue.hpp"
+#include "server/job_runner.hpp"
+#include "server/job_store.hpp"
+#include "server/running_jobs.hpp"
+#include "server/server_stats.hpp"
+
+#include <atomic>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace slipfront::server {
+
+struct WorkerOptions {
+  int workers = 1;
+  std::string data_dir; // results go to data_dir/results/<id>.h5
+  std::string code_version;
+  std::string host;
+  double db_progress_interval_s = 3.0;
+  double progress_interval_s = 0.5; // solver callback period
+};
+
+class WorkerPool {
+public:
+  WorkerPool(WorkerOptions options, JobStore& store, JobQueue& queue, JobRunner& runner,
+             RunningJobs& running, ServerStats& stats);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  void start();
+  // Stop taking jobs, stop the running ones at a safe point, re-queue them, join.
+  void drain();
+  int workers() const { return options_.workers; }
+
+  // data_dir-relative path of a job's result file.
+  static std::string result_relative_path(const std::string& id) { return "results/" + id + ".h5"; }
+
+private:
+  void work();
+  void run_one(const std::string& id);
+
+  WorkerOptions options_;
+  JobStore& store_;
+  JobQueue& queue_;
+  JobRunner& runner_;
+  RunningJobs& running_;
+  ServerStats& stats_;
+  std::atomic<bool> draining_{false};
+  std::vector<std::thread> threads_;
+};
+
+} // namespace slipfront::server

@@ -1,0 +1,41 @@
+#include "server/job.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace slipfront::server;
+
+TEST(JobState, ForwardTransitionsOnly) {
+  EXPECT_TRUE(transition_allowed(JobStatus::queued, JobStatus::running));
+  EXPECT_TRUE(transition_allowed(JobStatus::queued, JobStatus::cancelled));
+  EXPECT_FALSE(transition_allowed(JobStatus::queued, JobStatus::succeeded));
+  EXPECT_TRUE(transition_allowed(JobStatus::running, JobStatus::succeeded));
+  EXPECT_TRUE(transition_allowed(JobStatus::running, JobStatus::failed));
+  EXPECT_TRUE(transition_allowed(JobStatus::running, JobStatus::cancelled));
+  for (auto final_status : {JobStatus::succeeded, JobStatus::failed, JobStatus::cancelled})
+    for (auto to : {JobStatus::queued, JobStatus::running, JobStatus::succeeded, JobStatus::failed,
+                    JobStatus::cancelled}) {
+      EXPECT_FALSE(transition_allowed(final_status, to));
+      EXPECT_FALSE(transition_allowed(final_status, to, TransitionKind::recovery));
+    }
+}
+
+TEST(JobState, BackToQueuedOnlyForRecovery) {
+  EXPECT_FALSE(transition_allowed(JobStatus::running, JobStatus::queued));
+  EXPECT_TRUE(transition_allowed(JobStatus::running, JobStatus::queued, TransitionKind::recovery));
+}
+
+TEST(JobState, StatusNamesRoundTrip) {
+  for (auto s : {JobStatus::queued, JobStatus::running, JobStatus::succeeded, JobStatus::failed,
+                 JobStatus::cancelled})
+    EXPECT_EQ(parse_status(to_string(s)), s);
+  EXPECT_FALSE(parse_status("done").has_value());
+}
+
+TEST(JobState, ProjectionKeepsIdAndAskedFields) {
+  Job job;
+  job.id.assign(32, 'a');
+  auto j = job_to_json(job, {"status", "nonexistent"});
+  EXPECT_EQ(j.size(), 2u);
+  EXPECT_EQ(j["id"].get<std::string>(), job.id);
+  EXPECT_EQ(j["status"].get<std::string>(), "queued");
+}
