@@ -7,10 +7,21 @@ the convergence map and the cost chart also read JSON files, and can ask the ser
 import json
 import os
 
-from . import analysis, results
+import importlib
+
+from . import analysis
 from .errors import UsageError
 from .output import log
-from .plots import common, convergence, cost, filter_response, slip_map, speed, velocity
+
+
+def plots(name):
+    """A plot module, imported on first use (matplotlib and h5py are slow to import and
+    the other subcommands do not need them)."""
+    return importlib.import_module(f".plots.{name}", __package__)
+
+
+def results():
+    return importlib.import_module(".results", __package__)
 
 
 def floats(text, option):
@@ -75,6 +86,7 @@ def add_parsers(sub, common_parent):
 
 
 def _save(fig, args, stem):
+    common = plots("common")
     paths = common.save_figure(fig, args.output_dir, args.stem or stem,
                                common.parse_formats(args.format))
     for path in paths:
@@ -83,7 +95,7 @@ def _save(fig, args, stem):
 
 
 def _results(args, ctx):
-    return results.load_results(args.sources, ctx.api, args.cache_dir,
+    return results().load_results(args.sources, ctx.api, args.cache_dir,
                                 None if args.quiet else log)
 
 
@@ -99,14 +111,15 @@ def _load_json(path):
 
 def _server_rows(ctx, tag):
     jobs = ctx.api().list_jobs({"tag": tag}, limit=None)
-    return [results.row_from_job(j) for j in jobs]
+    return [results().row_from_job(j) for j in jobs]
 
 
 def cmd_map(args, ctx):
+    common = plots("common")
     formats = common.parse_formats(args.format)
     probes = floats(args.probes, "--probes")
     for source, result in zip(args.sources, _results(args, ctx)):
-        fig, _ = slip_map.plot_map(result, probes, args.vmax, args.title)
+        fig, _ = plots("slip_map").plot_map(result, probes, args.vmax, args.title)
         stem = args.stem if args.stem and len(args.sources) == 1 else None
         stem = stem or "map_" + os.path.splitext(os.path.basename(source))[0]
         for path in common.save_figure(fig, args.output_dir, stem, formats):
@@ -115,13 +128,14 @@ def cmd_map(args, ctx):
 
 
 def cmd_velocity(args, ctx):
-    fig, _ = velocity.plot_velocity(_results(args, ctx), floats(args.x1, "--x1"), args.title)
+    positions = floats(args.x1, "--x1")
+    fig, _ = plots("velocity").plot_velocity(_results(args, ctx), positions, args.title)
     _save(fig, args, "velocity")
     return 0
 
 
 def cmd_speed(args, ctx):
-    fig, _ = speed.plot_speed(_results(args, ctx), args.title)
+    fig, _ = plots("speed").plot_speed(_results(args, ctx), args.title)
     _save(fig, args, "speed")
     return 0
 
@@ -131,27 +145,32 @@ def convergence_points(args, ctx):
     inputs = sum(bool(x) for x in (args.sources, args.map_file, args.from_server, args.tag))
     if inputs != 1:
         raise UsageError("plot convergence: give exactly one of SOURCES, --map, --from-server, --tag")
+    convergence = plots("convergence")
     if args.map_file:
         return convergence.points_from_json(_load_json(args.map_file), args.map_file)
     if args.from_server:
         return convergence.points_from_json(ctx.api().convergence_map(), "server convergence map")
     rows = (_server_rows(ctx, args.tag) if args.tag
-            else [results.row_from_result(r) for r in _results(args, ctx)])
+            else [results().row_from_result(r) for r in _results(args, ctx)])
     return [{"L": r["L"], "n_d": r["n_d"], "status": r["convergence"]}
             for r in analysis.convergence_statuses(rows) if r["L"] is not None]
 
 
 def cmd_convergence(args, ctx):
-    fig, _ = convergence.plot_convergence(convergence_points(args, ctx), args.critical_length,
-                                          args.title)
+    points = convergence_points(args, ctx)
+    fig, _ = plots("convergence").plot_convergence(points, args.critical_length, args.title)
     _save(fig, args, "convergence")
     return 0
 
 
 def cmd_filter(args, ctx):
+    filter_response = plots("filter_response")
     runs = _results(args, ctx) if args.sources else []
-    lengths = floats(args.lengths, "--L") if args.lengths else sorted(
-        {r.L for r in runs if r.L is not None and r.law != "coulomb"}) or list(filter_response.PAPER_L)
+    if args.lengths:
+        lengths = floats(args.lengths, "--L")
+    else:
+        lengths = sorted({r.L for r in runs if r.L is not None and r.law != "coulomb"})
+        lengths = lengths or list(filter_response.PAPER_L)
     meshes = {r.n_d: r.metrics.get("stable_dt") for r in runs if r.n_d}
     if args.densities:
         meshes.update({n: meshes.get(n) for n in floats(args.densities, "--n-d")})
@@ -173,8 +192,8 @@ def cmd_cost(args, ctx):
             raise UsageError(f"{args.data}: expected a list of {{L, n_d, wall_time_s, error}}")
     else:
         base = (_server_rows(ctx, args.tag) if args.tag
-                else [results.row_from_result(r) for r in _results(args, ctx)])
+                else [results().row_from_result(r) for r in _results(args, ctx)])
         rows = analysis.errors_against_finest(base)
-    fig, _ = cost.plot_cost(rows, args.title)
+    fig, _ = plots("cost").plot_cost(rows, args.title)
     _save(fig, args, "cost")
     return 0
