@@ -30,9 +30,10 @@ std::string format_duration(double seconds) {
 std::string format_progress(const Progress& p) {
   const double fraction = std::clamp(p.fraction, 0.0, 1.0);
   const int filled = static_cast<int>(fraction * bar_width);
-  std::string bar = "[" + std::string(filled, '#') + std::string(bar_width - filled, '.') + "]";
+  std::string bar(bar_width, '.');
+  bar.replace(0, filled, filled, '#');
   char text[160];
-  std::snprintf(text, sizeof text, "%s %5.1f%%  t = %.3g / %.3g s  %.0f steps/s  ETA %s",
+  std::snprintf(text, sizeof text, "[%s] %5.1f%%  t = %.3g / %.3g s  %.0f steps/s  ETA %s",
                 bar.c_str(), 100.0 * fraction, p.time, p.duration, p.steps_per_s,
                 format_duration(p.eta_s).c_str());
   return text;
