@@ -12,6 +12,7 @@ namespace {
 
 constexpr double whole_elements_tolerance = 1e-9; // relative
 constexpr double min_elements_along_x1 = 3.0;     // a periodic row needs distinct neighbours
+constexpr double max_elements_per_axis = 1e7;     // node indices stay far inside an int
 constexpr double strength_tolerance = 1e-12;      // relative: a load equal to mu |p| may stick
 
 bool has_error(const std::vector<FieldError>& errors, const std::string& pointer) {
@@ -42,6 +43,10 @@ void check_whole_elements(const char* pointer, const char* what, double length,
                                    text(nodes_per_meter) + " = " + text(elements) +
                                    " must be a whole number of elements (within 1e-9 relative): "
                                    "the mesh is regular with element size 1/nodes_per_meter"});
+  } else if (whole > max_elements_per_axis) {
+    errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(elements) +
+                                   " elements, more than the " + text(max_elements_per_axis) +
+                                   " allowed along one axis"});
   } else if (whole < min_elements) {
     errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(elements) +
                                    " elements, need at least " + text(min_elements)});
@@ -59,6 +64,17 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
     check_whole_elements("/geometry/height", "height", g.height, g.nodes_per_meter, 1.0, errors);
   }
   const SimulationParams& p = job.params;
+  if (g.auto_height && !any_error(errors, {"/time/duration", "/material/density",
+                                           "/material/young_modulus", "/material/poisson_ratio"})) {
+    // "auto" height grows with the duration: h = c_p * duration / 2.
+    const double elements = 0.5 * p.material.p_wave_speed() * p.time.duration * g.nodes_per_meter;
+    if (elements > max_elements_per_axis) {
+      errors.push_back({"/geometry/height",
+                        "\"auto\" gives c_p * duration / 2 * nodes_per_meter = " + text(elements) +
+                            " elements, more than the " + text(max_elements_per_axis) +
+                            " allowed along one axis: give a height or a shorter duration"});
+    }
+  }
   const double interface_nodes = std::round(g.width * g.nodes_per_meter);
   if (!any_error(errors, {"/geometry/width", "/output/space_stride"}) &&
       p.output.space_stride > interface_nodes) {

@@ -217,6 +217,13 @@ TEST(JobValidation, MeshMustHoldWholeElements) {
   EXPECT_TRUE(parse_job({{"geometry", {{"height", "auto"}}}}).ok());
 }
 
+TEST(JobValidation, ElementCountsStayBounded) {
+  expect_single_error({{"geometry", {{"nodes_per_meter", 1e6}, {"height", 1}}}}, "/geometry/width",
+                      "more than the 1e+07 allowed along one axis");
+  expect_single_error({{"geometry", {{"height", "auto"}}}, {"time", {{"duration", 1e9}}}},
+                      "/geometry/height", "give a height or a shorter duration");
+}
+
 TEST(JobValidation, LoadingMustCompressAndStartStuck) {
   expect_single_error({{"loading", {{"normal_stress", 0.015}}}}, "/loading/normal_stress",
                       "< 0, got 0.015");
