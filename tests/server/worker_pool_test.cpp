@@ -1,0 +1,145 @@
+// The worker pool with runners injected through the JobRunner interface: failure, cancel
+// and drain paths that the real solver cannot be made to take on demand.
+#include "server/job_id.hpp"
+#include "server/worker_pool.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+using namespace slipfront::server;
+namespace fs = std::filesystem;
+
+namespace {
+
+class TempDir {
+public:
+  TempDir()
+      : path_(fs::temp_directory_path() / std::string("slipfront-pool-").append(new_job_id())) {
+    fs::create_directories(path_ / "results");
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string str() const { return path_.string(); }
+
+private:
+  fs::path path_;
+};
+
+// Behaves as the job's name says: "throw", "wait" (until cancelled, at most 10 s), else succeed.
+class ScriptedRunner : public JobRunner {
+public:
+  RunReport run(const Job& job, const std::string& output_path,
+                const slipfront::RunHooks& hooks) override {
+    RunReport report;
+    if (job.name == "throw") throw std::runtime_error("disk full while writing " + output_path);
+    if (job.name == "wait") {
+      for (int i = 0; i < 1000 && !hooks.cancel->load(); ++i) {
+        slipfront::Progress p;
+        p.fraction = 0.01 * i;
+        p.step = i;
+        hooks.on_progress(p);
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+      report.cancelled = hooks.cancel->load();
+      return report;
+    }
+    report.metrics = {{"outcome", "arrested"}, {"steps", 10}, {"simulated_time", 2.0}};
+    report.front = {{"x1", {0.0}}, {"arrival_time", {0.1}}, {"rupture_speed", {nullptr}}};
+    report.result = {output_path, 42, "feed"};
+    return report;
+  }
+};
+
+struct Fixture {
+  TempDir dir;
+  JobStore store{dir.str() + "/db.sqlite"};
+  JobQueue queue{100};
+  ScriptedRunner runner;
+  RunningJobs running;
+  ServerStats stats;
+  WorkerPool pool{WorkerOptions{2, dir.str(), "test-version", "test-host", 0.0, 0.01},
+                  store,
+                  queue,
+                  runner,
+                  running,
+                  stats};
+
+  std::string submit(const std::string& name) {
+    Job job;
+    job.id = new_job_id();
+    job.name = name;
+    job.spec = nlohmann::json::object();
+    job.spec_sha256 = job.id; // any text: no reuse in these tests
+    job.created_at = job.id;
+    store.insert(job);
+    queue.push(job.id, 0);
+    return job.id;
+  }
+
+  Job wait_for(const std::string& id, bool (*done)(JobStatus)) {
+    for (int i = 0; i < 500; ++i) {
+      auto job = store.get(id);
+      if (job && done(job->status)) return *job;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return *store.get(id);
+  }
+};
+
+bool final_status(JobStatus s) {
+  return is_final(s);
+}
+bool running_status(JobStatus s) {
+  return s == JobStatus::running;
+}
+
+} // namespace
+
+TEST(WorkerPool, SuccessFailureAndUserCancel) {
+  Fixture f;
+  f.pool.start();
+  auto ok = f.submit("ok");
+  auto bad = f.submit("throw");
+  auto slow = f.submit("wait");
+
+  Job done = f.wait_for(ok, final_status);
+  EXPECT_EQ(done.status, JobStatus::succeeded);
+  EXPECT_EQ(done.result.path, "results/" + ok + ".h5"); // data-dir relative
+  EXPECT_EQ(done.code_version, "test-version");
+  EXPECT_EQ(done.progress.steps, 10);
+  EXPECT_TRUE(f.store.front(ok).has_value());
+
+  Job failed = f.wait_for(bad, final_status);
+  EXPECT_EQ(failed.status, JobStatus::failed);
+  EXPECT_NE(failed.error.find("disk full while writing"), std::string::npos) << failed.error;
+  EXPECT_TRUE(failed.result.path.empty());
+
+  f.wait_for(slow, running_status);
+  for (int i = 0; i < 200 && !f.running.progress(slow); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_TRUE(f.running.progress(slow).has_value()) << "live progress is kept in memory";
+  EXPECT_TRUE(f.running.request_cancel(slow, "alice"));
+  Job cancelled = f.wait_for(slow, final_status);
+  EXPECT_EQ(cancelled.status, JobStatus::cancelled);
+  EXPECT_NE(cancelled.error.find("alice"), std::string::npos);
+  f.pool.drain();
+}
+
+TEST(WorkerPool, DrainRequeuesRunningJobs) {
+  Fixture f;
+  f.pool.start();
+  auto slow = f.submit("wait");
+  f.wait_for(slow, running_status);
+  auto t0 = std::chrono::steady_clock::now();
+  f.pool.drain();
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(2));
+  auto job = f.store.get(slow);
+  EXPECT_EQ(job->status, JobStatus::queued) << "drained jobs go back to queued";
+  EXPECT_EQ(job->attempts, 1);
+  EXPECT_EQ(f.running.size(), 0u);
+}
