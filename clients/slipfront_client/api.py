@@ -61,12 +61,13 @@ class Api:
     """The server at `base_url`, with an optional bearer `token`."""
 
     def __init__(self, base_url, token=None, timeout=30.0, max_retries=6, max_retry_wait=60.0,
-                 sleep=time.sleep):
+                 connect_retries=3, sleep=time.sleep):
         self.base_url = base_url.rstrip("/")
         self.token = token
         self.timeout = timeout
         self.max_retries = max_retries
         self.max_retry_wait = max_retry_wait
+        self.connect_retries = connect_retries
         self.sleep = sleep
         self.session = requests.Session()
         self.session.headers["User-Agent"] = USER_AGENT
@@ -88,13 +89,15 @@ class Api:
                 stream=False, ok=(200,), idempotent=None):
         """Send a request; return the response when its status is in `ok`.
 
-        `idempotent` (default: GET/HEAD) says whether a connection failure may be retried.
+        `idempotent` (default: GET/HEAD) says whether a connection failure may be retried
+        (at most `connect_retries` times, after 0.5, 1, 2, ... s).
         503 and 429 are retried after Retry-After whatever the method: the server did not
         act on the request.
         """
         if idempotent is None:
             idempotent = method in ("GET", "HEAD")
         backoff = 0.5
+        connect_failures = 0
         for attempt in range(self.max_retries + 1):
             last = attempt == self.max_retries
             try:
@@ -102,7 +105,8 @@ class Api:
                     method, self.url(path), params=params, json=json_body, headers=headers,
                     stream=stream, timeout=self.timeout)
             except requests.RequestException as e:
-                if idempotent and not last:
+                connect_failures += 1
+                if idempotent and not last and connect_failures <= self.connect_retries:
                     self.sleep(backoff)
                     backoff = min(backoff * 2, 8.0)
                     continue

@@ -6,7 +6,7 @@ import sys
 
 from . import commands_jobs, commands_plot, commands_study
 from .api import Api
-from .errors import EXIT_INTERRUPTED, EXIT_USAGE, ClientError
+from .errors import EXIT_INTERRUPTED, ClientError
 
 DEFAULT_SERVER = "http://127.0.0.1:8080"
 
@@ -96,6 +96,3 @@ def main(argv=None):
         return 0
     finally:
         ctx.close()
-
-
-

@@ -1,7 +1,5 @@
 """`study create|wait|show`: a grid of runs over L × n_d (SPEC §4 studies API)."""
 
-
-
 from . import jobspec, studies
 from .errors import UsageError
 from .output import log, print_json
@@ -87,6 +85,3 @@ def cmd_wait(args, ctx):
 def cmd_show(args, ctx):
     show(studies.get(ctx.api(), args.id), args)
     return 0
-
-
-
