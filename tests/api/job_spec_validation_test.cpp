@@ -219,7 +219,7 @@ TEST(JobValidation, MeshMustHoldWholeElements) {
 
 TEST(JobValidation, ElementCountsStayBounded) {
   expect_single_error({{"geometry", {{"nodes_per_meter", 1e6}, {"height", 1}}}}, "/geometry/width",
-                      "more than the 1e+07 allowed along one axis");
+                      "more than the 10000000 allowed along one axis");
   expect_single_error({{"geometry", {{"height", "auto"}}}, {"time", {{"duration", 1e9}}}},
                       "/geometry/height", "give a height or a shorter duration");
 }
