@@ -6,7 +6,7 @@ import sys
 
 from . import commands_jobs, commands_plot, commands_study
 from .api import Api
-from .errors import EXIT_INTERRUPTED, ClientError
+from .errors import EXIT_INTERRUPTED, EXIT_SERVER, ClientError
 
 DEFAULT_SERVER = "http://127.0.0.1:8080"
 
@@ -89,6 +89,9 @@ def main(argv=None):
     except ClientError as e:
         report(e)
         return e.exit_code
+    except OSError as e:  # a local file or directory the command could not use
+        report(ClientError(f"{e.filename or ''}: {e.strerror or e}".lstrip(": ")))
+        return EXIT_SERVER
     except KeyboardInterrupt:
         print("\nslipfront-client: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -59,6 +59,7 @@ def download_result(api, job_id, output, log=None):
     a mismatch after a resume starts once more from scratch, then fails.
     """
     size, sha = _expected(api, job_id)
+    os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
     if os.path.exists(output) and os.path.getsize(output) == size and sha256_file(output) == sha:
         return output, sha, 0
     part = output + ".part"
