@@ -59,6 +59,8 @@ def add_parsers(sub, common_parent):
 
     s = psub.add_parser("speed", parents=parents, help="(c) rupture speed against x1")
     s.add_argument("sources", nargs="+")
+    s.add_argument("--front-json", action="store_true",
+                   help="sources are job ids: read GET /jobs/{id}/front, download nothing")
     s.set_defaults(func=cmd_speed)
 
     c = psub.add_parser("convergence", parents=parents, help="(d) convergence map in the L-n_d plane")
@@ -135,7 +137,11 @@ def cmd_velocity(args, ctx):
 
 
 def cmd_speed(args, ctx):
-    fig, _ = plots("speed").plot_speed(_results(args, ctx), args.title)
+    if args.front_json:
+        runs = [results().result_from_front(ctx.api(), source) for source in args.sources]
+    else:
+        runs = _results(args, ctx)
+    fig, _ = plots("speed").plot_speed(runs, args.title)
     _save(fig, args, "speed")
     return 0
 

@@ -149,3 +149,20 @@ def row_from_job(job):
 
 def row_from_result(result):
     return run_row(result.spec, result.metrics, job_id=os.path.basename(result.path))
+
+
+def _floats(values):
+    return np.array([np.nan if v is None else float(v) for v in values or []], dtype=float)
+
+
+def result_from_front(api, job_id):
+    """A `Result` with only the front, from the server's JSON (GET /jobs/{id}/front and
+    the job's spec and metrics): enough for the rupture-speed figure, no download."""
+    job = api.job(job_id, fields=["spec", "metrics"])
+    front = api.front(job_id)
+    empty = np.empty((0, 0))
+    return Result(path=job_id, x1=_floats(front.get("x1")), time=np.empty(0),
+                  slip_velocity=empty, strength=empty, front_x1=_floats(front.get("x1")),
+                  arrival_time=_floats(front.get("arrival_time")),
+                  rupture_speed=_floats(front.get("rupture_speed")),
+                  spec=job.get("spec") or {}, metrics=job.get("metrics") or {})

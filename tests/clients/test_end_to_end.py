@@ -223,6 +223,7 @@ class EndToEnd(unittest.TestCase):
         ids = [self.grid[("1e-4", "10")], self.grid[("5e-5", "10")]]
         self.assertFigures(self.plot("velocity", self.h5, *ids, "--x1", "2,3"), 2)
         self.assertFigures(self.plot("speed", self.h5, *ids, "--stem", "speed_runs"), 2)
+        self.assertFigures(self.plot("speed", "--front-json", *ids, "--stem", "speed_json"), 2)
 
     def test_plot_convergence_from_runs_and_json(self):
         self.assertFigures(self.plot("convergence", "--tag", "grid"), 2)

@@ -49,7 +49,7 @@ def plot_filter(lengths=PAPER_L, meshes=None, v_star=1e-4, slip_velocity=3e-3,
         f_max = highest_frequency(dt)
         data["f_max"][n_d] = f_max
         ax.axvline(f_max, color="grey", ls="--", lw=0.8)
-        ax.text(f_max, 1.02, f"f_{n_d:g}", rotation=90, ha="right", va="bottom", fontsize="x-small",
+        ax.text(f_max, 1.02, rf"$\bar f_{{{n_d:g}}}$", rotation=90, ha="right", va="bottom", fontsize="x-small",
                 color="grey")
     ax.set_xscale("log")
     ax.set_ylim(0, 1.12)

@@ -18,12 +18,12 @@ def plot_speed(results, title=None):
         c_s, c_p = results[0].wave_speeds()
         ax.axhline(c_s, color="grey", ls="--", lw=0.8)
         ax.axhline(c_p, color="grey", ls="-.", lw=0.8)
-        ax.text(ax.get_xlim()[0], c_s, " c_s", va="bottom", color="grey")
-        ax.text(ax.get_xlim()[0], c_p, " c_p", va="bottom", color="grey")
+        ax.text(ax.get_xlim()[0], c_s, r" $c_s$", va="bottom", color="grey")
+        ax.text(ax.get_xlim()[0], c_p, r" $c_p$", va="bottom", color="grey")
         data["c_s"], data["c_p"] = c_s, c_p
         ax.set_ylim(0, 1.1 * c_p)
     ax.set_xlabel("x1 [m]")
-    ax.set_ylabel("V_r [m/s]")
+    ax.set_ylabel(r"$V_r$ [m/s]")
     ax.set_title(title or "Rupture speed")
     if ax.lines:
         ax.legend(fontsize="small")
