@@ -62,7 +62,8 @@ public:
       if (std::isnan(arrival_[i]) && now > threshold_) {
         const double before = std::abs(previous_[i]);
         const double s = (threshold_ - before) / (now - before); // in [0, 1)
-        arrival_[i] = t_half - dt + std::clamp(s, 0.0, 1.0) * dt;
+        // Not before t = 0: the motion starts at t_0 even though v^{-1/2} sits at -dt/2.
+        arrival_[i] = std::max(0.0, t_half - dt + std::clamp(s, 0.0, 1.0) * dt);
         last_new_arrival_ = std::max(last_new_arrival_, arrival_[i]);
       }
       previous_[i] = half_velocity[i];
@@ -238,6 +239,8 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) 
       params.nucleation.enabled ? nucleation_end_time(params.nucleation) : 0.0;
 
   FrontTracker front(nx, params.probes.front_threshold);
+  double max_coulomb_strength = params.friction.mu * std::abs(params.loading.normal_stress);
+  std::string strength_message;
   bool arrested = false;
   double last_progress = -1e9;
   long n = 0;
@@ -259,7 +262,24 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) 
       const double v = std::abs(f.velocity[i]);
       if (!(v <= speed_limit)) finite = false; // also catches NaN
       m.max_slip_velocity = std::max(m.max_slip_velocity, v);
+      max_coulomb_strength = std::max(max_coulomb_strength, params.friction.mu * f.pressure[i]);
     }
+    // A stable strength update keeps tau_s between its start and mu p (friction.hpp), so
+    // within [0, the largest mu p seen]; leaving that range means the update is unstable
+    // even if it stays bounded (explicit Euler with dt (|V| + V*) / L > 2).
+    for (int i = 0; i < nx && strength_message.empty(); ++i) {
+      const double ts = f.strength[i];
+      if (ts < -1e-12 * max_coulomb_strength || ts > (1 + 1e-12) * max_coulomb_strength) {
+        char msg[240];
+        std::snprintf(
+            msg, sizeof msg,
+            "frictional strength %.4g Pa at x1 = %.4g m left its physical range [0, %.4g] Pa: "
+            "the strength update is unstable",
+            ts, f.x1[i], max_coulomb_strength);
+        strength_message = msg;
+      }
+    }
+    if (!strength_message.empty()) finite = false;
     result.probes.time.push_back(t_n);
     result.probes.slip_velocity_arrival.push_back(f.velocity[probe_arrival]);
     result.probes.slip_velocity_spectrum.push_back(f.velocity[probe_spectrum]);
@@ -277,11 +297,15 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) 
     if (!finite) {
       m.outcome = Outcome::diverged;
       char msg[200];
-      std::snprintf(
-          msg, sizeof msg,
-          "diverged at t = %.6g s (step %ld): slip speed above %.3g m/s or a non-finite field", t_n,
-          n, speed_limit);
+      std::snprintf(msg, sizeof msg, "diverged at t = %.6g s (step %ld): ", t_n, n);
       m.message = msg;
+      if (strength_message.empty()) {
+        std::snprintf(msg, sizeof msg, "slip speed above %.3g m/s or a non-finite field",
+                      speed_limit);
+        m.message += msg;
+      } else {
+        m.message += strength_message;
+      }
       ++n;
       break;
     }

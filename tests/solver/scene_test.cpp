@@ -145,6 +145,11 @@ TEST(PaperScene, StrengthStaysBetweenZeroAndMuMaxPressure) {
   EXPECT_LE(ranges[0].hi, mu * ranges[0].p_max * (1 + 1e-12));
   // The known failure of explicit Euler (paper scene, n_d = 10): outside the physical range.
   EXPECT_TRUE(ranges[1].lo < 0.0 || ranges[1].hi > mu * ranges[1].p_max);
+  // ... which the run reports as a divergence, naming the strength, instead of a result.
+  EXPECT_EQ(runs[0].metrics.outcome, Outcome::arrested);
+  EXPECT_EQ(runs[1].metrics.outcome, Outcome::diverged);
+  EXPECT_NE(runs[1].metrics.message.find("frictional strength"), std::string::npos)
+      << runs[1].metrics.message;
   measure("strength range n_d=10 L=5e-5: exponential [%.4g, %.4g] Pa within [0, mu max p = %.4g], "
           "arrest %.3f m; explicit Euler [%.4g, %.4g] Pa (mu max p = %.4g), outcome %s, arrest "
           "%.3f m, max |V| %.4g m/s",
