@@ -66,7 +66,8 @@ void read_nucleation(ObjectReader& in, Nucleation& nucleation) {
 
 void read_time(ObjectReader& in, TimeControl& time) {
   in.number("duration", time.duration, positive());
-  in.number("safety_factor", time.safety_factor, left_open(0.0, 1.0));
+  in.number("safety_factor", time.safety_factor,
+            left_open(0.0, 2.0)); // > 1: unstable, for failure studies
   in.boolean("stop_on_arrest", time.stop_on_arrest);
   in.number("arrest_window", time.arrest_window, positive());
 }

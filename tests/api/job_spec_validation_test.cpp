@@ -256,8 +256,8 @@ TEST(JobValidation, NucleationRanges) {
 
 TEST(JobValidation, TimeRanges) {
   expect_single_error({{"time", {{"duration", 0}}}}, "/time/duration", "> 0");
-  expect_single_error({{"time", {{"safety_factor", 0}}}}, "/time/safety_factor", "in (0, 1]");
-  expect_single_error({{"time", {{"safety_factor", 1.01}}}}, "/time/safety_factor", "in (0, 1]");
+  expect_single_error({{"time", {{"safety_factor", 0}}}}, "/time/safety_factor", "in (0, 2]");
+  expect_single_error({{"time", {{"safety_factor", 2.01}}}}, "/time/safety_factor", "in (0, 2]");
   expect_single_error({{"time", {{"arrest_window", -1}}}}, "/time/arrest_window", "> 0");
   EXPECT_TRUE(parse_job({{"time", {{"safety_factor", 1}}}}).ok());
 }
