@@ -1,9 +1,11 @@
 // POST /jobs, GET /jobs, GET /jobs/{id}, POST /jobs/{id}/cancel.
 #include "server/handlers.hpp"
 #include "server/job_id.hpp"
+#include "server/query_string.hpp"
 #include "server/responses.hpp"
 
 #include <charconv>
+#include <set>
 #include <sstream>
 
 namespace slipfront::server {
@@ -206,7 +208,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
     body["next_cursor"] = std::to_string(*page.next_cursor);
     std::string next = prefix + "/jobs?";
     for (const auto& [key, value] : q)
-      if (key != "cursor") next += key + "=" + value + "&"; // values were decoded: see docs
+      if (key != "cursor") next += percent_encode(key) + "=" + percent_encode(value) + "&";
     body["next"] = next + "cursor=" + std::to_string(*page.next_cursor);
   } else {
     body["next_cursor"] = nullptr;

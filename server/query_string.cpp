@@ -1,5 +1,7 @@
 #include "server/query_string.hpp"
 
+#include <cctype>
+
 namespace slipfront::server {
 
 namespace {
@@ -26,6 +28,21 @@ std::optional<std::string> percent_decode(std::string_view text, bool plus_is_sp
       out.push_back(' ');
     } else {
       out.push_back(c);
+    }
+  }
+  return out;
+}
+
+std::string percent_encode(std::string_view text) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : text) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || c == ',') {
+      out.push_back(static_cast<char>(c));
+    } else {
+      out.push_back('%');
+      out.push_back(hex[c >> 4]);
+      out.push_back(hex[c & 15]);
     }
   }
   return out;

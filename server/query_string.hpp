@@ -11,6 +11,9 @@ namespace slipfront::server {
 // Percent-decoding ('+' is a space in queries). nullopt on a malformed escape.
 std::optional<std::string> percent_decode(std::string_view text, bool plus_is_space);
 
+// Percent-encoding of a query value (unreserved characters are kept).
+std::string percent_encode(std::string_view text);
+
 struct Target {
   std::string path;                         // decoded
   std::map<std::string, std::string> query; // decoded; the last value of a repeated key wins

@@ -51,4 +51,6 @@ TEST(QueryString, Decodes) {
   EXPECT_FALSE(parse_target("/x?a=%zz"));
   EXPECT_FALSE(parse_target("/x?a=%4"));
   EXPECT_FALSE(parse_target("x"));
+  EXPECT_EQ(percent_encode("a b&c=d/é"), "a%20b%26c%3Dd%2F%C3%A9");
+  EXPECT_EQ(*percent_decode(percent_encode("x y+z"), true), "x y+z");
 }

@@ -273,6 +273,8 @@ class MainServer(unittest.TestCase):
                 params["cursor"] = cursor
             page = listing(**params)
             seen += [j["id"] for j in page["jobs"]]
+            if page["next"]:
+                self.assertIn("tag=list-test", page["next"])
             pages += 1
             cursor = page["next_cursor"]
             if not cursor:
