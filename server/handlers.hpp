@@ -6,11 +6,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
+
 namespace slipfront::server {
 
 void add_job_routes(Router& router, ServerContext& ctx);    // job_handlers.cpp
 void add_result_routes(Router& router, ServerContext& ctx); // result_handlers.cpp
 void add_ops_routes(Router& router, ServerContext& ctx);    // ops_handlers.cpp
+void add_study_routes(Router& router, ServerContext& ctx);  // study_handlers.cpp
+
+// Sets rc.user; a 401 response when a token file is configured and the request carries no
+// valid bearer token (job_handlers.cpp).
+std::optional<Response> authenticate(ServerContext& ctx, RequestContext& rc);
 
 // The OpenAPI 3 description of every endpoint (openapi.cpp).
 nlohmann::json openapi_document();

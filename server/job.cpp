@@ -88,6 +88,8 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["cached_from"] = text_or_null(job.cached_from);
   j["memory_estimate_bytes"] = job.memory_estimate_bytes;
   j["attempts"] = job.attempts;
+  j["scene_hash"] = text_or_null(job.scene_hash);
+  j["study_id"] = text_or_null(job.study_id);
   j["links"] = {{"self", "/api/v1/jobs/" + job.id},
                 {"metrics", "/api/v1/jobs/" + job.id + "/metrics"},
                 {"front", "/api/v1/jobs/" + job.id + "/front"},

@@ -63,6 +63,8 @@ struct Job {
   ResultFile result;
   std::string cached_from; // id of the job whose result this one reuses
   int attempts = 0;        // how many times a worker started it
+  std::string scene_hash;  // api::scene_hash of the spec: the convergence map it belongs to
+  std::string study_id;    // the study that submitted it; "" = none
 };
 
 // The job as the API shows it. `fields` (if not empty) keeps only these top-level keys

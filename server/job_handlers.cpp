@@ -10,10 +10,6 @@
 
 namespace slipfront::server {
 
-namespace {
-
-const std::string prefix = "/api/v1";
-
 // The submitting user, or a 401 response when a token file is configured and the request
 // carries no valid bearer token.
 std::optional<Response> authenticate(ServerContext& ctx, RequestContext& rc) {
@@ -34,6 +30,10 @@ std::optional<Response> authenticate(ServerContext& ctx, RequestContext& rc) {
   rc.user = *user;
   return std::nullopt;
 }
+
+namespace {
+
+const std::string prefix = "/api/v1";
 
 std::optional<bool> parse_bool(const std::string& s) {
   if (s == "true" || s == "1" || s == "yes") return true;
@@ -149,8 +149,8 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   std::vector<api::FieldError> errors;
   const auto& q = rc.query;
   static const std::set<std::string> known = {
-      "status", "tag",     "name",    "outcome", "submitted_by", "spec_sha256", "L_min",
-      "L_max",  "n_d_min", "n_d_max", "limit",   "cursor",       "fields"};
+      "status",  "tag",     "name",  "outcome", "submitted_by", "spec_sha256", "L_min",   "L_max",
+      "n_d_min", "n_d_max", "limit", "cursor",  "fields",       "scene_hash",  "study_id"};
   for (const auto& [key, value] : q)
     if (!known.count(key)) errors.push_back({"/query/" + key, "unknown query parameter"});
   if (auto it = q.find("status"); it != q.end())
@@ -169,6 +169,8 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   text("outcome", f.outcome);
   text("submitted_by", f.submitted_by);
   text("spec_sha256", f.spec_sha256);
+  text("scene_hash", f.scene_hash);
+  text("study_id", f.study_id);
   auto number = [&](const char* key, std::optional<double>& out) {
     if (auto it = q.find(key); it != q.end()) {
       out = parse_double(it->second);

@@ -3,6 +3,8 @@
 #include "server/clock.hpp"
 #include "server/job_id.hpp"
 
+#include "api/study_analysis.hpp"
+
 namespace slipfront::server {
 
 JobService::JobService(ServiceOptions options, JobStore& store, JobQueue& queue,
@@ -44,22 +46,29 @@ std::vector<api::FieldError> take_server_fields(nlohmann::json& doc, SubmitOptio
 
 } // namespace
 
-SubmitResult JobService::submit(const std::string& body, const SubmitOptions& given) {
-  SubmitOptions options = given;
+api::ParseResult JobService::validate(nlohmann::json doc) const {
+  // One solver thread per job unless the spec asks: N workers use N cores.
+  if (doc.is_object() && !doc.contains("threads")) doc["threads"] = 1;
+  api::ValidationLimits limits;
+  limits.max_memory_bytes = options_.max_memory_bytes;
+  return api::parse_job(doc, limits);
+}
+
+SubmitResult JobService::submit(const std::string& body, const SubmitOptions& options) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(body);
   } catch (const nlohmann::json::parse_error& e) {
     return failure(Kind::bad_json, {{"", std::string("not valid JSON: ") + e.what()}});
   }
+  return submit_document(std::move(doc), options);
+}
+
+SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions& given) {
+  SubmitOptions options = given;
   if (!doc.is_object()) return failure(Kind::invalid, {{"", "the job must be a JSON object"}});
   auto errors = take_server_fields(doc, options);
-  // One solver thread per job unless the spec asks: N workers use N cores.
-  if (!doc.contains("threads")) doc["threads"] = 1;
-
-  api::ValidationLimits limits;
-  limits.max_memory_bytes = options_.max_memory_bytes;
-  auto parsed = api::parse_job(doc, limits);
+  auto parsed = validate(std::move(doc));
   errors.insert(errors.end(), parsed.errors.begin(), parsed.errors.end());
   if (!errors.empty()) return failure(Kind::invalid, std::move(errors));
   const api::JobSpec& spec = *parsed.spec;
@@ -93,6 +102,8 @@ SubmitResult JobService::submit(const std::string& body, const SubmitOptions& gi
   job.memory_estimate_bytes = spec.memory_estimate_bytes;
   job.created_at = now_iso8601();
   job.progress.duration = spec.params.time.duration;
+  job.scene_hash = api::scene_hash(spec.canonical);
+  job.study_id = options.study_id;
 
   if (!job.fresh) {
     if (auto earlier = store_.find_reusable(spec.sha256, options_.code_version)) {
@@ -113,11 +124,14 @@ SubmitResult JobService::submit(const std::string& body, const SubmitOptions& gi
     }
   }
 
-  if (queue_.full()) return failure(Kind::queue_full, {});
+  if (!options.ignore_queue_limit && queue_.full()) return failure(Kind::queue_full, {});
   job.seq = store_.insert(job); // committed before the 201 is sent
   // Pushes are serialised by submit_mutex_, so the queue has room; if it was closed
   // (draining), the job stays queued in the database and the next start-up runs it.
-  queue_.push(job.id, job.priority);
+  if (options.ignore_queue_limit)
+    queue_.push_unbounded(job.id, job.priority);
+  else
+    queue_.push(job.id, job.priority);
   SubmitResult r;
   r.kind = Kind::created;
   r.job = job;
@@ -147,6 +161,7 @@ CancelResult JobService::cancel(const std::string& id, const std::string& user) 
   if (is_final(job->status)) return {CancelResult::Kind::already_final, job};
   if (store_.cancel_queued(id, now_iso8601())) {
     queue_.remove(id);
+    if (on_cancelled_) on_cancelled_(id);
     return {CancelResult::Kind::cancelled, store_.get(id)};
   }
   if (running_.request_cancel(id, user)) return {CancelResult::Kind::cancel_requested, get(id)};

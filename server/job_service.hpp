@@ -7,6 +7,7 @@
 #include "server/job_store.hpp"
 #include "server/running_jobs.hpp"
 
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -15,10 +16,12 @@
 namespace slipfront::server {
 
 struct SubmitOptions {
-  std::string user;            // who submits ("anonymous" without a token file)
-  std::string idempotency_key; // "" = none
-  std::optional<bool> fresh;   // ?fresh=... (the body's "fresh" is read by submit())
-  std::optional<int> priority; // ?priority=...
+  std::string user;                // who submits ("anonymous" without a token file)
+  std::string idempotency_key;     // "" = none
+  std::optional<bool> fresh;       // ?fresh=... (the body's "fresh" is read by submit())
+  std::optional<int> priority;     // ?priority=...
+  std::string study_id;            // the study submitting this job ("" = none)
+  bool ignore_queue_limit = false; // runs a study adds later (its request was accepted)
 };
 
 struct SubmitResult {
@@ -51,10 +54,18 @@ public:
   JobService(ServiceOptions options, JobStore& store, JobQueue& queue, RunningJobs& running);
 
   SubmitResult submit(const std::string& body, const SubmitOptions& options);
+  // The same for a parsed document (studies submit their runs through this).
+  SubmitResult submit_document(nlohmann::json doc, const SubmitOptions& options);
+  // Validates a job document as submit() would, without submitting it.
+  api::ParseResult validate(nlohmann::json doc) const;
   std::optional<Job> get(const std::string& id); // with live progress if running
   JobPage list(const JobFilter& filter);
   CancelResult cancel(const std::string& id, const std::string& user);
   bool auth_enabled() const { return options_.auth_enabled; }
+  // Called after a queued job was cancelled (a running one reports through the workers).
+  void set_on_cancelled(std::function<void(const std::string& id)> f) {
+    on_cancelled_ = std::move(f);
+  }
   const ServiceOptions& options() const { return options_; }
 
 private:
@@ -63,6 +74,7 @@ private:
   JobQueue& queue_;
   RunningJobs& running_;
   std::mutex submit_mutex_; // queue-limit check, insert and push are one step
+  std::function<void(const std::string& id)> on_cancelled_;
 };
 
 } // namespace slipfront::server

@@ -1,5 +1,7 @@
 #include "server/job_store.hpp"
 
+#include "api/study_analysis.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -75,6 +77,54 @@ CREATE INDEX metrics_L_n_d ON metrics (L, n_d);
 CREATE INDEX jobs_name ON jobs (name);
 CREATE INDEX jobs_submitted_by ON jobs (submitted_by);
 )sql",
+      // 2 -> 3: studies (docs/studies-api.md). jobs.scene_hash (filled for existing rows by
+      // fill_scene_hashes() in the same transaction) groups the runs of one convergence map;
+      // jobs.study_id names the study that submitted a job.
+      R"sql(
+ALTER TABLE jobs ADD COLUMN scene_hash TEXT;
+ALTER TABLE jobs ADD COLUMN study_id TEXT;
+CREATE INDEX jobs_scene_hash ON jobs (scene_hash, status);
+CREATE INDEX jobs_study_id ON jobs (study_id);
+CREATE TABLE studies (
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  id TEXT NOT NULL UNIQUE,
+  name TEXT NOT NULL DEFAULT '',
+  tags TEXT NOT NULL DEFAULT '[]',
+  kind TEXT NOT NULL CHECK (kind IN ('grid', 'convergence', 'failure_regimes')),
+  base_spec TEXT NOT NULL,
+  request TEXT NOT NULL,
+  scene_hash TEXT NOT NULL,
+  submitted_by TEXT NOT NULL DEFAULT '',
+  priority INTEGER NOT NULL DEFAULT 0,
+  fresh INTEGER NOT NULL DEFAULT 0,
+  created_at TEXT NOT NULL,
+  updated_at TEXT,
+  finished_at TEXT,
+  status TEXT NOT NULL DEFAULT 'running' CHECK (status IN ('running', 'finished')),
+  runs_done INTEGER NOT NULL DEFAULT 0,
+  runs_total INTEGER NOT NULL DEFAULT 0,
+  L_c REAL,
+  spectral_critical_length REAL,
+  result TEXT
+);
+CREATE INDEX studies_scene_hash ON studies (scene_hash);
+CREATE INDEX studies_status ON studies (status);
+CREATE TABLE study_runs (
+  study_id TEXT NOT NULL REFERENCES studies (id) ON DELETE CASCADE,
+  job_id TEXT NOT NULL REFERENCES jobs (id),
+  regime TEXT NOT NULL DEFAULT '',
+  L REAL NOT NULL,
+  n_d REAL NOT NULL,
+  convergence_status TEXT NOT NULL DEFAULT 'pending',
+  partner_n_d REAL,
+  propagation_distance_change REAL,
+  arrival_time_change REAL,
+  reason TEXT,
+  PRIMARY KEY (study_id, job_id)
+);
+CREATE INDEX study_runs_job ON study_runs (job_id);
+CREATE INDEX study_runs_status ON study_runs (convergence_status);
+)sql",
   };
   return migrations;
 }
@@ -87,7 +137,7 @@ const char* job_columns =
     "j.started_at, j.finished_at, j.progress_fraction, j.progress_time, j.progress_duration, "
     "j.progress_steps, j.progress_eta_s, j.progress_updated_at, j.error, j.wall_time_s, "
     "j.code_version, j.host, j.result_path, j.result_size, j.result_sha256, j.cached_from, "
-    "j.attempts, m.metrics_json";
+    "j.attempts, m.metrics_json, j.scene_hash, j.study_id";
 
 const char* job_from = " FROM jobs j LEFT JOIN metrics m ON m.job_id = j.id ";
 
@@ -138,6 +188,8 @@ Job read_job(const Statement& s) {
   job.cached_from = s.text(30);
   job.attempts = static_cast<int>(s.integer(31));
   job.metrics = parse_stored_json(s.text(32), "metrics", job.id);
+  job.scene_hash = s.text(33);
+  job.study_id = s.text(34);
   return job;
 }
 
@@ -163,6 +215,20 @@ std::optional<double> either(std::optional<double> a, std::optional<double> b) {
 }
 
 } // namespace
+
+void fill_scene_hashes(Database& db) {
+  std::vector<std::pair<std::string, std::string>> rows; // id, scene hash
+  auto select = db.prepare("SELECT id, spec FROM jobs WHERE scene_hash IS NULL");
+  while (select.step()) {
+    const std::string id = select.text(0);
+    rows.emplace_back(id, api::scene_hash(parse_stored_json(select.text(1), "spec", id)));
+  }
+  auto update = db.prepare("UPDATE jobs SET scene_hash = ?2 WHERE id = ?1");
+  for (const auto& [id, hash] : rows) {
+    update.bind(1, id).bind(2, hash).run();
+    update.reset();
+  }
+}
 
 JobStore::JobStore(const std::string& path) : db_(path) {
   db_.exec("PRAGMA busy_timeout = 5000");
@@ -200,6 +266,7 @@ void JobStore::migrate() {
       throw std::runtime_error("migrating " + db_.path() + " from schema version " +
                                std::to_string(v) + ": " + e.what());
     }
+    if (v + 1 == 3) fill_scene_hashes(db_);
     db_.set_user_version(v + 1);
     tx.commit();
   }
@@ -213,8 +280,9 @@ std::int64_t JobStore::insert(const Job& job) {
       "idempotency_key, priority, fresh, L, n_d, memory_estimate_bytes, created_at, started_at, "
       "finished_at, progress_fraction, progress_time, progress_duration, progress_steps, "
       "progress_updated_at, error, wall_time_s, code_version, host, result_path, result_size, "
-      "result_sha256, cached_from) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, "
-      "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27, ?28, ?29)");
+      "result_sha256, cached_from, scene_hash, study_id) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, "
+      "?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, "
+      "?27, ?28, ?29, ?30, ?31)");
   auto opt = [](const std::string& v) {
     return v.empty() ? std::nullopt : std::optional<std::string>(v);
   };
@@ -246,7 +314,9 @@ std::int64_t JobStore::insert(const Job& job) {
       .bind(26, opt(job.result.path))
       .bind(27, static_cast<std::int64_t>(job.result.size))
       .bind(28, opt(job.result.sha256))
-      .bind(29, opt(job.cached_from));
+      .bind(29, opt(job.cached_from))
+      .bind(30, opt(job.scene_hash))
+      .bind(31, opt(job.study_id));
   s.run();
   auto seq = db_.last_insert_rowid();
   if (!job.cached_from.empty()) {
@@ -442,6 +512,8 @@ JobPage JobStore::list(const JobFilter& f) {
   if (!f.outcome.empty()) where += " AND m.outcome = " + text_param(f.outcome);
   if (!f.submitted_by.empty()) where += " AND j.submitted_by = " + text_param(f.submitted_by);
   if (!f.spec_sha256.empty()) where += " AND j.spec_sha256 = " + text_param(f.spec_sha256);
+  if (!f.scene_hash.empty()) where += " AND j.scene_hash = " + text_param(f.scene_hash);
+  if (!f.study_id.empty()) where += " AND j.study_id = " + text_param(f.study_id);
   auto range = [&](const char* column, const char* op, const std::optional<double>& v) {
     if (!v) return;
     reals.emplace_back(++index, *v);

@@ -27,6 +27,8 @@ struct JobFilter {
   std::string outcome;             // metrics outcome (finished jobs only)
   std::string submitted_by;
   std::string spec_sha256;
+  std::string scene_hash;
+  std::string study_id;
   std::optional<double> L_min, L_max, n_d_min, n_d_max; // inclusive ranges
   std::optional<std::int64_t> before_seq;               // cursor: jobs older than this
   int limit = 50;
@@ -50,7 +52,7 @@ struct RunRecord {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 2;
+  static constexpr int schema_version = 3;
 
   explicit JobStore(const std::string& path);
   ~JobStore();
@@ -84,6 +86,13 @@ public:
   std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
 
   std::string path() const { return db_.path(); }
+
+  // Runs `f(Database&)` holding the store's lock: for the other tables of the same database
+  // (server/study_store.hpp). `f` should be one short transaction.
+  template <class F> auto with_db(F&& f) {
+    std::lock_guard lock(mutex_);
+    return f(db_);
+  }
   std::int64_t user_version();
 
 private:
@@ -96,5 +105,9 @@ private:
 
 // The schema migrations: entry i takes user_version i to i + 1.
 const std::vector<std::string>& schema_migrations();
+
+// Part of migration 2 -> 3: jobs.scene_hash of every row that has none, recomputed from its
+// stored canonical spec (api::scene_hash).
+void fill_scene_hashes(Database& db);
 
 } // namespace slipfront::server

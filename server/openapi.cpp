@@ -33,6 +33,32 @@ const char* document = R"json({
           "friction": {"type": "object"}, "nucleation": {"type": "object"}, "time": {"type": "object"},
           "output": {"type": "object"}, "probe": {"type": "object"}, "threads": {"type": "integer"},
           "fresh": {"type": "boolean"}, "priority": {"type": "integer"}}},
+      "StudyRequest": {"type": "object", "description": "docs/studies-api.md. Exactly one of grid, convergence, preset.",
+        "properties": {"name": {"type": "string"}, "tags": {"type": "array", "items": {"type": "string"}},
+          "base": {"$ref": "#/components/schemas/JobSpec"},
+          "grid": {"type": "object", "properties": {"L": {"type": "array", "items": {"type": "number"}}, "n_d": {"type": "array", "items": {"type": "number"}}}},
+          "convergence": {"type": "object", "properties": {"L": {"type": "array", "items": {"type": "number"}},
+            "n_d": {"type": "array", "items": {"type": "number"}, "default": [10, 20, 40, 80, 160]}, "n_d_max": {"type": "number"}}},
+          "preset": {"type": "string", "enum": ["failure_regimes"]},
+          "priority": {"type": "integer", "minimum": -100, "maximum": 100}, "fresh": {"type": "boolean"}}},
+      "StudyRun": {"type": "object", "properties": {"job_id": {"type": "string"}, "regime": {"type": "string"},
+        "L": {"type": "number"}, "n_d": {"type": "number"}, "job_status": {"type": "string"},
+        "outcome": {"type": "string", "nullable": true}, "cached_from": {"type": "string", "nullable": true},
+        "convergence": {"type": "object", "properties": {
+          "status": {"type": "string", "enum": ["converged", "not_converged", "unknown", "diverged", "pending", "failed"]},
+          "partner_n_d": {"type": "number", "nullable": true},
+          "changes": {"type": "object", "properties": {"propagation_distance": {"type": "number", "nullable": true}, "arrival_time": {"type": "number", "nullable": true}}},
+          "reason": {"type": "string"}}}}},
+      "Study": {"type": "object", "properties": {"id": {"type": "string"}, "name": {"type": "string"},
+        "kind": {"type": "string", "enum": ["grid", "convergence", "failure_regimes"]},
+        "status": {"type": "string", "enum": ["running", "finished"]},
+        "progress": {"type": "object", "properties": {"done": {"type": "integer"}, "total": {"type": "integer"}, "fraction": {"type": "number"}}},
+        "scene_hash": {"type": "string"}, "L_c": {"type": "number", "nullable": true},
+        "spectral_critical_length": {"type": "number", "nullable": true},
+        "runs": {"type": "array", "items": {"$ref": "#/components/schemas/StudyRun"}},
+        "critical_length": {"type": "object"}, "convergence_map": {"type": "object"},
+        "refinement": {"type": "object", "description": "convergence studies: the plan per L"},
+        "regimes": {"type": "array", "description": "failure_regimes: one entry per regime with its map and finding"}}},
       "Progress": {"type": "object", "properties": {"fraction": {"type": "number"},
         "time": {"type": "number"}, "duration": {"type": "number"}, "steps": {"type": "integer"},
         "eta_s": {"type": "number", "nullable": true}, "updated_at": {"type": "string", "nullable": true}}},
@@ -52,10 +78,12 @@ const char* document = R"json({
           "size": {"type": "integer"}, "sha256": {"type": "string"}}},
         "cached_from": {"type": "string", "nullable": true},
         "memory_estimate_bytes": {"type": "number"}, "attempts": {"type": "integer"},
+        "scene_hash": {"type": "string", "nullable": true}, "study_id": {"type": "string", "nullable": true},
         "links": {"type": "object"}}}
     },
     "responses": {
       "Problem": {"description": "Error", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+      "Study": {"description": "The study", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
       "Job": {"description": "The job", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Job"}}}}
     }
   },
@@ -81,6 +109,8 @@ const char* document = R"json({
           {"name": "outcome", "in": "query", "schema": {"type": "string", "enum": ["arrested", "running_at_end", "no_rupture", "diverged"]}},
           {"name": "submitted_by", "in": "query", "schema": {"type": "string"}},
           {"name": "spec_sha256", "in": "query", "schema": {"type": "string"}},
+          {"name": "scene_hash", "in": "query", "schema": {"type": "string"}, "description": "jobs of one convergence map (spec without L and n_d)"},
+          {"name": "study_id", "in": "query", "schema": {"type": "string"}, "description": "jobs submitted by one study"},
           {"name": "L_min", "in": "query", "schema": {"type": "number"}},
           {"name": "L_max", "in": "query", "schema": {"type": "number"}},
           {"name": "n_d_min", "in": "query", "schema": {"type": "number"}},
@@ -127,6 +157,36 @@ const char* document = R"json({
       "get": {"summary": "The slip front: x1, arrival_time, rupture_speed (null where undefined)", "parameters": [{"$ref": "#/components/parameters/id"}],
         "responses": {"200": {"description": "Front", "content": {"application/json": {}}},
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/studies": {
+      "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist)", "security": [{"bearer": []}],
+        "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/StudyRequest"}}}},
+        "responses": {"201": {"description": "Created; Location names the study", "headers": {"Location": {"schema": {"type": "string"}}},
+            "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
+          "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+          "422": {"$ref": "#/components/responses/Problem"}, "503": {"$ref": "#/components/responses/Problem"}}},
+      "get": {"summary": "List studies, newest first (summaries)",
+        "parameters": [{"name": "status", "in": "query", "schema": {"type": "string", "enum": ["running", "finished"]}},
+          {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 50}},
+          {"name": "cursor", "in": "query", "schema": {"type": "string"}}],
+        "responses": {"200": {"description": "A page: {studies, count, next_cursor, next}"}, "400": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/studies/{id}": {
+      "get": {"summary": "A study: status, progress, runs with convergence status, L_c, spectral estimate, convergence map",
+        "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"$ref": "#/components/responses/Study"}, "404": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/studies/{id}/speed-accuracy": {
+      "get": {"summary": "Per run: wall time, memory estimate, errors against the reference run of its L (arrival time, propagation distance, L2 of the slip velocity at the spectrum probe)",
+        "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "{study_id, runs, probe, reference}"}, "404": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/convergence-map": {
+      "get": {"summary": "The convergence map and L_c of every succeeded/failed job of a scene, whoever submitted it",
+        "parameters": [{"name": "scene", "in": "query", "schema": {"type": "string", "pattern": "^[0-9a-f]{64}$"}},
+          {"name": "study", "in": "query", "schema": {"type": "string"}, "description": "take the scene of this study"}],
+        "responses": {"200": {"description": "{scene_hash, count, runs, convergence_map, critical_length}"},
+          "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/openapi.json": {"get": {"summary": "This document", "responses": {"200": {"description": "OpenAPI 3"}}}},
     "/healthz": {"get": {"summary": "Liveness and readiness", "responses": {"200": {"description": "ok"}, "503": {"description": "draining or database error"}}}},

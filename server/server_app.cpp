@@ -61,14 +61,20 @@ void ServerApp::start() {
   wo.code_version = code_version_;
   wo.host = host_name();
   wo.db_progress_interval_s = config_.db_progress_interval_s;
+  study_store_ = std::make_unique<StudyStore>(*store_);
+  supervisor_ = std::make_unique<StudySupervisor>(*study_store_, *service_);
+  studies_ = std::make_unique<StudyService>(*study_store_, *service_, *queue_, *supervisor_);
+  wo.on_finished = [this](const std::string& id) { supervisor_->job_finished(id); };
+  service_->set_on_cancelled([this](const std::string& id) { supervisor_->job_finished(id); });
   pool_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
 
   context_.reset(new ServerContext{*service_, *store_, *queue_, running_, stats_, tokens_,
                                    config_.data_dir, config_.workers, config_.retry_after_s,
-                                   draining_});
+                                   draining_, *studies_});
   add_job_routes(router_, *context_);
   add_result_routes(router_, *context_);
   add_ops_routes(router_, *context_);
+  add_study_routes(router_, *context_);
 
   beast::error_code aec;
   auto address = net::ip::make_address(config_.host, aec);
@@ -80,6 +86,7 @@ void ServerApp::start() {
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);
 
+  supervisor_->start(); // resumes every study left running
   pool_->start();
   listener_->run();
   work_.emplace(ioc_.get_executor());
@@ -124,12 +131,16 @@ void ServerApp::shutdown() {
   log_info("shutting down: no new connections; running jobs stop and are queued again");
   if (listener_) listener_->stop();
   if (pool_) pool_->drain(); // each running job stops at its next step
+  if (supervisor_) supervisor_->stop();
   work_.reset();
   ioc_.stop();
   for (auto& t : io_threads_)
     if (t.joinable()) t.join();
   io_threads_.clear();
   pool_.reset();
+  studies_.reset();
+  supervisor_.reset();
+  study_store_.reset();
   store_.reset(); // checkpoints the WAL and closes the database
   log_info("stopped");
 }

@@ -17,6 +17,9 @@
 #include "server/running_jobs.hpp"
 #include "server/server_config.hpp"
 #include "server/server_stats.hpp"
+#include "server/study_service.hpp"
+#include "server/study_store.hpp"
+#include "server/study_supervisor.hpp"
 #include "server/worker_pool.hpp"
 
 #include <boost/asio/executor_work_guard.hpp>
@@ -57,6 +60,9 @@ private:
   ServerStats stats_;
   std::atomic<bool> draining_{false};
   std::unique_ptr<JobService> service_;
+  std::unique_ptr<StudyStore> study_store_;
+  std::unique_ptr<StudySupervisor> supervisor_;
+  std::unique_ptr<StudyService> studies_;
   std::unique_ptr<WorkerPool> pool_;
   std::unique_ptr<ServerContext> context_;
   Router router_;

@@ -7,6 +7,7 @@
 #include "server/job_store.hpp"
 #include "server/running_jobs.hpp"
 #include "server/server_stats.hpp"
+#include "server/study_service.hpp"
 
 #include <atomic>
 #include <optional>
@@ -25,6 +26,7 @@ struct ServerContext {
   int workers = 1;
   int retry_after_s = 30;
   std::atomic<bool>& draining;
+  StudyService& studies;
 };
 
 } // namespace slipfront::server

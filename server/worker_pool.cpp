@@ -131,6 +131,13 @@ void WorkerPool::run_one(const std::string& id) {
     outcome = to_string(record.status);
   }
   running_.remove(id);
+  if (outcome != "requeued" && options_.on_finished) {
+    try {
+      options_.on_finished(id);
+    } catch (const std::exception& e) {
+      log_error("job " + id + ": completion callback: " + e.what());
+    }
+  }
   stats_.record_run(outcome, record.wall_time_s);
   log_info("job " + id + " " + outcome + " after " + std::to_string(record.wall_time_s) + " s" +
            (record.error.empty() ? "" : ": " + record.error));

@@ -13,6 +13,7 @@
 #include "server/server_stats.hpp"
 
 #include <atomic>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -26,6 +27,8 @@ struct WorkerOptions {
   std::string host;
   double db_progress_interval_s = 3.0;
   double progress_interval_s = 0.5; // solver callback period
+  // Called (on the worker thread) after a job reached a final status; not for re-queues.
+  std::function<void(const std::string& id)> on_finished;
 };
 
 class WorkerPool {

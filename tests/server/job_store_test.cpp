@@ -87,7 +87,7 @@ TEST(JobStore, MigratesAnOlderSchemaKeepingItsJobs) {
              "('0123456789abcdef0123456789abcdef', 'queued', '{}', 'h', '2024')");
   }
   JobStore store(path);
-  EXPECT_EQ(store.user_version(), 2);
+  EXPECT_EQ(store.user_version(), JobStore::schema_version);
   auto job = store.get("0123456789abcdef0123456789abcdef");
   ASSERT_TRUE(job);
   EXPECT_EQ(job->status, JobStatus::queued);

@@ -62,7 +62,7 @@ struct Fixture {
   ScriptedRunner runner;
   RunningJobs running;
   ServerStats stats;
-  WorkerPool pool{WorkerOptions{2, dir.str(), "test-version", "test-host", 0.0, 0.01},
+  WorkerPool pool{WorkerOptions{2, dir.str(), "test-version", "test-host", 0.0, 0.01, {}},
                   store,
                   queue,
                   runner,

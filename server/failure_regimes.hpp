@@ -1,0 +1,26 @@
+// The "failure_regimes" preset of POST /studies (docs/studies-api.md): the ways a rupture
+// simulation fails, run next to the regularised reference so that the study shows what
+// the service detects and what it does not.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct Regime {
+  std::string name;         // "regularised", "coulomb", ...
+  std::string description;  // what is changed
+  std::string expected;     // what the literature / the paper expects
+  nlohmann::json overrides; // merged into the study's base spec (JSON merge patch)
+  double L = 5e-5;          // friction.L of its runs
+  std::vector<double> n_d;  // its meshes
+};
+
+// regularised (L = 5e-5, n_d 10/20), coulomb (n_d 10/20/40), explicit_euler (L = 5e-6,
+// n_d 10/20), unstable_time_step (safety factor 1.2, n_d 10/20), mu_1.2 (n_d 10/20).
+const std::vector<Regime>& failure_regimes();
+
+} // namespace slipfront::server

@@ -1,0 +1,55 @@
+// The body of POST /api/v1/studies (docs/studies-api.md), parsed and checked: every bad
+// field is reported by its JSON pointer, as for jobs. The job specs of the runs are checked
+// later, by StudyService, with the job validator.
+#pragma once
+
+#include "api/job_spec.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+enum class StudyKind { grid, convergence, failure_regimes };
+const char* to_string(StudyKind kind);
+std::optional<StudyKind> parse_study_kind(const std::string& text);
+
+struct StudyRequest {
+  std::string name;
+  std::vector<std::string> tags;
+  StudyKind kind = StudyKind::grid;
+  nlohmann::json base = nlohmann::json::object(); // job spec without friction.L, n_d
+  std::vector<double> L;                          // grid / convergence
+  std::vector<double> n_d;                        // grid: meshes; convergence: the ladder
+  double n_d_max = 0.0;                           // convergence: the cap
+  std::optional<int> priority;
+  std::optional<bool> fresh;
+  nlohmann::json body; // the request as received
+};
+
+struct StudyRequestParse {
+  std::optional<StudyRequest> request;
+  std::vector<api::FieldError> errors;
+};
+
+// Limits that keep one request from flooding the queue.
+constexpr std::size_t max_study_L = 50;
+constexpr std::size_t max_study_n_d = 20;
+constexpr std::size_t max_study_runs = 400;
+
+StudyRequestParse parse_study_request(const nlohmann::json& body);
+
+// The job document of one run: base, then the regime's overrides (JSON merge patch), then
+// friction.L and geometry.nodes_per_meter; name "<study name> L=<L> n_d=<n_d>" unless the
+// base names its runs; tags: the base's, the study's and "study:<id>".
+nlohmann::json run_document(const StudyRequest& request, const std::string& study_id,
+                            const nlohmann::json& overrides, const std::string& regime, double L,
+                            double n_d);
+
+// The default convergence ladder.
+const std::vector<double>& default_ladder();
+
+} // namespace slipfront::server

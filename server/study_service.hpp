@@ -1,0 +1,44 @@
+// What the study handlers ask of the server: create a study (validate its request, submit
+// its first runs as ordinary jobs), read one, list them, the shared convergence map.
+#pragma once
+
+#include "server/job_queue.hpp"
+#include "server/job_service.hpp"
+#include "server/study_store.hpp"
+#include "server/study_supervisor.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct StudyCreateResult {
+  enum class Kind { created, bad_json, invalid, queue_full } kind = Kind::created;
+  std::vector<api::FieldError> errors;
+  std::optional<std::string> id;
+};
+
+class StudyService {
+public:
+  StudyService(StudyStore& studies, JobService& jobs, JobQueue& queue, StudySupervisor& supervisor)
+      : studies_(studies), jobs_(jobs), queue_(queue), supervisor_(supervisor) {}
+
+  StudyCreateResult create(const std::string& body, const std::string& user);
+  std::optional<nlohmann::json> view(const std::string& id); // GET /studies/{id}
+  StudyStore& store() { return studies_; }
+
+private:
+  StudyStore& studies_;
+  JobService& jobs_;
+  JobQueue& queue_;
+  StudySupervisor& supervisor_;
+};
+
+// The study as GET /studies/{id} shows it; `summary` leaves out the runs and the analysis.
+nlohmann::json study_to_json(const StudyRecord& study, const std::vector<StudyRunRow>& runs,
+                             bool summary = false);
+
+} // namespace slipfront::server

@@ -1,0 +1,157 @@
+// The studies schema (migration 2 -> 3) and StudyStore.
+#include "api/job_spec.hpp"
+#include "api/study_analysis.hpp"
+#include "server/job_id.hpp"
+#include "server/job_store.hpp"
+#include "server/sqlite_db.hpp"
+#include "server/study_store.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+using namespace slipfront::server;
+namespace fs = std::filesystem;
+
+namespace {
+
+class TempDir {
+public:
+  TempDir() {
+    path_ = fs::temp_directory_path() / (std::string("slipfront-study-").append(new_job_id()));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+  fs::path path_;
+};
+
+nlohmann::json spec(double L, double n_d, double mu, const std::string& name) {
+  return {{"name", name},
+          {"tags", {"t"}},
+          {"threads", 1},
+          {"friction", {{"L", L}, {"mu", mu}, {"law", "prakash_clifton"}}},
+          {"geometry", {{"nodes_per_meter", n_d}, {"width", 40.0}}}};
+}
+
+Job make_job(const nlohmann::json& s, const std::string& status = "queued") {
+  Job job;
+  job.id = new_job_id();
+  job.name = s["name"];
+  job.spec = s;
+  job.spec_sha256 = slipfront::api::spec_hash(s);
+  job.scene_hash = slipfront::api::scene_hash(s);
+  job.L = s["friction"]["L"];
+  job.n_d = s["geometry"]["nodes_per_meter"];
+  job.created_at = "2024-01-01T00:00:00.000Z";
+  job.status = status == "succeeded" ? JobStatus::succeeded : JobStatus::queued;
+  return job;
+}
+
+} // namespace
+
+TEST(StudySchema, MigrationFillsTheSceneHashOfExistingJobs) {
+  TempDir dir;
+  const auto path = dir.file("db.sqlite");
+  const auto a = spec(1e-5, 10, 0.75, "a"), b = spec(5e-5, 20, 0.75, "b"),
+             c = spec(1e-5, 10, 0.6, "c");
+  {
+    Database raw(path); // a database written by a build at schema version 2
+    raw.exec(schema_migrations()[0]);
+    raw.exec(schema_migrations()[1]);
+    raw.set_user_version(2);
+    auto s = raw.prepare("INSERT INTO jobs (id, status, spec, spec_sha256, created_at) VALUES "
+                         "(?1, 'succeeded', ?2, 'h', '2024')");
+    int i = 0;
+    for (const auto& x : {a, b, c}) {
+      s.bind(1, std::string(31, '0') + std::to_string(i++)).bind(2, x.dump()).run();
+      s.reset();
+    }
+  }
+  JobStore store(path);
+  EXPECT_EQ(store.user_version(), 3);
+  auto ja = store.get(std::string(31, '0') + "0"), jb = store.get(std::string(31, '0') + "1"),
+       jc = store.get(std::string(31, '0') + "2");
+  ASSERT_TRUE(ja && jb && jc);
+  EXPECT_EQ(ja->scene_hash, slipfront::api::scene_hash(a));
+  EXPECT_EQ(ja->scene_hash.size(), 64u);
+  EXPECT_EQ(ja->scene_hash, jb->scene_hash); // differ only in L, n_d, name
+  EXPECT_NE(ja->scene_hash, jc->scene_hash); // another mu: another scene
+  JobFilter f;
+  f.scene_hash = ja->scene_hash;
+  EXPECT_EQ(store.list(f).jobs.size(), 2u);
+  Database raw(path);
+  auto s = raw.prepare("SELECT COUNT(*) FROM sqlite_master WHERE name IN ('studies', 'study_runs', "
+                       "'jobs_scene_hash')");
+  ASSERT_TRUE(s.step());
+  EXPECT_EQ(s.integer(0), 3);
+}
+
+TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {
+  TempDir dir;
+  JobStore jobs(dir.file("db.sqlite"));
+  StudyStore studies(jobs);
+  StudyRecord st;
+  st.id = new_job_id();
+  st.name = "sweep";
+  st.tags = {"x"};
+  st.kind = "grid";
+  st.base = nlohmann::json::object();
+  st.request = {{"grid", {{"L", {1e-5}}, {"n_d", {10, 20}}}}};
+  st.scene_hash = slipfront::api::scene_hash(spec(1e-5, 10, 0.75, "a"));
+  st.submitted_by = "alice";
+  st.created_at = "2024";
+  studies.insert(st);
+
+  Job coarse = make_job(spec(1e-5, 10, 0.75, "a"));
+  coarse.study_id = st.id;
+  Job fine = make_job(spec(1e-5, 20, 0.75, "b"), "succeeded");
+  fine.study_id = st.id;
+  jobs.insert(coarse);
+  jobs.insert(fine);
+  Job copy = make_job(spec(1e-5, 20, 0.75, "b"), "succeeded");
+  copy.cached_from = fine.id;
+  jobs.insert(copy);
+  studies.add_run(st.id, coarse.id, "", 1e-5, 10);
+  studies.add_run(st.id, fine.id, "", 1e-5, 20);
+  EXPECT_EQ(studies.study_of_job(fine.id), st.id);
+  EXPECT_EQ(studies.study_of_job(copy.id), "");
+
+  auto rows = studies.runs(st.id);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].job_status, "queued");
+  rows[0].convergence_status = "converged";
+  rows[0].partner_n_d = 20;
+  rows[0].propagation_distance_change = 0.001;
+  st.status = "finished";
+  st.runs_done = 1;
+  st.runs_total = 2;
+  st.L_c = 1e-5;
+  st.result = {{"convergence_map", {{"L", {1e-5}}}}};
+  st.updated_at = st.finished_at = "2025";
+  studies.save_analysis(st, rows);
+
+  auto back = studies.get(st.id);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->status, "finished");
+  EXPECT_DOUBLE_EQ(back->L_c, 1e-5);
+  EXPECT_TRUE(std::isnan(back->spectral_critical_length));
+  EXPECT_EQ(back->result["convergence_map"]["L"][0], 1e-5);
+  auto stored = studies.runs(st.id);
+  EXPECT_EQ(stored[0].convergence_status, "converged");
+  EXPECT_DOUBLE_EQ(stored[0].partner_n_d, 20);
+  EXPECT_EQ(stored[1].convergence_status, "pending");
+  EXPECT_TRUE(studies.running_ids().empty());
+  EXPECT_EQ(studies.list(10, std::nullopt, "finished").size(), 1u);
+
+  // The scene's finished jobs, reused copies left out.
+  auto scene = studies.scene_runs(st.scene_hash);
+  ASSERT_EQ(scene.size(), 1u);
+  EXPECT_EQ(scene[0].job_id, fine.id);
+}
