@@ -38,23 +38,16 @@ void velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
                      const double* __restrict uyp, double* __restrict vx, double* __restrict vy,
                      int nx, double dt, double mass, double* __restrict kinetic,
                      double* __restrict strain) {
-  double cxx[3][3], cxy[3][3], cyx[3][3], cyy[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-      cxx[r][c] = stencil.b[r][c].xx;
-      cxy[r][c] = stencil.b[r][c].xy;
-      cyx[r][c] = stencil.b[r][c].yx;
-      cyy[r][c] = stencil.b[r][c].yy;
-    }
+  const StencilCoefficients coef(stencil);
   const double dt_over_m = dt / mass;
   for (int i = 0; i < nx; ++i) {
     double kx = 0, ky = 0;
     for (int c = 0; c < 3; ++c) { // columns i-1, i, i+1 of the rows below, same and above
       const int k = i + c - 1;
-      kx += cxx[0][c] * uxm[k] + cxy[0][c] * uym[k] + cxx[1][c] * ux0[k] + cxy[1][c] * uy0[k] +
-            cxx[2][c] * uxp[k] + cxy[2][c] * uyp[k];
-      ky += cyx[0][c] * uxm[k] + cyy[0][c] * uym[k] + cyx[1][c] * ux0[k] + cyy[1][c] * uy0[k] +
-            cyx[2][c] * uxp[k] + cyy[2][c] * uyp[k];
+      kx += coef.xx[0][c] * uxm[k] + coef.xy[0][c] * uym[k] + coef.xx[1][c] * ux0[k] +
+            coef.xy[1][c] * uy0[k] + coef.xx[2][c] * uxp[k] + coef.xy[2][c] * uyp[k];
+      ky += coef.yx[0][c] * uxm[k] + coef.yy[0][c] * uym[k] + coef.yx[1][c] * ux0[k] +
+            coef.yy[1][c] * uy0[k] + coef.yx[2][c] * uxp[k] + coef.yy[2][c] * uyp[k];
     }
     const double vx_new = vx[i] - dt_over_m * kx;
     const double vy_new = vy[i] - dt_over_m * ky;

@@ -26,6 +26,22 @@ struct MeshStencils {
 
 MeshStencils build_stencils(const ElementStiffness& K);
 
+// A stencil as four 3x3 coefficient arrays [row offset + 1][column offset + 1]. Hot loops
+// take a local copy: the compiler then knows the coefficients cannot alias the fields the
+// loop writes, keeps them in registers, and vectorises the loop.
+struct StencilCoefficients {
+  double xx[3][3], xy[3][3], yx[3][3], yy[3][3];
+  explicit StencilCoefficients(const NodeStencil& s) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        xx[r][c] = s.b[r][c].xx;
+        xy[r][c] = s.b[r][c].xy;
+        yx[r][c] = s.b[r][c].yx;
+        yy[r][c] = s.b[r][c].yy;
+      }
+  }
+};
+
 // (K u) at every node i of one row, handed to visit(i, kx, ky). The rows below/above may be
 // any row (e.g. a zero row) where the stencil's blocks for them are zero. Reads the ghost
 // nodes of the three rows: they must be current.
@@ -34,16 +50,7 @@ inline void for_each_node_force(const NodeStencil& stencil, const double* __rest
                                 const double* __restrict uym, const double* __restrict ux0,
                                 const double* __restrict uy0, const double* __restrict uxp,
                                 const double* __restrict uyp, int nx, Visit&& visit) {
-  // The coefficients as local arrays: the compiler then knows that they cannot alias the
-  // fields the visitor writes, keeps them in registers, and vectorises the loop.
-  double cxx[3][3], cxy[3][3], cyx[3][3], cyy[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-      cxx[r][c] = stencil.b[r][c].xx;
-      cxy[r][c] = stencil.b[r][c].xy;
-      cyx[r][c] = stencil.b[r][c].yx;
-      cyy[r][c] = stencil.b[r][c].yy;
-    }
+  const StencilCoefficients coef(stencil);
   const double* ux[3] = {uxm, ux0, uxp}; // rows below, same, above
   const double* uy[3] = {uym, uy0, uyp};
   for (int i = 0; i < nx; ++i) {
@@ -51,8 +58,8 @@ inline void for_each_node_force(const NodeStencil& stencil, const double* __rest
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) { // columns i-1, i, i+1
         const double u1 = ux[r][i + c - 1], u2 = uy[r][i + c - 1];
-        kx += cxx[r][c] * u1 + cxy[r][c] * u2;
-        ky += cyx[r][c] * u1 + cyy[r][c] * u2;
+        kx += coef.xx[r][c] * u1 + coef.xy[r][c] * u2;
+        ky += coef.yx[r][c] * u1 + coef.yy[r][c] * u2;
       }
     visit(i, kx, ky);
   }
