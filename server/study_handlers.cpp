@@ -190,6 +190,9 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
             l2 = number(api::relative_l2_error(mine->time, mine->slip_velocity, ref->time,
                                                ref->slip_velocity));
             probe_x1 = ref->x1;
+            if (l2.is_null())
+              why = "undefined: the reference record is zero over the common time range (no "
+                    "slip at the probe) or fewer than two samples overlap";
           } catch (const std::exception& e) {
             why = e.what();
           }

@@ -66,6 +66,12 @@ std::string finding(const std::vector<StudyRunRow*>& rows) {
     return "detected: every run diverged (outcome diverged, job failed, no result file)";
   if (diverged > 0)
     return "detected: " + std::to_string(diverged) + " of " + std::to_string(n) + " runs diverged";
+  int no_rupture = 0;
+  for (const auto* r : rows)
+    no_rupture += outcome_of(*r) == "no_rupture" ? 1 : 0;
+  if (no_rupture == n)
+    return "no rupture on any mesh: the meshes agree on 'nothing happens' (converged), so this "
+           "run neither exercises nor detects an instability";
   if (converged > 0) return "mesh-converged at n_d = " + text(converged_n_d);
   if (failed == n) return "every run failed without a result";
   return "no mesh convergence up to n_d = " + text(finest) +
