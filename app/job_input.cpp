@@ -1,5 +1,7 @@
 #include "app/job_input.hpp"
 
+#include <cmath>
+
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -26,7 +28,27 @@ void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors)
   }
 }
 
-std::optional<api::JobSpec> load_job(const std::string& path, std::optional<int> threads) {
+std::optional<double> parse_memory_size(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    double value = std::stod(text, &used);
+    const std::string suffix = text.substr(used);
+    const double scale = suffix.empty()  ? 1.0
+                         : suffix == "K" ? 1e3
+                         : suffix == "M" ? 1e6
+                         : suffix == "G" ? 1e9
+                         : suffix == "T" ? 1e12
+                                         : 0.0;
+    value *= scale;
+    if (!(value > 0.0) || !std::isfinite(value)) return std::nullopt;
+    return value;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<api::JobSpec> load_job(const std::string& path, std::optional<int> threads,
+                                     const api::ValidationLimits& limits) {
   std::string text;
   try {
     text = read_job_text(path);
@@ -44,7 +66,7 @@ std::optional<api::JobSpec> load_job(const std::string& path, std::optional<int>
   }
   if (threads && document.is_object()) document["threads"] = *threads;
 
-  api::ParseResult parsed = api::parse_job(document);
+  api::ParseResult parsed = api::parse_job(document, limits);
   if (!parsed.ok()) {
     print_errors(std::cerr, parsed.errors);
     return std::nullopt;

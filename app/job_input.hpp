@@ -16,9 +16,15 @@ std::string read_job_text(const std::string& path);
 // Writes each error as "pointer: reason", one per line ("(document)" for the whole document).
 void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors);
 
-// Reads and validates the job at `path`. On any problem prints it to stderr and returns
-// nothing. `threads`, when given, overrides the job's "threads" field before validation.
+// Reads and validates the job at `path` against `limits`. On any problem prints it to
+// stderr and returns nothing. `threads`, when given, overrides the job's "threads" field
+// before validation.
 std::optional<api::JobSpec> load_job(const std::string& path,
-                                     std::optional<int> threads = std::nullopt);
+                                     std::optional<int> threads = std::nullopt,
+                                     const api::ValidationLimits& limits = {});
+
+// A memory size for --max-memory: bytes, or a number with the suffix K, M, G or T (powers of
+// 1000), e.g. "8G". Returns nothing if the text is not such a positive size.
+std::optional<double> parse_memory_size(const std::string& text);
 
 } // namespace slipfront::app

@@ -1,4 +1,4 @@
-// `slipfront run JOB.json [--output RESULT.h5] [--threads N] [--quiet]`
+// `slipfront run JOB.json [--output RESULT.h5] [--threads N] [--max-memory SIZE] [--quiet]`
 #include "app/commands.hpp"
 #include "app/job_input.hpp"
 #include "app/progress_display.hpp"
@@ -36,6 +36,7 @@ struct RunOptions {
   std::string job_path;
   std::string output_path;
   std::optional<int> threads;
+  api::ValidationLimits limits;
   bool quiet = false;
 };
 
@@ -57,6 +58,14 @@ std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
         std::cerr << "slipfront run: --threads needs an integer, got \"" << args[i] << "\"\n";
         return std::nullopt;
       }
+    } else if (arg == "--max-memory" && has_value) {
+      const std::optional<double> bytes = parse_memory_size(args[++i]);
+      if (!bytes) {
+        std::cerr << "slipfront run: --max-memory needs a size such as 8G or 500M, got \""
+                  << args[i] << "\"\n";
+        return std::nullopt;
+      }
+      options.limits.max_memory_bytes = *bytes;
     } else if (arg == "--quiet") {
       options.quiet = true;
     } else if ((arg.starts_with("-") && arg != "-") || have_job) {
@@ -79,7 +88,8 @@ std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
 int run_command(const std::vector<std::string>& args) {
   const std::optional<RunOptions> options = parse_options(args);
   if (!options) return exit_code::bad_input;
-  const std::optional<api::JobSpec> job = load_job(options->job_path, options->threads);
+  const std::optional<api::JobSpec> job =
+      load_job(options->job_path, options->threads, options->limits);
   if (!job) return exit_code::bad_input;
 
   ProgressDisplay display(std::cerr, ::isatty(STDERR_FILENO) == 1);

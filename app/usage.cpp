@@ -8,11 +8,13 @@ void print_usage(std::ostream& out) {
   out << R"(slipfront: frictional interface rupture simulations (Kammer et al. 2014)
 
 usage:
-  slipfront run JOB.json [--output RESULT.h5] [--threads N] [--quiet]
+  slipfront run JOB.json [--output RESULT.h5] [--threads N] [--max-memory SIZE] [--quiet]
       Run one job in the foreground; progress on stderr, the metrics as one JSON object
       on stdout. JOB.json may be "-" to read the job from standard input.
-  slipfront validate JOB.json
+  slipfront validate JOB.json [--max-memory SIZE]
       Check a job: prints "ok", its spec hash and memory estimate, or every error.
+  --max-memory SIZE refuses a job whose memory estimate is above SIZE (bytes, or with a
+      suffix K, M, G, T; default 8G).
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [...]
       Run the HTTP job server (docs/server.md).
   slipfront --version

@@ -1,4 +1,4 @@
-// `slipfront validate JOB.json`
+// `slipfront validate JOB.json [--max-memory SIZE]`
 #include "app/commands.hpp"
 #include "app/job_input.hpp"
 
@@ -11,11 +11,26 @@
 namespace slipfront::app {
 
 int validate_command(const std::vector<std::string>& args) {
-  if (args.size() != 1) {
+  api::ValidationLimits limits;
+  std::vector<std::string> jobs;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--max-memory" && i + 1 < args.size()) {
+      const std::optional<double> bytes = parse_memory_size(args[++i]);
+      if (!bytes) {
+        std::cerr << "slipfront validate: --max-memory needs a size such as 8G or 500M, got \""
+                  << args[i] << "\"\n";
+        return exit_code::bad_input;
+      }
+      limits.max_memory_bytes = *bytes;
+    } else {
+      jobs.push_back(args[i]);
+    }
+  }
+  if (jobs.size() != 1) {
     std::cerr << "slipfront validate: expects exactly one JOB.json (see slipfront help)\n";
     return exit_code::bad_input;
   }
-  const std::optional<api::JobSpec> job = load_job(args[0]);
+  const std::optional<api::JobSpec> job = load_job(jobs[0], std::nullopt, limits);
   if (!job) return exit_code::bad_input;
 
   const Geometry& g = job->params.geometry;
