@@ -1,0 +1,636 @@
+#!/usr/bin/python3
+"""Reproduce Kammer et al. 2014 with slipfront's studies API and write a report.
+
+    /usr/bin/python3 clients/reproduce_paper.py                      # full study, own server
+    /usr/bin/python3 clients/reproduce_paper.py --n-d-max 80         # cap the n_d ladder
+    /usr/bin/python3 clients/reproduce_paper.py --server http://127.0.0.1:8080
+    /usr/bin/python3 clients/reproduce_paper.py --quick              # CI-short, asserts the map
+
+Starts `slipfront serve` in a temporary data dir (or uses --server), submits one
+convergence study (POST /api/v1/studies: L x the n_d ladder, refined by the server until
+two successive meshes agree or the cap is reached), waits with progress, downloads the
+result files it draws, and writes a Markdown report (default docs/reproduction.md) with
+figures (made by slipfront_client.plots) under <report dir>/figures/reproduction/.
+
+Every number in the report is computed from the study's runs. With --quick the scene is
+small and coarse, and the script checks the shape of the convergence map; it exits 1 when
+a check fails (tests/reproduction runs it under ctest).
+"""
+
+import argparse
+import datetime
+import json
+import math
+import os
+import platform
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+REPO = os.path.dirname(HERE)
+
+from slipfront_client.api import Api  # noqa: E402
+from slipfront_client import results as results_mod  # noqa: E402
+
+FULL_L = [1e-3, 1e-4, 5e-5, 1e-5, 5e-6]
+FULL_LADDER = [10, 20, 40, 80, 160]
+QUICK_L = [1e-3, 5e-5]
+QUICK_LADDER = [5, 10]
+QUICK_BASE = {"geometry": {"width": 20, "x_min": -5, "height": 8}, "time": {"duration": 10}}
+FINAL_JOB = ("succeeded", "failed", "cancelled")
+
+
+def log(text):
+    print(f"[reproduce {time.strftime('%H:%M:%S')}] {text}", file=sys.stderr, flush=True)
+
+
+# -- server -------------------------------------------------------------------------------
+
+class Server:
+    """`slipfront serve --port 0` in a data dir; the URL is read from its stdout."""
+
+    def __init__(self, binary, data_dir, workers, extra=()):
+        self.binary, self.data_dir, self.workers, self.extra = binary, data_dir, workers, extra
+        self.proc = None
+        self.url = None
+
+    def start(self, timeout=30):
+        cmd = [self.binary, "serve", "--host", "127.0.0.1", "--port", "0",
+               "--data-dir", self.data_dir, "--workers", str(self.workers), *self.extra]
+        self.log_path = os.path.join(self.data_dir, "server.log")
+        os.makedirs(self.data_dir, exist_ok=True)
+        self.stderr = open(self.log_path, "w")
+        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=self.stderr, text=True)
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            line = self.proc.stdout.readline()
+            if not line:
+                if self.proc.poll() is not None:
+                    break
+                continue
+            m = re.search(r"listening on (http://\S+)", line)
+            if m:
+                self.url = m.group(1)
+                log(f"server {self.url} (pid {self.proc.pid}, data {self.data_dir})")
+                return self
+        self.stop()
+        raise SystemExit(f"reproduce: the server did not start; see {self.log_path}")
+
+    def stop(self):
+        if self.proc and self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        if getattr(self, "stderr", None):
+            self.stderr.close()
+
+
+def default_binary():
+    for cand in ("build/slipfront", "build-repro/slipfront"):
+        path = os.path.join(REPO, cand)
+        if os.access(path, os.X_OK):
+            return path
+    return os.path.join(REPO, "build/slipfront")
+
+
+# -- study --------------------------------------------------------------------------------
+
+def study_body(args):
+    body = {"name": "reproduction" + (" (quick)" if args.quick else ""),
+            "tags": ["reproduction"] + (["quick"] if args.quick else []),
+            "convergence": {"L": args.L, "n_d": args.ladder, "n_d_max": args.n_d_max}}
+    if args.base:
+        body["base"] = args.base
+    if args.fresh:
+        body["fresh"] = True
+    return body
+
+
+def progress_line(study):
+    p = study.get("progress") or {}
+    states = ", ".join(f"L={L}: {r.get('state')}" for L, r in (study.get("refinement") or {}).items())
+    return f"study {study.get('status')}: {p.get('done')}/{p.get('total')} runs final  [{states}]"
+
+
+def wait_study(api, study_id, timeout=None):
+    last = None
+    delay = 1.0
+    deadline = None if timeout is None else time.monotonic() + timeout
+    while True:
+        study = api.study(study_id)
+        line = progress_line(study)
+        if line != last:
+            log(line)
+            last = line
+            delay = 1.0
+        if study.get("status") == "finished":
+            return study
+        if deadline is not None and time.monotonic() > deadline:
+            raise SystemExit(f"reproduce: study {study_id} not finished after {timeout} s")
+        time.sleep(delay)
+        delay = min(delay * 1.5, 10.0)
+
+
+# -- measurements from runs ---------------------------------------------------------------
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def fmt(value, digits=3, unit=""):
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "—"
+    if isinstance(value, (int, float)):
+        text = f"{value:.{digits}g}"
+    else:
+        text = str(value)
+    return text + (f" {unit}" if unit else "")
+
+
+def key_L(L):
+    return float(L)
+
+
+def runs_by_L(study):
+    out = {}
+    for r in study.get("runs") or []:
+        out.setdefault(float(r["L"]), []).append(r)
+    for L in out:
+        out[L].sort(key=lambda r: float(r["n_d"]))
+    return out
+
+
+def converged_n_d(study, L):
+    table = (study.get("convergence_map") or {}).get("converged_n_d") or {}
+    for k, v in table.items():
+        if abs(float(k) - L) <= 1e-9 * L:
+            return v
+    return None
+
+
+def chosen_run(study, L):
+    """The run drawn for L: the coarsest converged one (the paper's triangle); without a
+    converged run, the finest succeeded run (labelled as such in the report)."""
+    runs = [r for r in runs_by_L(study).get(L, []) if r.get("job_status") == "succeeded"]
+    nd = converged_n_d(study, L)
+    if nd is not None:
+        for r in runs:
+            if abs(float(r["n_d"]) - nd) < 1e-9 and not r.get("cached_from_dup"):
+                return r, True
+    return (runs[-1], False) if runs else (None, False)
+
+
+def peak_at(result, x1):
+    import numpy as np
+    node = int(np.argmin(np.abs(result.x1 - x1)))
+    v = np.abs(result.slip_velocity[:, node])
+    i = int(np.argmax(v))
+    return float(result.x1[node]), float(v[i]), float(result.time[i])
+
+
+def front_time_at(result, x1):
+    import numpy as np
+    ok = np.isfinite(result.arrival_time)
+    xs, ts = result.front_x1[ok], result.arrival_time[ok]
+    if xs.size == 0 or x1 < xs.min() or x1 > xs.max():
+        return None
+    return float(np.interp(x1, xs, ts))
+
+
+def speed_summary(result):
+    """Rupture speed on the run's front: fraction of x1 > 1 m (past the nucleation
+    patch) with c_s < V_r < c_p; median V_r in x1 in [1, 3] m and in the last 2 m
+    before arrest (excluding the last 0.5 m)."""
+    import numpy as np
+    c_s, c_p = result.wave_speeds()
+    ok = np.isfinite(result.rupture_speed)
+    x, v = result.front_x1[ok], result.rupture_speed[ok]
+    out = {"c_s": c_s, "c_p": c_p}
+    past = x > 1.0
+    if past.any():
+        out["supershear_fraction"] = float(np.mean((v[past] > c_s) & (v[past] < c_p)))
+        early = (x >= 1.0) & (x <= 3.0)
+        out["v_early"] = float(np.median(v[early])) if early.any() else None
+        x_end = float(x.max())
+        late = (x >= x_end - 2.5) & (x <= x_end - 0.5)
+        out["v_late"] = float(np.median(v[late])) if late.any() else None
+        out["late_range"] = (x_end - 2.5, x_end - 0.5)
+    return out
+
+
+# -- report -------------------------------------------------------------------------------
+
+def make_figures(study, speed_acc, chosen, results, fig_dir, formats, log_fn):
+    from slipfront_client.plots import common, convergence, velocity, speed, filter_response, cost
+    from slipfront_client.plots import slip_map
+    made = {}
+
+    def save(fig, stem):
+        paths = common.save_figure(fig, fig_dir, stem, formats)
+        made[stem] = paths[0]
+        log_fn(f"figure {paths[0]}")
+
+    points = convergence.points_from_json(study["convergence_map"], "study convergence map")
+    lc = study.get("L_c")
+    fig, _ = convergence.plot_convergence(points, lc, "Convergence map (study)")
+    save(fig, "convergence")
+
+    drawn = [results[L] for L in sorted(results, reverse=True)]
+    if drawn:
+        fig, _ = velocity.plot_velocity(drawn, (6.0, 10.0), "Slip velocity, drawn run of each L")
+        save(fig, "velocity")
+        fig, _ = speed.plot_speed(drawn, "Rupture speed, drawn run of each L")
+        save(fig, "speed")
+        ref = results.get(5e-5) or drawn[0]
+        fig, _ = slip_map.plot_map(ref, [6.0, 10.0], None, f"|V|, {ref.label()}")
+        save(fig, "map")
+
+    lengths = sorted({float(r["L"]) for r in study.get("runs") or []})
+    meshes = {}
+    for r in study.get("runs") or []:
+        dt = (r.get("_metrics") or {}).get("stable_dt")
+        if dt:
+            meshes[float(r["n_d"])] = dt
+    fig, _ = filter_response.plot_filter(lengths, meshes or None, title=None)
+    save(fig, "filter")
+
+    rows = cost_rows(speed_acc)
+    if any(cost.usable(r) for r in rows):
+        fig, _ = cost.plot_cost(rows, "Speed and accuracy (labels: n_d)")
+        save(fig, "cost")
+    return made
+
+
+def cost_rows(speed_acc):
+    rows = []
+    for r in (speed_acc or {}).get("runs") or []:
+        e = r.get("errors") or {}
+        errs = [e.get("propagation_distance"), e.get("arrival_time")]
+        errs = [x for x in errs if isinstance(x, (int, float)) and math.isfinite(x)]
+        rows.append({"L": r.get("L"), "n_d": r.get("n_d"), "wall_time_s": r.get("wall_time_s"),
+                     "error": max(errs) if errs else None,
+                     "slip_velocity_l2": e.get("slip_velocity_l2"),
+                     "reference_run_id": r.get("reference_run_id"), "id": r.get("id")})
+    return rows
+
+
+def write_report(path, args, study, speed_acc, chosen, results, metrics, figures, timing):
+    rel = os.path.relpath
+    out_dir = os.path.dirname(os.path.abspath(path))
+    by_L = runs_by_L(study)
+    lines = []
+    add = lines.append
+    title = "Reproduction of Kammer et al. 2014"
+    if args.quick:
+        title += " — QUICK RUN (small, coarse scene; not the paper's scene)"
+    add(f"# {title}\n")
+    add(f"Generated by `clients/reproduce_paper.py` on {timing['finished_utc']} UTC from study "
+        f"`{study.get('id')}` (scene hash `{str(study.get('scene_hash'))[:16]}…`). "
+        "Every number below is computed from that study's runs; the paper's values are SPEC §3.\n")
+    if args.quick:
+        add("> **This is the CI-short version** (`--quick`): a 20 m × 8 m scene, "
+            f"duration {args.base['time']['duration']} s, L ∈ {{{', '.join(f'{L:g}' for L in args.L)}}} m, "
+            f"n_d ∈ {{{', '.join(str(n) for n in args.ladder)}}}. Its numbers are **not** comparable "
+            "with the paper's; it checks that the pipeline works and the map has the expected shape.\n")
+    add("## How it was made\n")
+    add("```sh\n" + timing["command"] + "\n```\n")
+    add(f"Study request: `{json.dumps(study_body(args))}`\n")
+    add(f"- n_d ladder {args.ladder}, cap n_d_max = {args.n_d_max}"
+        + (" (the paper's ladder goes to 160; capped here to bound the run time)"
+           if not args.quick and args.n_d_max < 160 else "") + ".")
+    add(f"- Wall clock of the whole study (creation to finished): **{timing['wall']:.1f} s**; "
+        f"sum of the runs' wall times: **{timing['run_sum']:.1f} s** over {timing['n_runs']} runs "
+        f"({timing['n_cached']} reused from earlier jobs, counted with their original time).")
+    add(f"- Machine: `nproc` = {timing['nproc']}, CPU {timing['cpu']}; server workers: "
+        f"{timing['workers']}.\n")
+
+    # values table
+    add("## Our numbers beside the paper's\n")
+    add("| quantity | paper (SPEC §3) | ours | run |")
+    add("| --- | --- | --- | --- |")
+    for row in comparison_rows(study, chosen, results, metrics):
+        add("| " + " | ".join(row) + " |")
+    add("")
+    add("The drawn run of an L is its coarsest mesh-converged run (the paper's triangle); "
+        "where an L has no converged run, its finest finished run, marked *(not converged)*. "
+        "Rupture speed: the solver's `/front/rupture_speed`; ‘early’ is the median over "
+        "x1 ∈ [1, 3] m, ‘late’ the median over the 2 m ending 0.5 m before the arrest; "
+        "‘super-shear’ is the fraction of front points past x1 = 1 m with c_s < V_r < c_p.\n")
+
+    # convergence map table
+    add("## Convergence map\n")
+    nds = sorted({float(r["n_d"]) for r in study.get("runs") or []})
+    add("| L [m] | " + " | ".join(f"n_d = {n:g}" for n in nds) + " | converged from |")
+    add("| --- | " + " | ".join("---" for _ in nds) + " | --- |")
+    for L in sorted(by_L, reverse=True):
+        cells = []
+        for n in nds:
+            r = next((r for r in by_L[L] if abs(float(r["n_d"]) - n) < 1e-9), None)
+            if r is None:
+                cells.append("")
+            else:
+                conv = (r.get("convergence") or {}).get("status", "?")
+                cells.append(f"{conv} ({r.get('outcome') or r.get('job_status')})")
+        add(f"| {L:g} | " + " | ".join(cells) + f" | {fmt(converged_n_d(study, L))} |")
+    add("")
+    refinement = study.get("refinement") or {}
+    if refinement:
+        add("Refinement per L (server): " + "; ".join(
+            f"L = {float(k):g}: {v.get('state')}" for k, v in sorted(refinement.items(),
+                                                                  key=lambda kv: -float(kv[0]))) + ".\n")
+    if "convergence" in figures:
+        add(f"![convergence map]({rel(figures['convergence'], out_dir)})\n")
+
+    # critical length
+    cl = study.get("critical_length") or {}
+    add("## Critical length\n")
+    add(f"- L_c (study, SPEC §2): **{fmt(study.get('L_c'))} m**"
+        + (f"; next larger L that breaks agreement: {fmt(cl.get('next_larger_L'))} m" if cl.get('next_larger_L') else "")
+        + ". Paper: L_c ≈ 1e-5 m.")
+    add(f"- Spectral estimate: **{fmt(study.get('spectral_critical_length'))} m** "
+        f"(from the reference run of L = {fmt(cl.get('spectral_from_L'))} m).")
+    if cl.get("reason"):
+        add(f"- Server's reason: {cl['reason']}")
+    add("")
+
+    add("## Figures\n")
+    captions = {
+        "velocity": "Slip velocity |V| at x1 = 6 and 10 m, the drawn run of each L (paper Fig. 2b, 3a, 4a).",
+        "speed": "Rupture speed against x1, the drawn run of each L, with c_s and c_p (paper Fig. 2c, 3b, 4b).",
+        "map": "|V| in the x1–t plane with the slip front (paper Fig. 2a).",
+        "filter": "Friction filter A/A0 (eq. 6) for the study's L, with the meshes' highest "
+                  "eigenfrequencies 1/(π dt_stable) from the runs' `stable_dt` (paper Fig. 5c).",
+        "cost": "Wall time against error (the larger relative change of propagation distance and "
+                "arrival time at the probe against the reference run of the same L), labelled by n_d.",
+    }
+    for stem in ("velocity", "speed", "map", "filter", "cost"):
+        if stem in figures:
+            add(f"{captions[stem]}\n\n![{stem}]({rel(figures[stem], out_dir)})\n")
+    if "cost" not in figures:
+        add("No speed–accuracy chart: no run has a reference to be compared with "
+            "(an L needs a mesh-converged run).\n")
+
+    # runs table
+    add("## Runs\n")
+    add("| L [m] | n_d | job | outcome | convergence | propagation distance [m] | "
+        "arrival at probe [s] | max V [m/s] | wall [s] | reused |")
+    add("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for L in sorted(by_L, reverse=True):
+        for r in by_L[L]:
+            m = metrics.get(r["job_id"]) or {}
+            add(f"| {L:g} | {float(r['n_d']):g} | `{r['job_id'][:8]}` | {r.get('outcome') or '—'} | "
+                f"{(r.get('convergence') or {}).get('status', '?')} | "
+                f"{fmt(m.get('propagation_distance'), 5)} | {fmt(m.get('arrival_time_at_probe'), 5)} | "
+                f"{fmt(m.get('max_slip_velocity'))} | {fmt(m.get('wall_time_s'))} | "
+                f"{'yes' if r.get('cached_from') else 'no'} |")
+    add("")
+    if not args.quick:
+        pass
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def comparison_rows(study, chosen, results, metrics):
+    rows = []
+
+    def tag(L):
+        r, conv = chosen.get(L, (None, False))
+        if r is None:
+            return "no finished run"
+        return f"n_d = {float(r['n_d']):g}" + ("" if conv else " *(not converged)*")
+
+    def m(L):
+        r, _ = chosen.get(L, (None, False))
+        return metrics.get(r["job_id"]) if r else None
+
+    if 5e-5 in chosen:
+        mm = m(5e-5) or {}
+        rows.append(["L = 5e-5: max slip velocity", "≈ 8 mm/s (early)",
+                     fmt((mm.get("max_slip_velocity") or float("nan")) * 1e3, 3, "mm/s"), tag(5e-5)])
+        res = results.get(5e-5)
+        if res is not None:
+            s = speed_summary(res)
+            rows.append(["L = 5e-5: super-shear (c_s < V_r < c_p)", "almost everywhere",
+                         fmt(100 * s["supershear_fraction"], 3, "% of front past x1 = 1 m")
+                         if "supershear_fraction" in s else "—", tag(5e-5)])
+        rows.append(["L = 5e-5: arrest position", "≈ 12.5 m", fmt(mm.get("arrest_position"), 4, "m"),
+                     tag(5e-5)])
+        rows.append(["L = 5e-5: outcome", "arrested", str(mm.get("outcome")), tag(5e-5)])
+    for L in (1e-4, 5e-5):
+        res = results.get(L)
+        if res is None:
+            continue
+        x, vpk, tpk = peak_at(res, 6.0)
+        rows.append([f"L = {L:g}: peak V at x1 = 6 m", "≈ 3 mm/s around t ≈ 4.5 s",
+                     f"{vpk * 1e3:.3g} mm/s at t = {tpk:.3g} s (node x1 = {x:g} m)", tag(L)])
+        tf = front_time_at(res, 6.0)
+        rows.append([f"L = {L:g}: front arrival at x1 = 6 m", "≈ 4.5 s", fmt(tf, 3, "s"), tag(L)])
+        s = speed_summary(res)
+        if s.get("v_early") is not None or s.get("v_late") is not None:
+            lo, hi = s.get("late_range", (float("nan"), float("nan")))
+            rows.append([f"L = {L:g}: V_r early → late", "1.6 → 1.0 m/s, then abrupt arrest",
+                         f"{fmt(s.get('v_early'))} → {fmt(s.get('v_late'))} m/s "
+                         f"(late: x1 ∈ [{lo:.3g}, {hi:.3g}] m)", tag(L)])
+    if 1e-3 in chosen or 1e-3 in runs_by_L(study):
+        outs = sorted({str(r.get("outcome")) for r in runs_by_L(study).get(1e-3, [])})
+        rows.append(["L = 1e-3: rupture", "no rupture at all", "outcomes: " + ", ".join(outs),
+                     "every n_d"])
+    conv_paper = {1e-3: "(no rupture)", 1e-4: "n_d = 20", 5e-5: "n_d = 20", 1e-5: "n_d = 40",
+                  5e-6: "finer than 40"}
+    for L in sorted(runs_by_L(study), reverse=True):
+        nd = converged_n_d(study, L)
+        rows.append([f"L = {L:g}: coarsest converged n_d", conv_paper.get(L, "—"),
+                     fmt(nd) if nd is not None else "none up to the cap", "map"])
+    rows.append(["critical length L_c", "≈ 1e-5 m", fmt(study.get("L_c"), 3, "m"), "study"])
+    rows.append(["spectral estimate of L_c", "(paper: filter argument, §5)",
+                 fmt(study.get("spectral_critical_length"), 3, "m"), "study"])
+    return rows
+
+
+# -- quick-mode assertions ----------------------------------------------------------------
+
+def check_shape(study, report_path, figures):
+    """The quick study's map must have the expected shape; returns the list of failures."""
+    fails = []
+    by_L = runs_by_L(study)
+    nds = [float(n) for n in QUICK_LADDER]
+    finest = max(nds)
+    if study.get("status") != "finished":
+        fails.append(f"study status {study.get('status')!r}, expected 'finished'")
+    for L in QUICK_L:
+        runs = {float(r["n_d"]): r for r in by_L.get(L, [])}
+        missing = [n for n in nds if n not in runs]
+        if missing:
+            fails.append(f"L = {L:g}: no run at n_d = {missing}")
+            continue
+        for n in nds:
+            r = runs[n]
+            status = (r.get("convergence") or {}).get("status")
+            if r.get("job_status") != "succeeded":
+                fails.append(f"L = {L:g}, n_d = {n:g}: job {r.get('job_status')}, expected succeeded")
+            if L == 1e-3:
+                if r.get("outcome") != "no_rupture":
+                    fails.append(f"L = 1e-3, n_d = {n:g}: outcome {r.get('outcome')}, expected no_rupture")
+                want = "unknown" if n == finest else "converged"
+                if status != want:
+                    fails.append(f"L = 1e-3, n_d = {n:g}: status {status}, expected {want}")
+            else:
+                if r.get("outcome") in (None, "no_rupture", "diverged"):
+                    fails.append(f"L = {L:g}, n_d = {n:g}: outcome {r.get('outcome')}, expected a rupture")
+                want = ("unknown",) if n == finest else ("converged", "not_converged")
+                if status not in want:
+                    fails.append(f"L = {L:g}, n_d = {n:g}: status {status}, expected {' or '.join(want)}")
+    if not os.path.isfile(report_path):
+        fails.append(f"report {report_path} missing")
+    else:
+        text = open(report_path, encoding="utf-8").read()
+        for needle in ("## Our numbers beside the paper's", "| quantity | paper (SPEC §3) | ours | run |",
+                       "## Convergence map", "## Critical length", "Wall clock"):
+            if needle not in text:
+                fails.append(f"report lacks {needle!r}")
+        for stem in ("convergence", "velocity", "speed", "filter"):
+            path = figures.get(stem)
+            if not path or not os.path.isfile(path) or os.path.getsize(path) == 0:
+                fails.append(f"figure {stem} missing")
+            elif os.path.relpath(path, os.path.dirname(os.path.abspath(report_path))) not in text:
+                fails.append(f"report does not link figure {stem}")
+    return fails
+
+
+# -- main ---------------------------------------------------------------------------------
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--server", help="use this server instead of starting one")
+    p.add_argument("--token", default=os.environ.get("SLIPFRONT_TOKEN"))
+    p.add_argument("--binary", default=None, help="slipfront executable (default build/slipfront)")
+    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
+    p.add_argument("--data-dir", help="server data dir when starting one (default: temporary)")
+    p.add_argument("--study-id", help="report on this existing study instead of creating one")
+    p.add_argument("--quick", action="store_true", help="CI-short version with shape checks")
+    p.add_argument("--n-d-max", type=int, default=None, help="cap of the n_d ladder (default 160; quick 10)")
+    p.add_argument("--out", help="report path (default docs/reproduction.md; quick: a temp dir)")
+    p.add_argument("--format", default="png", help="figure formats, e.g. png,pdf (default png)")
+    p.add_argument("--fresh", action="store_true", help="recompute runs the server already has")
+    p.add_argument("--timeout", type=float, help="give up waiting after this many seconds")
+    args = p.parse_args(argv)
+    if args.quick:
+        args.L, args.ladder, args.base = QUICK_L, QUICK_LADDER, QUICK_BASE
+        args.n_d_max = args.n_d_max or max(QUICK_LADDER)
+        args.out = args.out or os.path.join(tempfile.mkdtemp(prefix="slipfront-repro-"),
+                                            "reproduction_quick.md")
+    else:
+        args.L, args.ladder, args.base = FULL_L, FULL_LADDER, None
+        args.n_d_max = args.n_d_max or 160
+        args.out = args.out or os.path.join(REPO, "docs", "reproduction.md")
+    return args
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    started = time.time()
+    server = None
+    tmp = None
+    try:
+        if args.server:
+            url = args.server
+        else:
+            binary = args.binary or default_binary()
+            data_dir = args.data_dir or tempfile.mkdtemp(prefix="slipfront-repro-data-")
+            tmp = data_dir if not args.data_dir else None
+            server = Server(binary, data_dir, args.workers).start()
+            url = server.url
+        api = Api(url, token=args.token, timeout=60)
+        if args.study_id:
+            study = api.study(args.study_id)
+            log(f"using study {args.study_id}")
+        else:
+            study = api.create_study(study_body(args))
+            log(f"created study {study['id']}: {progress_line(study)}")
+        t0 = time.time()
+        study = wait_study(api, study["id"], args.timeout)
+        wall = time.time() - t0
+        if args.study_id:  # the creation time is the server's
+            wall = study_wall(study) or wall
+        speed_acc = api.get_json(f"/api/v1/studies/{study['id']}/speed-accuracy")
+        return report(args, api, study, speed_acc, wall, server)
+    finally:
+        if server:
+            server.stop()
+        if tmp and args.quick:
+            import shutil
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def study_wall(study):
+    try:
+        t = [datetime.datetime.fromisoformat(str(study[k]).replace("Z", "+00:00"))
+             for k in ("created_at", "finished_at")]
+        return (t[1] - t[0]).total_seconds()
+    except (KeyError, ValueError, TypeError):
+        return None
+
+
+def report(args, api, study, speed_acc, wall, server):
+    metrics = {}
+    for r in study.get("runs") or []:
+        job = api.job(r["job_id"])
+        metrics[r["job_id"]] = job.get("metrics") or {}
+        r["_metrics"] = metrics[r["job_id"]]
+    out = os.path.abspath(args.out)
+    out_dir = os.path.dirname(out)
+    os.makedirs(out_dir, exist_ok=True)
+    fig_dir = os.path.join(out_dir, "figures", "reproduction")
+    cache = os.path.join(server.data_dir if server else tempfile.mkdtemp(), "downloads")
+    chosen, results = {}, {}
+    for L in runs_by_L(study):
+        r, conv = chosen_run(study, L)
+        chosen[L] = (r, conv)
+        if r is None:
+            continue
+        if (r.get("outcome") or "") == "no_rupture":
+            continue  # nothing to draw
+        path = results_mod.resolve_source(r["job_id"], lambda: api, cache, log)
+        results[L] = results_mod.load_result(path)
+    formats = [f.strip() for f in args.format.split(",") if f.strip()]
+    figures = make_figures(study, speed_acc, chosen, results, fig_dir, formats, log)
+    run_sum = sum(float(m.get("wall_time_s") or 0) for m in metrics.values())
+    cmd = "/usr/bin/python3 clients/reproduce_paper.py" + (" --quick" if args.quick else "") + (
+        f" --n-d-max {args.n_d_max}" if not args.quick else "")
+    timing = {"wall": wall, "run_sum": run_sum, "n_runs": len(metrics),
+              "n_cached": sum(1 for r in study.get("runs") or [] if r.get("cached_from")),
+              "nproc": os.cpu_count(), "cpu": cpu_model(),
+              "workers": args.workers if server else "(external server)",
+              "finished_utc": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"),
+              "command": cmd}
+    write_report(out, args, study, speed_acc, chosen, results, metrics, figures, timing)
+    log(f"wrote {out}")
+    log(f"study wall {wall:.1f} s; sum of run wall times {run_sum:.1f} s; L_c {study.get('L_c')}; "
+        f"spectral {study.get('spectral_critical_length')}")
+    if args.quick:
+        fails = check_shape(study, out, figures)
+        if fails:
+            for f in fails:
+                log("CHECK FAILED: " + f)
+            return 1
+        log("quick checks passed: the map has the expected shape")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
