@@ -87,3 +87,18 @@ def errors_against_finest(rows):
                         _relative_change(r.get("arrival_time_at_probe"), ref.get("arrival_time_at_probe")))
             out.append({**r, "error": error, "reference_n_d": ref["n_d"]})
     return out
+
+
+def rows_from_speed_accuracy(doc):
+    """Cost-chart rows {L, n_d, wall_time_s, error} from the server's
+    GET /studies/{id}/speed-accuracy: error = the larger of the propagation-distance and
+    arrival-time errors against the reference run of the same L (null: left out)."""
+    runs = doc.get("runs") if isinstance(doc, dict) else doc
+    rows = []
+    for r in runs or []:
+        errors = r.get("errors") or {}
+        values = [errors.get("propagation_distance"), errors.get("arrival_time")]
+        values = [v for v in values if isinstance(v, (int, float)) and math.isfinite(v)]
+        rows.append({"L": r.get("L"), "n_d": r.get("n_d"), "wall_time_s": r.get("wall_time_s"),
+                     "error": max(values) if values else None})
+    return rows

@@ -66,7 +66,11 @@ def add_parsers(sub, common_parent):
     c = psub.add_parser("convergence", parents=parents, help="(d) convergence map in the L-n_d plane")
     c.add_argument("sources", nargs="*", help="HDF5 files or job ids: statuses computed here")
     c.add_argument("--map", dest="map_file", help="JSON: list of {L, n_d, status} or the server's map")
-    c.add_argument("--from-server", action="store_true", help="GET /api/v1/convergence-map")
+    c.add_argument("--from-server", action="store_true",
+                   help="GET /api/v1/convergence-map (with --study ID or --scene HASH)")
+    c.add_argument("--study", help="the map of this study's scene (with --from-server; alone: "
+                                   "the study's own map, GET /studies/{id})")
+    c.add_argument("--scene", help="with --from-server: the map of this scene hash")
     c.add_argument("--tag", help="the server's jobs with this tag: statuses computed here")
     c.add_argument("--critical-length", type=float, help="draw L_c as a horizontal line")
     c.set_defaults(func=cmd_convergence)
@@ -84,6 +88,8 @@ def add_parsers(sub, common_parent):
     k.add_argument("sources", nargs="*", help="HDF5 files or job ids (error vs finest n_d per L)")
     k.add_argument("--data", help="JSON list of {L, n_d, wall_time_s, error}")
     k.add_argument("--tag", help="the server's jobs with this tag (error vs finest n_d per L)")
+    k.add_argument("--study", help="a study's GET /studies/{id}/speed-accuracy (error: the larger "
+                                   "of the distance and arrival-time errors vs its L's reference)")
     k.set_defaults(func=cmd_cost)
 
 
@@ -148,14 +154,25 @@ def cmd_speed(args, ctx):
 
 def convergence_points(args, ctx):
     """[{L, n_d, status}] from whichever input the command line names."""
-    inputs = sum(bool(x) for x in (args.sources, args.map_file, args.from_server, args.tag))
+    inputs = sum(bool(x) for x in (args.sources, args.map_file, args.from_server or args.study,
+                                   args.tag))
     if inputs != 1:
-        raise UsageError("plot convergence: give exactly one of SOURCES, --map, --from-server, --tag")
+        raise UsageError("plot convergence: give exactly one of SOURCES, --map, "
+                         "--from-server (--study ID | --scene HASH), --study, --tag")
     convergence = plots("convergence")
     if args.map_file:
         return convergence.points_from_json(_load_json(args.map_file), args.map_file)
     if args.from_server:
-        return convergence.points_from_json(ctx.api().convergence_map(), "server convergence map")
+        if bool(args.study) == bool(args.scene):
+            raise UsageError("plot convergence --from-server: give --study ID or --scene HASH")
+        params = {"study": args.study} if args.study else {"scene": args.scene}
+        doc = ctx.api().convergence_map(params)
+        return convergence.points_from_json(doc.get("convergence_map") or doc,
+                                            "server convergence map")
+    if args.study:
+        study = ctx.api().study(args.study)
+        return convergence.points_from_json(study.get("convergence_map") or study,
+                                            f"study {args.study}")
     rows = (_server_rows(ctx, args.tag) if args.tag
             else [results().row_from_result(r) for r in _results(args, ctx)])
     return [{"L": r["L"], "n_d": r["n_d"], "status": r["convergence"]}
@@ -187,10 +204,13 @@ def cmd_filter(args, ctx):
 
 
 def cmd_cost(args, ctx):
-    inputs = sum(bool(x) for x in (args.sources, args.data, args.tag))
+    inputs = sum(bool(x) for x in (args.sources, args.data, args.tag, args.study))
     if inputs != 1:
-        raise UsageError("plot cost: give exactly one of SOURCES, --data, --tag")
-    if args.data:
+        raise UsageError("plot cost: give exactly one of SOURCES, --data, --tag, --study")
+    if args.study:
+        doc = ctx.api().get_json(f"/api/v1/studies/{args.study}/speed-accuracy")
+        rows = analysis.rows_from_speed_accuracy(doc)
+    elif args.data:
         rows = _load_json(args.data)
         if isinstance(rows, dict):
             rows = rows.get("runs") or rows.get("points") or []

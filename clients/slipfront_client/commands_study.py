@@ -25,7 +25,12 @@ def add_parsers(sub, common):
     c.add_argument("--base", help="base job JSON file (default: the paper's scene)")
     c.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE")
     c.add_argument("--L", dest="lengths", help="comma-separated L values [m]")
-    c.add_argument("--n-d", dest="densities", help="comma-separated n_d values [nodes/m]")
+    c.add_argument("--n-d", dest="densities", help="comma-separated n_d values [nodes/m] "
+                   "(with --convergence: the ladder, default 10,20,40,80,160)")
+    c.add_argument("--convergence", action="store_true",
+                   help="a convergence study: the server refines each L along the n_d ladder "
+                        "until two successive meshes agree (instead of the full grid)")
+    c.add_argument("--n-d-max", type=float, help="with --convergence: cap of the ladder")
     c.add_argument("--name")
     c.add_argument("--tag", dest="tags", action="append", default=[])
     c.add_argument("--wait", action="store_true", help="wait for every run, then summarise")
@@ -48,11 +53,17 @@ def build_body(args):
             raise UsageError("give either a study FILE or --base/--L/--n-d, not both")
         body = jobspec.load_job(args.file)
         return body
-    if not args.lengths or not args.densities:
-        raise UsageError("study create needs --L and --n-d (or a study FILE)")
+    if args.n_d_max is not None and not args.convergence:
+        raise UsageError("--n-d-max needs --convergence")
+    if not args.lengths or not (args.densities or args.convergence):
+        raise UsageError("study create needs --L and --n-d (or --convergence, or a study FILE)")
     base = jobspec.build_job(args.base, args.overrides)
-    return studies.study_request(base, floats(args.lengths, "--L"),
-                                 floats(args.densities, "--n-d"), args.name, args.tags)
+    dropped = studies.drop_study_fields(base)
+    if dropped and not args.quiet:
+        log(f"base: {', '.join(dropped)} removed (the study sets them from --L/--n-d)")
+    densities = (floats(args.densities, "--n-d") if args.densities else [10, 20, 40, 80, 160])
+    return studies.study_request(base, floats(args.lengths, "--L"), densities, args.name,
+                                 args.tags, convergence=args.convergence, n_d_max=args.n_d_max)
 
 
 def show(study, args):

@@ -1,9 +1,12 @@
 """Studies (SPEC §4: POST /studies, GET /studies/{id}): a grid of runs over L × n_d of one
 base job, from which the server derives convergence statuses and the critical length L_c.
 
-The request the client sends: {"name", "tags", "base": job spec, "L": [...], "n_d": [...]}.
-Responses are read tolerantly (runs under `jobs` or `runs`; L_c under `critical_length`
-or `L_c`). A server without the API is reported as "server has no studies API (404)".
+The request the client sends (docs/studies-api.md): {"name", "tags", "base": job spec,
+"grid": {"L": [...], "n_d": [...]}}, or with `convergence` instead of `grid`
+({"L", "n_d": ladder, "n_d_max"}: the server refines each L until two meshes agree).
+Runs are read from `runs` (job_id, L, n_d, job_status, outcome, convergence.status); the
+study's `L_c` and `spectral_critical_length` are top-level numbers, `critical_length` the
+server's table. A server without the API is reported as "server has no studies API (404)".
 """
 
 import time
@@ -29,13 +32,41 @@ def _guard(call):
         raise
 
 
-def study_request(base, lengths, densities, name=None, tags=None):
-    body = {"base": base, "L": list(lengths), "n_d": list(densities)}
+def study_request(base, lengths, densities, name=None, tags=None, convergence=False,
+                  n_d_max=None):
+    """A grid study (every L x n_d), or with `convergence` a refinement study over the
+    n_d ladder `densities` (capped at `n_d_max`)."""
+    if convergence:
+        plan = {"L": list(lengths), "n_d": list(densities)}
+        if n_d_max is not None:
+            plan["n_d_max"] = n_d_max
+        body = {"convergence": plan}
+    else:
+        body = {"grid": {"L": list(lengths), "n_d": list(densities)}}
+    if base:
+        body["base"] = base
     if name:
         body["name"] = name
     if tags:
         body["tags"] = list(tags)
     return body
+
+
+STUDY_FIELDS = (("friction", "L"), ("geometry", "nodes_per_meter"))
+
+
+def drop_study_fields(base):
+    """Remove friction.L and geometry.nodes_per_meter from a base job (the server refuses
+    them: the study sets them); return the dotted names removed."""
+    dropped = []
+    for section, key in STUDY_FIELDS:
+        part = base.get(section)
+        if isinstance(part, dict) and key in part:
+            del part[key]
+            dropped.append(f"{section}.{key}")
+            if not part:
+                del base[section]
+    return dropped
 
 
 def create(api, body):
@@ -47,28 +78,39 @@ def get(api, study_id):
 
 
 def runs_of(study):
-    runs = study.get("jobs") or study.get("runs") or []
+    runs = study.get("runs") or study.get("jobs") or []
     return [r for r in runs if isinstance(r, dict)]
+
+
+def run_status(run):
+    """The job status of a study run (`job_status` in the server's answer)."""
+    return run.get("job_status", run.get("status"))
 
 
 def is_final(study):
     if study.get("status") in FINAL_STUDY:
         return True
     runs = runs_of(study)
-    return bool(runs) and all(r.get("status") in FINAL_JOB for r in runs)
+    return False
 
 
 def wait(api, study_id, timeout=None, log=None, sleep=time.sleep):
     backoff = Backoff(first=0.5, cap=10.0)
     deadline = None if timeout is None else time.monotonic() + timeout
+    last = None
     while True:
         study = get(api, study_id)
         if is_final(study):
             return study
         if log:
+            progress = study.get("progress") or {}
             runs = runs_of(study)
-            done = sum(r.get("status") in FINAL_JOB for r in runs)
-            log(f"study {study_id}: {done}/{len(runs)} runs finished")
+            done = progress.get("done", sum(run_status(r) in FINAL_JOB for r in runs))
+            total = progress.get("total", len(runs))
+            line = f"study {study_id}: {done}/{total} runs finished"
+            if line != last:
+                log(line)
+                last = line
         delay = backoff.next()
         if deadline is not None and time.monotonic() + delay > deadline:
             raise ServerError(f"study {study_id} not finished after {timeout} s")
@@ -88,23 +130,36 @@ def summary_lines(study):
     """A readable table of the study's runs and its critical length."""
     lines = [f"study {study.get('id', '?')}  {study.get('name') or ''}  status "
              f"{study.get('status', '?')}"]
-    lines.append(f"{'L [m]':>10} {'n_d':>6} {'status':>10} {'outcome':>15} {'distance':>10} "
-                 f"{'t_probe':>10} {'convergence':>14}  id")
+    progress = study.get("progress") or {}
+    if progress:
+        lines[0] += f"  ({progress.get('done')}/{progress.get('total')} runs final)"
+    lines.append(f"{'L [m]':>10} {'n_d':>6} {'status':>10} {'outcome':>15} {'d_dist':>10} "
+                 f"{'d_t_probe':>10} {'convergence':>14}  id")
     for r in runs_of(study):
         m = r.get("metrics") or {}
+        ch = (r.get("convergence") or {}).get("changes") or {} if isinstance(r.get("convergence"), dict) else {}
         L = _value(r, "L", ("friction", "L"))
         n_d = _value(r, "n_d", ("geometry", "nodes_per_meter"))
         conv = r.get("convergence")
         if isinstance(conv, dict):
             conv = conv.get("status")
-        lines.append(f"{_fmt(L):>10} {_fmt(n_d):>6} {r.get('status', '?'):>10} "
-                     f"{str(m.get('outcome', r.get('outcome', '-'))):>15} "
-                     f"{_fmt(m.get('propagation_distance', r.get('propagation_distance'))):>10} "
-                     f"{_fmt(m.get('arrival_time_at_probe', r.get('arrival_time_at_probe'))):>10} "
-                     f"{str(conv or '-'):>14}  {r.get('id', '')}")
-    for key in ("critical_length", "L_c", "spectral_critical_length"):
+        lines.append(f"{_fmt(L):>10} {_fmt(n_d):>6} {str(run_status(r) or '?'):>10} "
+                     f"{str(m.get('outcome', r.get('outcome')) or '-'):>15} "
+                     f"{_fmt(ch.get('propagation_distance')):>10} "
+                     f"{_fmt(ch.get('arrival_time')):>10} "
+                     f"{str(conv or '-'):>14}  {r.get('job_id', r.get('id', ''))}")
+    lines.append("(d_dist, d_t_probe: relative changes of propagation_distance and "
+                 "arrival_time_at_probe against the next finer n_d)")
+    converged = (study.get("convergence_map") or {}).get("converged_n_d") or {}
+    for L, n_d in converged.items():
+        lines.append(f"L = {L}: converged from n_d = {_fmt(n_d)}")
+    for key in ("L_c", "spectral_critical_length"):
         if key in study:
             lines.append(f"{key}: {_fmt(study[key])}")
+    reason = (study.get("critical_length") or {}).get("reason") if isinstance(
+        study.get("critical_length"), dict) else None
+    if reason:
+        lines.append(f"L_c reason: {reason}")
     return lines
 
 

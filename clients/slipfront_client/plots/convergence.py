@@ -9,7 +9,6 @@ in a nested `spec` (friction.L, geometry.nodes_per_meter).
 
 import math
 
-from ..analysis import STATUSES
 from ..errors import UsageError
 from .common import new_figure
 
@@ -19,6 +18,7 @@ MARKERS = {
     "diverged": dict(marker="v", color="black", fillstyle="full"),
     "pending": dict(marker="s", color="tab:blue", fillstyle="none"),
     "unknown": dict(marker="o", color="grey", fillstyle="none"),
+    "failed": dict(marker="x", color="grey", fillstyle="full"),  # the server's: no measurement
 }
 LIST_KEYS = ("points", "runs", "cells", "jobs", "map")
 
@@ -35,7 +35,7 @@ def _point(item, where):
         status = status.get("status", "unknown")
     if L is None or n_d is None:
         raise UsageError(f"{where}: needs L and n_d, got {item!r}")
-    if status not in STATUSES:
+    if status not in MARKERS:
         status = "unknown"
     return {"L": float(L), "n_d": float(n_d), "status": status}
 
@@ -60,7 +60,7 @@ def plot_convergence(points, critical_length=None, title=None):
     if not points:
         raise UsageError("convergence map: no runs to draw")
     fig, ax = new_figure()
-    data = {s: [] for s in STATUSES}
+    data = {s: [] for s in MARKERS}
     for p in points:
         data[p["status"]].append((p["n_d"], p["L"]))
     for status, xy in data.items():
