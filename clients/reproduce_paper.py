@@ -268,24 +268,12 @@ def make_figures(study, speed_acc, chosen, results, fig_dir, formats, log_fn):
     fig, _ = filter_response.plot_filter(lengths, meshes or None, title=None)
     save(fig, "filter")
 
-    rows = cost_rows(speed_acc)
+    from slipfront_client.analysis import rows_from_speed_accuracy
+    rows = rows_from_speed_accuracy(speed_acc)
     if any(cost.usable(r) for r in rows):
         fig, _ = cost.plot_cost(rows, "Speed and accuracy (labels: n_d)")
         save(fig, "cost")
     return made
-
-
-def cost_rows(speed_acc):
-    rows = []
-    for r in (speed_acc or {}).get("runs") or []:
-        e = r.get("errors") or {}
-        errs = [e.get("propagation_distance"), e.get("arrival_time")]
-        errs = [x for x in errs if isinstance(x, (int, float)) and math.isfinite(x)]
-        rows.append({"L": r.get("L"), "n_d": r.get("n_d"), "wall_time_s": r.get("wall_time_s"),
-                     "error": max(errs) if errs else None,
-                     "slip_velocity_l2": e.get("slip_velocity_l2"),
-                     "reference_run_id": r.get("reference_run_id"), "id": r.get("id")})
-    return rows
 
 
 def write_report(path, args, study, speed_acc, chosen, results, metrics, figures, timing):
@@ -308,7 +296,7 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
             "with the paper's; it checks that the pipeline works and the map has the expected shape.\n")
     add("## How it was made\n")
     add("```sh\n" + timing["command"] + "\n```\n")
-    add(f"Study request: `{json.dumps(study_body(args))}`\n")
+    add(f"Study request: `{json.dumps(study.get('request') or study_body(args))}`\n")
     add(f"- n_d ladder {args.ladder}, cap n_d_max = {args.n_d_max}"
         + (" (the paper's ladder goes to 160; capped here to bound the run time)"
            if not args.quick and args.n_d_max < 160 else "") + ".")
@@ -361,8 +349,10 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
     add(f"- L_c (study, SPEC §2): **{fmt(study.get('L_c'))} m**"
         + (f"; next larger L that breaks agreement: {fmt(cl.get('next_larger_L'))} m" if cl.get('next_larger_L') else "")
         + ". Paper: L_c ≈ 1e-5 m.")
-    add(f"- Spectral estimate: **{fmt(study.get('spectral_critical_length'))} m** "
-        f"(from the reference run of L = {fmt(cl.get('spectral_from_L'))} m).")
+    spectral = study.get("spectral_critical_length")
+    add(f"- Spectral estimate (docs/studies.md, docs/metrics.md): **{fmt(spectral)} m**"
+        + (f" (from the reference run of L = {fmt(cl.get('spectral_from_L'))} m, the smallest "
+           "mesh-converged L)." if spectral is not None else " (needs a mesh-converged L)."))
     if cl.get("reason"):
         add(f"- Server's reason: {cl['reason']}")
     add("")
@@ -398,8 +388,15 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
                 f"{fmt(m.get('max_slip_velocity'))} | {fmt(m.get('wall_time_s'))} | "
                 f"{'yes' if r.get('cached_from') else 'no'} |")
     add("")
-    if not args.quick:
-        pass
+    add("## Commands\n")
+    add("```sh")
+    add("cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target slipfront")
+    add("/usr/bin/python3 clients/reproduce_paper.py --n-d-max 80     # the paper's ladder capped at n_d = 80")
+    add("/usr/bin/python3 clients/reproduce_paper.py                  # the paper's ladder up to n_d = 160")
+    add("/usr/bin/python3 clients/reproduce_paper.py --quick          # CI-short (ctest -L reproduction)")
+    add("```\n")
+    add("With `--server URL` the script uses a running server (runs it already has are reused, "
+        "`--fresh` recomputes them); `--study-id ID` writes the report of an existing study.\n")
     with open(path, "w", encoding="utf-8") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -565,8 +562,7 @@ def main(argv=None):
         t0 = time.time()
         study = wait_study(api, study["id"], args.timeout)
         wall = time.time() - t0
-        if args.study_id:  # the creation time is the server's
-            wall = study_wall(study) or wall
+        wall = study_wall(study) or wall  # the server's created_at -> finished_at
         speed_acc = api.get_json(f"/api/v1/studies/{study['id']}/speed-accuracy")
         return report(args, api, study, speed_acc, wall, server)
     finally:
