@@ -151,6 +151,14 @@ def cpu_model():
     return platform.processor() or "unknown"
 
 
+def loadavg():
+    try:
+        with open("/proc/loadavg") as f:
+            return " ".join(f.read().split()[:3])
+    except OSError:
+        return "unknown"
+
+
 def fmt(value, digits=3, unit=""):
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "—"
@@ -304,7 +312,9 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
         f"sum of the runs' wall times: **{timing['run_sum']:.1f} s** over {timing['n_runs']} runs "
         f"({timing['n_cached']} reused from earlier jobs, counted with their original time).")
     add(f"- Machine: `nproc` = {timing['nproc']}, CPU {timing['cpu']}; server workers: "
-        f"{timing['workers']}.\n")
+        f"{timing['workers']}; load average (1, 5, 15 min) when the study finished: "
+        f"{timing['loadavg']} — other work shared the machine when it exceeds the workers, "
+        "and the wall times are then upper bounds.\n")
 
     # values table
     add("## Our numbers beside the paper's\n")
@@ -563,6 +573,7 @@ def main(argv=None):
         study = wait_study(api, study["id"], args.timeout)
         wall = time.time() - t0
         wall = study_wall(study) or wall  # the server's created_at -> finished_at
+        args.loadavg = loadavg()
         speed_acc = api.get_json(f"/api/v1/studies/{study['id']}/speed-accuracy")
         return report(args, api, study, speed_acc, wall, server)
     finally:
@@ -605,12 +616,13 @@ def report(args, api, study, speed_acc, wall, server):
         results[L] = results_mod.load_result(path)
     formats = [f.strip() for f in args.format.split(",") if f.strip()]
     figures = make_figures(study, speed_acc, chosen, results, fig_dir, formats, log)
+    timing_load = getattr(args, "loadavg", loadavg())
     run_sum = sum(float(m.get("wall_time_s") or 0) for m in metrics.values())
     cmd = "/usr/bin/python3 clients/reproduce_paper.py" + (" --quick" if args.quick else "") + (
         f" --n-d-max {args.n_d_max}" if not args.quick else "")
     timing = {"wall": wall, "run_sum": run_sum, "n_runs": len(metrics),
               "n_cached": sum(1 for r in study.get("runs") or [] if r.get("cached_from")),
-              "nproc": os.cpu_count(), "cpu": cpu_model(),
+              "nproc": len(os.sched_getaffinity(0)), "loadavg": timing_load, "cpu": cpu_model(),
               "workers": args.workers if server else "(external server)",
               "finished_utc": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"),
               "command": cmd}
