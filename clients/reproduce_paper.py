@@ -609,7 +609,8 @@ def main(argv=None):
         study = wait_study(api, study["id"], args.timeout)
         wall = time.time() - t0
         wall = study_wall(study) or wall  # the server's created_at -> finished_at
-        args.loadavg = loadavg()
+        args.loadavg = ("not recorded (report written later with --study-id)" if args.study_id
+                        else loadavg())
         speed_acc = api.get_json(f"/api/v1/studies/{study['id']}/speed-accuracy")
         return report(args, api, study, speed_acc, wall, server)
     finally:
