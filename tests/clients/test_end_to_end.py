@@ -180,11 +180,16 @@ class EndToEnd(unittest.TestCase):
 
     def test_study(self):
         r = self.client("study", "create", "--base", self.job_file, "--L", "1e-4,5e-5",
-                        "--n-d", "5,10", "--name", "e2e study", "--wait", "--wait-timeout", "60")
-        if r.returncode == 1 and "server has no studies API (404)" in r.stderr:
-            self.skipTest("the server has no studies API yet (404)")
+                        "--n-d", "5,10", "--name", "e2e study", "--wait", "--wait-timeout", "60",
+                        "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertIn("study", r.stdout)
+        study = json.loads(r.stdout)
+        self.assertEqual(study["status"], "finished", study)
+        cells = {(c["L"], c["n_d"]) for c in study["convergence_map"]["cells"]}
+        self.assertEqual(cells, {(1e-4, 5), (1e-4, 10), (5e-5, 5), (5e-5, 10)})
+        # The finest mesh of each L has no finer partner: its status is unknown.
+        finest = [c for c in study["convergence_map"]["cells"] if c["n_d"] == 10]
+        self.assertTrue(all(c["status"] == "unknown" for c in finest), finest)
 
     # -- figures ------------------------------------------------------------------------
 
