@@ -1,4 +1,5 @@
 // The metrics of SPEC §2 and the front profile as JSON (names are part of the API).
+#include "api/json_number.hpp"
 #include "api/run_job.hpp"
 
 #include <cmath>
@@ -9,15 +10,10 @@ namespace {
 
 constexpr const char* discretisation = "Q4 2x2 Gauss, lumped mass, central differences";
 
-// JSON has no NaN or infinity: undefined values are null.
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
 nlohmann::json numbers(const std::vector<double>& values) {
   nlohmann::json array = nlohmann::json::array();
   for (double value : values)
-    array.push_back(number(value));
+    array.push_back(json_number(value));
   return array;
 }
 
@@ -38,31 +34,31 @@ std::string method_description(const SimulationParams& params) {
 nlohmann::json metrics_json(const RunResult& result) {
   const Metrics& m = result.metrics;
   nlohmann::json j;
-  j["front_threshold"] = number(m.front_threshold);
-  j["arrest_position"] = number(m.arrest_position);
-  j["propagation_distance"] = number(m.propagation_distance);
-  j["arrival_time_at_probe"] = number(m.arrival_time_at_probe);
-  j["probe_x1"] = number(m.probe_x1);
-  j["rupture_speed"] = {{"max", number(m.max_rupture_speed)},
-                        {"mean", number(m.mean_rupture_speed)}};
-  j["max_slip_velocity"] = number(m.max_slip_velocity);
+  j["front_threshold"] = json_number(m.front_threshold);
+  j["arrest_position"] = json_number(m.arrest_position);
+  j["propagation_distance"] = json_number(m.propagation_distance);
+  j["arrival_time_at_probe"] = json_number(m.arrival_time_at_probe);
+  j["probe_x1"] = json_number(m.probe_x1);
+  j["rupture_speed"] = {{"max", json_number(m.max_rupture_speed)},
+                        {"mean", json_number(m.mean_rupture_speed)}};
+  j["max_slip_velocity"] = json_number(m.max_slip_velocity);
   j["outcome"] = to_string(m.outcome);
-  j["energy_error"] = number(m.energy_error);
-  j["wall_time_s"] = number(m.wall_time_s);
+  j["energy_error"] = json_number(m.energy_error);
+  j["wall_time_s"] = json_number(m.wall_time_s);
   j["steps"] = m.steps;
-  j["dt"] = number(m.dt);
-  j["stable_dt"] = number(result.mesh.stable_dt);
-  j["simulated_time"] = number(m.simulated_time);
-  j["spectral_critical_length"] = number(m.spectral_critical_length);
-  j["spectral_frequency"] = number(m.spectral_frequency);
-  j["spectral_velocity"] = number(m.spectral_velocity);
+  j["dt"] = json_number(m.dt);
+  j["stable_dt"] = json_number(result.mesh.stable_dt);
+  j["simulated_time"] = json_number(m.simulated_time);
+  j["spectral_critical_length"] = json_number(m.spectral_critical_length);
+  j["spectral_frequency"] = json_number(m.spectral_frequency);
+  j["spectral_velocity"] = json_number(m.spectral_velocity);
   j["warnings"] = m.warnings;
   j["message"] = m.message;
   j["cancelled"] = result.cancelled;
   j["mesh"] = {{"nx", result.mesh.nx},
                {"ny", result.mesh.ny},
-               {"dx", number(result.mesh.dx)},
-               {"height", number(result.mesh.height)},
+               {"dx", json_number(result.mesh.dx)},
+               {"height", json_number(result.mesh.height)},
                {"threads", result.mesh.threads}};
   j["code_version"] = code_version();
   j["method"] = discretisation;

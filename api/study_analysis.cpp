@@ -3,6 +3,7 @@
 #include "api/study_analysis.hpp"
 
 #include "api/job_spec.hpp"
+#include "api/json_number.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,11 +35,6 @@ std::vector<double> unique_sorted(std::vector<double> values) {
   for (double value : values)
     if (unique.empty() || !same_value(unique.back(), value)) unique.push_back(value);
   return unique;
-}
-
-// JSON has no NaN or infinity: undefined values are null.
-json number(double value) {
-  return std::isfinite(value) ? json(value) : json(nullptr);
 }
 
 std::string text(double value) {
@@ -244,7 +240,8 @@ const StudyRun* reference_run(const std::vector<StudyRun>& runs,
 }
 
 json changes_json(double distance_change, double arrival_change) {
-  return {{distance_key, number(distance_change)}, {"arrival_time", number(arrival_change)}};
+  return {{distance_key, json_number(distance_change)},
+          {"arrival_time", json_number(arrival_change)}};
 }
 
 json cell_json(const std::vector<StudyRun>& runs, const std::vector<RunConvergence>& statuses,
@@ -260,7 +257,7 @@ json cell_json(const std::vector<StudyRun>& runs, const std::vector<RunConvergen
           {"run_id", pick->id},
           {"run_ids", ids},
           {"status", to_string(s.status)},
-          {"partner_n_d", number(s.partner_n_d)},
+          {"partner_n_d", json_number(s.partner_n_d)},
           {"changes", changes_json(s.propagation_distance_change, s.arrival_time_change)},
           {"reason", s.reason}};
 }
@@ -270,9 +267,9 @@ json reference_json(double L, const StudyRun& run) {
           {"run_id", run.id},
           {"n_d", run.n_d},
           {"outcome", outcome_of(run)},
-          {distance_key, number(metric(run, distance_key))},
-          {arrival_key, number(metric(run, arrival_key))},
-          {"spectral_critical_length", number(metric(run, "spectral_critical_length"))}};
+          {distance_key, json_number(metric(run, distance_key))},
+          {arrival_key, json_number(metric(run, arrival_key))},
+          {"spectral_critical_length", json_number(metric(run, "spectral_critical_length"))}};
 }
 
 struct Reference {
@@ -434,7 +431,7 @@ nlohmann::json critical_length(const std::vector<StudyRun>& runs,
   explain_critical_length(result, refs, agreeing_prefix(agree));
   const StudyRun* smallest = refs.empty() ? nullptr : refs.front().run;
   result["spectral_critical_length"] =
-      smallest ? number(metric(*smallest, "spectral_critical_length")) : json(nullptr);
+      smallest ? json_number(metric(*smallest, "spectral_critical_length")) : json(nullptr);
   result["spectral_from_L"] = smallest ? json(refs.front().L) : json(nullptr);
   result["spectral_run_id"] = smallest ? json(smallest->id) : json(nullptr);
   return result;
@@ -459,8 +456,8 @@ nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs, const Convergen
                     {"L", run.L},
                     {"n_d", run.n_d},
                     {"outcome", outcome_of(run)},
-                    {"wall_time_s", number(run.wall_time_s)},
-                    {"memory_bytes", number(run.memory_bytes)},
+                    {"wall_time_s", json_number(run.wall_time_s)},
+                    {"memory_bytes", json_number(run.memory_bytes)},
                     {"reference_run_id", ref ? json(ref->id) : json(nullptr)},
                     {"errors", changes_json(distance_error, arrival_error)}});
   }

@@ -1,5 +1,7 @@
 #include "server/job.hpp"
 
+#include "api/json_number.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -46,9 +48,6 @@ bool transition_allowed(JobStatus from, JobStatus to, TransitionKind kind) {
 }
 
 namespace {
-nlohmann::json number_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
 nlohmann::json text_or_null(const std::string& value) {
   return value.empty() ? nlohmann::json(nullptr) : nlohmann::json(value);
 }
@@ -71,12 +70,12 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
                    {"time", job.progress.time},
                    {"duration", job.progress.duration},
                    {"steps", job.progress.steps},
-                   {"eta_s", number_or_null(job.progress.eta_s)},
+                   {"eta_s", api::json_number(job.progress.eta_s)},
                    {"updated_at", text_or_null(job.progress.updated_at)}};
   j["metrics"] = job.metrics;
   j["error"] = text_or_null(job.error);
   j["wall_time_s"] =
-      job.started_at.empty() ? nlohmann::json(nullptr) : number_or_null(job.wall_time_s);
+      job.started_at.empty() ? nlohmann::json(nullptr) : api::json_number(job.wall_time_s);
   j["code_version"] = text_or_null(job.code_version);
   j["host"] = text_or_null(job.host);
   if (job.status == JobStatus::succeeded && !job.result.path.empty())

@@ -6,6 +6,7 @@
 #include "server/responses.hpp"
 #include "server/study_progress.hpp"
 
+#include "api/json_number.hpp"
 #include "api/study_analysis.hpp"
 
 #include <charconv>
@@ -135,10 +136,6 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   return json_response(rc.request, http::status::ok, body);
 }
 
-json number(double v) {
-  return std::isfinite(v) ? json(v) : json(nullptr);
-}
-
 // speed_accuracy of each regime, with the relative L2 error of the slip-velocity record at
 // the spectrum probe against the reference run's record (read from the result files).
 Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
@@ -187,8 +184,8 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
         const auto& ref = record_of(ref_id);
         if (mine && ref) {
           try {
-            l2 = number(api::relative_l2_error(mine->time, mine->slip_velocity, ref->time,
-                                               ref->slip_velocity));
+            l2 = api::json_number(api::relative_l2_error(mine->time, mine->slip_velocity, ref->time,
+                                                         ref->slip_velocity));
             probe_x1 = ref->x1;
             if (l2.is_null())
               why = "undefined: the reference record is zero over the common time range (no "
@@ -211,7 +208,7 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
                {"runs", list},
                {"probe",
                 {{"dataset", "/probes/slip_velocity_spectrum"},
-                 {"x1", number(probe_x1)},
+                 {"x1", api::json_number(probe_x1)},
                  {"description", "relative L2 error over time of the slip velocity at the "
                                  "spectrum probe (probe.spectrum_x1, default 6 m)"}}},
                {"reference", "the finest non-diverged run of the same L, when that L has a "

@@ -1,5 +1,6 @@
 #include "server/study_progress.hpp"
 
+#include "api/json_number.hpp"
 #include "server/failure_regimes.hpp"
 #include "server/job.hpp"
 
@@ -13,10 +14,6 @@ namespace slipfront::server {
 using nlohmann::json;
 
 namespace {
-
-json number(double v) {
-  return std::isfinite(v) ? json(v) : json(nullptr);
-}
 
 std::string text(double v) {
   char buffer[32];
@@ -166,20 +163,21 @@ json scene_analysis(const std::vector<StudyRunRow>& rows) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
     const std::string outcome = outcome_of(r);
-    list.push_back({{"job_id", r.job_id},
-                    {"L", r.L},
-                    {"n_d", r.n_d},
-                    {"job_status", r.job_status},
-                    {"outcome", outcome.empty() ? json(nullptr) : json(outcome)},
-                    {"submitted_by", r.submitted_by},
-                    {"study_id", r.study_id.empty() ? json(nullptr) : json(r.study_id)},
-                    {"convergence",
-                     {{"status", api::to_string(statuses[i].status)},
-                      {"partner_n_d", number(statuses[i].partner_n_d)},
-                      {"changes",
-                       {{"propagation_distance", number(statuses[i].propagation_distance_change)},
-                        {"arrival_time", number(statuses[i].arrival_time_change)}}},
-                      {"reason", statuses[i].reason}}}});
+    list.push_back(
+        {{"job_id", r.job_id},
+         {"L", r.L},
+         {"n_d", r.n_d},
+         {"job_status", r.job_status},
+         {"outcome", outcome.empty() ? json(nullptr) : json(outcome)},
+         {"submitted_by", r.submitted_by},
+         {"study_id", r.study_id.empty() ? json(nullptr) : json(r.study_id)},
+         {"convergence",
+          {{"status", api::to_string(statuses[i].status)},
+           {"partner_n_d", api::json_number(statuses[i].partner_n_d)},
+           {"changes",
+            {{"propagation_distance", api::json_number(statuses[i].propagation_distance_change)},
+             {"arrival_time", api::json_number(statuses[i].arrival_time_change)}}},
+           {"reason", statuses[i].reason}}}});
   }
   out["runs"] = list;
   out["count"] = rows.size();

@@ -1,5 +1,6 @@
 #include "server/study_service.hpp"
 
+#include "api/json_number.hpp"
 #include "server/clock.hpp"
 #include "server/failure_regimes.hpp"
 #include "server/job_id.hpp"
@@ -77,10 +78,6 @@ void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
     if (!p.regime.empty()) reason += " (preset regime " + p.regime + ")";
     if (seen.insert(pointer + "\n" + reason).second) errors.push_back({pointer, reason});
   }
-}
-
-json number(double v) {
-  return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
 } // namespace
@@ -173,8 +170,8 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   j["progress"] = {{"done", s.runs_done},
                    {"total", s.runs_total},
                    {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};
-  j["L_c"] = number(s.L_c);
-  j["spectral_critical_length"] = number(s.spectral_critical_length);
+  j["L_c"] = api::json_number(s.L_c);
+  j["spectral_critical_length"] = api::json_number(s.spectral_critical_length);
   j["links"] = {{"self", self},
                 {"speed_accuracy", self + "/speed-accuracy"},
                 {"convergence_map", "/api/v1/convergence-map?scene=" + s.scene_hash},
@@ -195,10 +192,10 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
                 {"error", r.error.empty() ? json(nullptr) : json(r.error)},
                 {"convergence",
                  {{"status", r.convergence_status},
-                  {"partner_n_d", number(r.partner_n_d)},
+                  {"partner_n_d", api::json_number(r.partner_n_d)},
                   {"changes",
-                   {{"propagation_distance", number(r.propagation_distance_change)},
-                    {"arrival_time", number(r.arrival_time_change)}}},
+                   {{"propagation_distance", api::json_number(r.propagation_distance_change)},
+                    {"arrival_time", api::json_number(r.arrival_time_change)}}},
                   {"reason", r.reason}}},
                 {"links", {{"job", "/api/v1/jobs/" + r.job_id}}}};
     if (!r.regime.empty()) run["regime"] = r.regime;
