@@ -141,16 +141,6 @@ const char* job_columns =
 
 const char* job_from = " FROM jobs j LEFT JOIN metrics m ON m.job_id = j.id ";
 
-nlohmann::json parse_stored_json(const std::string& text, const std::string& what,
-                                 const std::string& id) {
-  if (text.empty()) return nullptr;
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("stored " + what + " of job " + id + " is not JSON: " + e.what());
-  }
-}
-
 Job read_job(const Statement& s) {
   Job job;
   job.seq = s.integer(0);
@@ -159,8 +149,8 @@ Job read_job(const Statement& s) {
   if (!status) throw std::runtime_error("job " + job.id + " has unknown status " + s.text(2));
   job.status = *status;
   job.name = s.text(3);
-  job.tags = parse_stored_json(s.text(4), "tags", job.id).get<std::vector<std::string>>();
-  job.spec = parse_stored_json(s.text(5), "spec", job.id);
+  job.tags = parse_stored_json(s.text(4), "tags of job " + job.id).get<std::vector<std::string>>();
+  job.spec = parse_stored_json(s.text(5), "spec of job " + job.id);
   job.spec_sha256 = s.text(6);
   job.submitted_by = s.text(7);
   job.idempotency_key = s.text(8);
@@ -187,7 +177,7 @@ Job read_job(const Statement& s) {
   job.result.sha256 = s.text(29);
   job.cached_from = s.text(30);
   job.attempts = static_cast<int>(s.integer(31));
-  job.metrics = parse_stored_json(s.text(32), "metrics", job.id);
+  job.metrics = parse_stored_json(s.text(32), "metrics of job " + job.id);
   job.scene_hash = s.text(33);
   job.study_id = s.text(34);
   return job;
@@ -221,7 +211,7 @@ void fill_scene_hashes(Database& db) {
   auto select = db.prepare("SELECT id, spec FROM jobs WHERE scene_hash IS NULL");
   while (select.step()) {
     const std::string id = select.text(0);
-    rows.emplace_back(id, api::scene_hash(parse_stored_json(select.text(1), "spec", id)));
+    rows.emplace_back(id, api::scene_hash(parse_stored_json(select.text(1), "spec of job " + id)));
   }
   auto update = db.prepare("UPDATE jobs SET scene_hash = ?2 WHERE id = ?1");
   for (const auto& [id, hash] : rows) {
@@ -563,7 +553,7 @@ std::optional<nlohmann::json> JobStore::front(const std::string& id) {
   auto s = db_.prepare("SELECT front_json FROM metrics WHERE job_id = ?1");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
-  return parse_stored_json(s.text(0), "front", id);
+  return parse_stored_json(s.text(0), "front of job " + id);
 }
 
 } // namespace slipfront::server

@@ -170,4 +170,13 @@ void Transaction::commit() {
   done_ = true;
 }
 
+nlohmann::json parse_stored_json(const std::string& text, const std::string& what) {
+  if (text.empty()) return nullptr;
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("stored " + what + " is not JSON: " + e.what());
+  }
+}
+
 } // namespace slipfront::server

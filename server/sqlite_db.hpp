@@ -2,6 +2,8 @@
 // Every failure throws SqliteError carrying SQLite's message and the SQL that failed.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -84,5 +86,9 @@ private:
   Database& db_;
   bool done_ = false;
 };
+
+// A JSON column as read back: empty text is null; text that is not JSON throws with `what`
+// (e.g. "spec of job 3f2a...") in the message.
+nlohmann::json parse_stored_json(const std::string& text, const std::string& what);
 
 } // namespace slipfront::server

@@ -8,15 +8,6 @@ using nlohmann::json;
 
 namespace {
 
-json parse_json(const std::string& text, const std::string& what) {
-  if (text.empty()) return nullptr;
-  try {
-    return json::parse(text);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("stored " + what + " is not JSON: " + e.what());
-  }
-}
-
 const char* study_columns =
     "seq, id, name, tags, kind, base_spec, request, scene_hash, submitted_by, priority, fresh, "
     "created_at, updated_at, finished_at, status, runs_done, runs_total, L_c, "
@@ -27,10 +18,10 @@ StudyRecord read_study(const Statement& s) {
   r.seq = s.integer(0);
   r.id = s.text(1);
   r.name = s.text(2);
-  r.tags = parse_json(s.text(3), "tags of study " + r.id).get<std::vector<std::string>>();
+  r.tags = parse_stored_json(s.text(3), "tags of study " + r.id).get<std::vector<std::string>>();
   r.kind = s.text(4);
-  r.base = parse_json(s.text(5), "base of study " + r.id);
-  r.request = parse_json(s.text(6), "request of study " + r.id);
+  r.base = parse_stored_json(s.text(5), "base of study " + r.id);
+  r.request = parse_stored_json(s.text(6), "request of study " + r.id);
   r.scene_hash = s.text(7);
   r.submitted_by = s.text(8);
   r.priority = static_cast<int>(s.integer(9));
@@ -43,7 +34,7 @@ StudyRecord read_study(const Statement& s) {
   r.runs_total = static_cast<int>(s.integer(16));
   r.L_c = s.real(17);
   r.spectral_critical_length = s.real(18);
-  r.result = parse_json(s.text(19), "result of study " + r.id);
+  r.result = parse_stored_json(s.text(19), "result of study " + r.id);
   return r;
 }
 
@@ -66,7 +57,7 @@ StudyRunRow read_run(const Statement& s) {
   r.arrival_time_change = s.real(7);
   r.reason = s.text(8);
   r.job_status = s.text(9);
-  r.metrics = parse_json(s.text(10), "metrics of job " + r.job_id);
+  r.metrics = parse_stored_json(s.text(10), "metrics of job " + r.job_id);
   r.wall_time_s = s.is_null(11) ? 0.0 : s.real(11);
   r.memory_estimate_bytes = s.is_null(12) ? 0.0 : s.real(12);
   r.scene_hash = s.text(13);

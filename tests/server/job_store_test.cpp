@@ -2,30 +2,17 @@
 #include "server/job_store.hpp"
 #include "server/sqlite_db.hpp"
 
+#include "temp_dir.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 using namespace slipfront::server;
 namespace fs = std::filesystem;
+using slipfront::server::testing::TempDir;
 
 namespace {
-
-class TempDir {
-public:
-  TempDir() {
-    path_ = fs::temp_directory_path() / (std::string("slipfront-store-").append(new_job_id()));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
-private:
-  fs::path path_;
-};
 
 Job make_job(const std::string& name, double L = 5e-5, double n_d = 10) {
   Job job;
@@ -66,7 +53,7 @@ RunRecord success() {
 } // namespace
 
 TEST(JobStore, FreshDatabaseIsAtLatestSchemaInWalMode) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   EXPECT_EQ(store.user_version(), JobStore::schema_version);
   EXPECT_EQ(static_cast<int>(schema_migrations().size()), JobStore::schema_version);
@@ -77,7 +64,7 @@ TEST(JobStore, FreshDatabaseIsAtLatestSchemaInWalMode) {
 }
 
 TEST(JobStore, MigratesAnOlderSchemaKeepingItsJobs) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   const auto path = dir.file("db.sqlite");
   {
     Database raw(path); // a database written by a build at schema version 1
@@ -98,7 +85,7 @@ TEST(JobStore, MigratesAnOlderSchemaKeepingItsJobs) {
 }
 
 TEST(JobStore, RefusesANewerSchema) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   const auto path = dir.file("db.sqlite");
   {
     Database raw(path);
@@ -108,7 +95,7 @@ TEST(JobStore, RefusesANewerSchema) {
 }
 
 TEST(JobStore, StateTransitionsAreConditional) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   Job job = make_job("a");
   store.insert(job);
@@ -139,7 +126,7 @@ TEST(JobStore, StateTransitionsAreConditional) {
 }
 
 TEST(JobStore, MetricsAreQueryableColumns) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   Job job = make_job("a", 1e-4, 20);
   store.insert(job);
@@ -162,7 +149,7 @@ TEST(JobStore, MetricsAreQueryableColumns) {
 }
 
 TEST(JobStore, RecoveryRequeuesRunningJobsOnly) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   const auto path = dir.file("db.sqlite");
   std::string running_id, queued_id, done_id;
   {
@@ -197,7 +184,7 @@ TEST(JobStore, RecoveryRequeuesRunningJobsOnly) {
 }
 
 TEST(JobStore, QueuedJobsByPriorityThenSubmission) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   Job a = make_job("a"), b = make_job("b"), c = make_job("c");
   b.priority = 3;
@@ -212,7 +199,7 @@ TEST(JobStore, QueuedJobsByPriorityThenSubmission) {
 }
 
 TEST(JobStore, ListFiltersAndPaginatesNewestFirst) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   std::vector<std::string> ids;
   for (int i = 0; i < 7; ++i) {
@@ -258,7 +245,7 @@ TEST(JobStore, ListFiltersAndPaginatesNewestFirst) {
 }
 
 TEST(JobStore, ReuseAndIdempotencyLookups) {
-  TempDir dir;
+  TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   Job a = make_job("a");
   a.idempotency_key = "key-1";

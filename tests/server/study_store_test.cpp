@@ -6,6 +6,8 @@
 #include "server/sqlite_db.hpp"
 #include "server/study_store.hpp"
 
+#include "temp_dir.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,24 +15,9 @@
 
 using namespace slipfront::server;
 namespace fs = std::filesystem;
+using slipfront::server::testing::TempDir;
 
 namespace {
-
-class TempDir {
-public:
-  TempDir() {
-    path_ = fs::temp_directory_path() / (std::string("slipfront-study-").append(new_job_id()));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
-private:
-  fs::path path_;
-};
 
 nlohmann::json spec(double L, double n_d, double mu, const std::string& name) {
   return {{"name", name},
@@ -57,7 +44,7 @@ Job make_job(const nlohmann::json& s, const std::string& status = "queued") {
 } // namespace
 
 TEST(StudySchema, MigrationFillsTheSceneHashOfExistingJobs) {
-  TempDir dir;
+  TempDir dir("slipfront-study-");
   const auto path = dir.file("db.sqlite");
   const auto a = spec(1e-5, 10, 0.75, "a"), b = spec(5e-5, 20, 0.75, "b"),
              c = spec(1e-5, 10, 0.6, "c");
@@ -94,7 +81,7 @@ TEST(StudySchema, MigrationFillsTheSceneHashOfExistingJobs) {
 }
 
 TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {
-  TempDir dir;
+  TempDir dir("slipfront-study-");
   JobStore jobs(dir.file("db.sqlite"));
   StudyStore studies(jobs);
   StudyRecord st;

@@ -3,6 +3,8 @@
 #include "server/job_id.hpp"
 #include "server/worker_pool.hpp"
 
+#include "temp_dir.hpp"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -11,24 +13,9 @@
 
 using namespace slipfront::server;
 namespace fs = std::filesystem;
+using slipfront::server::testing::TempDir;
 
 namespace {
-
-class TempDir {
-public:
-  TempDir()
-      : path_(fs::temp_directory_path() / std::string("slipfront-pool-").append(new_job_id())) {
-    fs::create_directories(path_ / "results");
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string str() const { return path_.string(); }
-
-private:
-  fs::path path_;
-};
 
 // Behaves as the job's name says: "throw", "wait" (until cancelled, at most 10 s), else succeed.
 class ScriptedRunner : public JobRunner {
@@ -56,7 +43,8 @@ public:
 };
 
 struct Fixture {
-  TempDir dir;
+  TempDir dir{"slipfront-pool-"};
+  bool results_dir = fs::create_directories(dir.path() / "results"); // before the store
   JobStore store{dir.str() + "/db.sqlite"};
   JobQueue queue{100};
   ScriptedRunner runner;
