@@ -15,15 +15,7 @@
 #include <limits>
 #include <thread>
 
-#ifndef SLIPFRONT_VERSION_STRING
-#define SLIPFRONT_VERSION_STRING "unknown"
-#endif
-
 namespace slipfront {
-
-const char* code_version() {
-  return SLIPFRONT_VERSION_STRING;
-}
 
 double resolved_height(const SimulationParams& params) {
   return mesh_size(params).height;
