@@ -446,12 +446,17 @@ nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs, const Convergen
     if (!has_result(state)) continue;
     const StudyRun* ref = reference_run(runs, statuses, run.L);
     const bool judged = ref && state == RunState::measured;
+    // No rupture in either run: the outcome agrees and there is no rupture to measure
+    // (a nucleation patch's slip is not a propagation distance), as in compare().
+    const bool neither_ruptured =
+        judged && outcome_of(run) == "no_rupture" && outcome_of(*ref) == "no_rupture";
     const double arrival_error =
         judged ? relative_change(metric(run, arrival_key), metric(*ref, arrival_key))
                : not_available;
     const double distance_error =
-        judged ? relative_change(metric(run, distance_key), metric(*ref, distance_key))
-               : not_available;
+        neither_ruptured ? 0.0
+        : judged         ? relative_change(metric(run, distance_key), metric(*ref, distance_key))
+                         : not_available;
     list.push_back({{"id", run.id},
                     {"L", run.L},
                     {"n_d", run.n_d},

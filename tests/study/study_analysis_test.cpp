@@ -403,6 +403,18 @@ TEST(SpeedAccuracy, ErrorsRelativeToTheFinestRunOfAConvergedL) {
   EXPECT_TRUE(list[4]["errors"]["propagation_distance"].is_null());
 }
 
+TEST(SpeedAccuracy, NoRuptureAgainstNoRuptureHasNoDistanceError) {
+  // no_rupture runs may carry the slip of the nucleation patch (0.4 m here, 0.5 m in the
+  // reference): that is not a propagation distance to compare.
+  std::vector<StudyRun> runs = {no_rupture("n10", 1e-3, 10), no_rupture("n20", 1e-3, 20)};
+  runs[1].metrics->at("propagation_distance") = 0.5;
+  const json list = speed_accuracy(runs);
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list[0]["reference_run_id"], "n20");
+  EXPECT_EQ(list[0]["errors"]["propagation_distance"], 0.0);
+  EXPECT_TRUE(list[0]["errors"]["arrival_time"].is_null());
+}
+
 // ---- relative L2 error --------------------------------------------------------------------
 
 TEST(RelativeL2Error, ScaledRecordOnADifferentGrid) {
