@@ -335,6 +335,10 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
         for f in findings:
             add(f"- {f}")
         add("")
+        if not args.quick:
+            add("Why the smallest L do not converge on this solver, and why L = 5e-6 m moves away "
+                "at n_d = 160: [docs/small-l-study.md](small-l-study.md) (time-step ladder, "
+                "plain Coulomb friction and the mesh-scale oscillation, `bench/small_l_study.py`).\n")
 
     # convergence map table
     add("## Convergence map\n")
