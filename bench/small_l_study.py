@@ -18,7 +18,8 @@ run again: finished cases are read back, not recomputed. docs/small-l-study.md e
 what the table shows.
 
 usage: /usr/bin/python3 bench/small_l_study.py [--binary build/slipfront]
-           [--work /tmp/slipfront-small-l] [--max-nd 160] [--figure docs/figures/small_l_study.png]
+           [--work /tmp/slipfront-small-l] [--max-nd 160] [--with-320]
+           [--figure docs/figures/small_l_study.png]
 """
 import argparse
 import json
@@ -35,6 +36,8 @@ CASES = [({"L": L}, nd, sf) for L in (5e-6, 1e-5) for nd, sf in
          ((40, 0.5), (40, 0.25), (40, 0.125), (80, 0.5), (80, 0.25), (160, 0.5))]
 CASES += [({"L": 5e-6}, 160, 0.25)]
 CASES += [({"law": "coulomb"}, nd, 0.5) for nd in (40, 80, 160)]
+# --with-320: the next mesh for both L (about 30-40 min each with 2 threads, 2.7 GB).
+CASES_320 = [({"L": 5e-6}, 320, 0.5), ({"L": 1e-5}, 320, 0.5)]
 
 SMOOTHING_LENGTH = 0.3  # m: the residual keeps wavelengths below this
 EARLY, LATE = (2.0, 2.5), (3.5, 4.0)  # s: windows of the paper's scene (front at x1 ~ 2-5 m)
@@ -89,9 +92,14 @@ def mesh_scale_oscillation(h5_path):
                 short = k > 1.0 / SMOOTHING_LENGTH
                 wavelengths.append(1.0 / k[short][np.argmax(spectrum[short])])
                 rms[window].append(np.sqrt(np.mean(r * r)))
+        dissipated = h["energy/dissipated"][:]
+        external_work = float(h["energy/external_work"][-1])
     mean = lambda a: float(np.mean(a)) if a else float("nan")  # noqa: E731
     return {"dx": dx, "wavelength": float(np.median(wavelengths)) if wavelengths else float("nan"),
-            "rms_early": mean(rms[EARLY]), "rms_late": mean(rms[LATE])}
+            "rms_early": mean(rms[EARLY]), "rms_late": mean(rms[LATE]),
+            # The interface only dissipates if the friction/contact work never decreases.
+            "dissipation_monotone": bool(np.all(np.diff(dissipated) >= 0.0)),
+            "external_work": external_work}
 
 
 def fmt(value, spec):
@@ -126,19 +134,21 @@ def main():
     ap.add_argument("--binary", default="build/slipfront")
     ap.add_argument("--work", default="/tmp/slipfront-small-l")
     ap.add_argument("--max-nd", type=float, default=160, help="skip finer meshes (80: ~5 min)")
+    ap.add_argument("--with-320", action="store_true", help="add n_d = 320 for both L")
     ap.add_argument("--figure", default="docs/figures/small_l_study.png")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
 
     rows = []
-    for friction, nd, sf in CASES:
-        if nd <= args.max_nd:
+    for friction, nd, sf in CASES + (CASES_320 if args.with_320 else []):
+        if nd <= args.max_nd or nd == 320 and args.with_320:
             name, m, h5 = run_case(args.binary, args.work, friction, nd, sf)
             rows.append((name, m, h5, mesh_scale_oscillation(h5)))
 
     print("| run | dt [ms] | outcome | arrest [m] | propagation distance [m] | arrival at 11 m [s] "
-          "| max V [mm/s] | oscillation wavelength [m] (dx) | rms early → late [mm/s] | wall [s] |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "| max V [mm/s] | oscillation wavelength [m] (dx) | rms early → late [mm/s] "
+          "| external work [J/m] | dissipated never decreases | wall [s] |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for name, m, _, osc in rows:
         ratio = osc["rms_late"] / osc["rms_early"] if osc["rms_early"] > 0 else float("nan")
         print(f"| {name} | {1e3 * m['dt']:.3f} | {m['outcome']} | {fmt(m['arrest_position'], '.4g')} "
@@ -146,7 +156,8 @@ def main():
               f"| {1e3 * m['max_slip_velocity']:.2f} | {fmt(osc['wavelength'], '.4f')} "
               f"({fmt(osc['wavelength'] / osc['dx'], '.1f')}) "
               f"| {fmt(1e3 * osc['rms_early'], '.2f')} → {fmt(1e3 * osc['rms_late'], '.2f')} "
-              f"(×{fmt(ratio, '.2f')}) | {m['wall_time_s']:.1f} |")
+              f"(×{fmt(ratio, '.2f')}) | {osc['external_work']:.2e} "
+              f"| {'yes' if osc['dissipation_monotone'] else '**no**'} | {m['wall_time_s']:.1f} |")
     if args.figure:
         zoom_figure(rows, args.figure)
 

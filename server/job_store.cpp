@@ -125,6 +125,38 @@ CREATE TABLE study_runs (
 CREATE INDEX study_runs_job ON study_runs (job_id);
 CREATE INDEX study_runs_status ON study_runs (convergence_status);
 )sql",
+      // 3 -> 4: a study can be `cancelled` (POST /studies/{id}/cancel). SQLite cannot alter
+      // a CHECK constraint: the table is rebuilt with the same columns, in the same order
+      // (foreign keys are off during migrations, so study_runs keeps its rows).
+      R"sql(
+CREATE TABLE studies_v4 (
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  id TEXT NOT NULL UNIQUE,
+  name TEXT NOT NULL DEFAULT '',
+  tags TEXT NOT NULL DEFAULT '[]',
+  kind TEXT NOT NULL CHECK (kind IN ('grid', 'convergence', 'failure_regimes')),
+  base_spec TEXT NOT NULL,
+  request TEXT NOT NULL,
+  scene_hash TEXT NOT NULL,
+  submitted_by TEXT NOT NULL DEFAULT '',
+  priority INTEGER NOT NULL DEFAULT 0,
+  fresh INTEGER NOT NULL DEFAULT 0,
+  created_at TEXT NOT NULL,
+  updated_at TEXT,
+  finished_at TEXT,
+  status TEXT NOT NULL DEFAULT 'running' CHECK (status IN ('running', 'finished', 'cancelled')),
+  runs_done INTEGER NOT NULL DEFAULT 0,
+  runs_total INTEGER NOT NULL DEFAULT 0,
+  L_c REAL,
+  spectral_critical_length REAL,
+  result TEXT
+);
+INSERT INTO studies_v4 SELECT * FROM studies;
+DROP TABLE studies;
+ALTER TABLE studies_v4 RENAME TO studies;
+CREATE INDEX studies_scene_hash ON studies (scene_hash);
+CREATE INDEX studies_status ON studies (status);
+)sql",
   };
   return migrations;
 }
@@ -224,8 +256,8 @@ JobStore::JobStore(const std::string& path) : db_(path) {
   db_.exec("PRAGMA busy_timeout = 5000");
   db_.exec("PRAGMA journal_mode = WAL");
   db_.exec("PRAGMA synchronous = FULL");
+  migrate(); // with foreign keys off: a migration may rebuild a referenced table
   db_.exec("PRAGMA foreign_keys = ON");
-  migrate();
 }
 
 JobStore::~JobStore() {
@@ -257,6 +289,13 @@ void JobStore::migrate() {
                                std::to_string(v) + ": " + e.what());
     }
     if (v + 1 == 3) fill_scene_hashes(db_);
+    {
+      auto check = db_.prepare("PRAGMA foreign_key_check");
+      if (check.step())
+        throw std::runtime_error("migrating " + db_.path() + " to schema version " +
+                                 std::to_string(v + 1) + ": a foreign key of table " +
+                                 check.text(0) + " no longer holds");
+    }
     db_.set_user_version(v + 1);
     tx.commit();
   }

@@ -52,7 +52,7 @@ struct RunRecord {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 3;
+  static constexpr int schema_version = 4;
 
   explicit JobStore(const std::string& path);
   ~JobStore();

@@ -51,7 +51,7 @@ const char* document = R"json({
           "reason": {"type": "string"}}}}},
       "Study": {"type": "object", "properties": {"id": {"type": "string"}, "name": {"type": "string"},
         "kind": {"type": "string", "enum": ["grid", "convergence", "failure_regimes"]},
-        "status": {"type": "string", "enum": ["running", "finished"]},
+        "status": {"type": "string", "enum": ["running", "finished", "cancelled"]},
         "progress": {"type": "object", "properties": {"done": {"type": "integer"}, "total": {"type": "integer"}, "fraction": {"type": "number"}}},
         "scene_hash": {"type": "string"}, "L_c": {"type": "number", "nullable": true},
         "spectral_critical_length": {"type": "number", "nullable": true},
@@ -166,7 +166,7 @@ const char* document = R"json({
           "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
           "422": {"$ref": "#/components/responses/Problem"}, "503": {"$ref": "#/components/responses/Problem"}}},
       "get": {"summary": "List studies, newest first (summaries)",
-        "parameters": [{"name": "status", "in": "query", "schema": {"type": "string", "enum": ["running", "finished"]}},
+        "parameters": [{"name": "status", "in": "query", "schema": {"type": "string", "enum": ["running", "finished", "cancelled"]}},
           {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 50}},
           {"name": "cursor", "in": "query", "schema": {"type": "string"}}],
         "responses": {"200": {"description": "A page: {studies, count, next_cursor, next}"}, "400": {"$ref": "#/components/responses/Problem"}}}
@@ -175,6 +175,14 @@ const char* document = R"json({
       "get": {"summary": "A study: status, progress, runs with convergence status, L_c, spectral estimate, convergence map",
         "parameters": [{"$ref": "#/components/parameters/id"}],
         "responses": {"200": {"$ref": "#/components/responses/Study"}, "404": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/studies/{id}/cancel": {
+      "post": {"summary": "Cancel a running study: no further runs; its queued runs are cancelled, its running runs asked to stop (their results so far stay)",
+        "security": [{"bearer": []}], "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "Cancelled; every unfinished run was queued. The study with cancelled_jobs, cancel_requested_jobs"},
+          "202": {"description": "Cancelled; running runs stop at their next step (cancel_requested_jobs)"},
+          "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/studies/{id}/speed-accuracy": {
       "get": {"summary": "Per run: wall time, memory estimate, errors against the reference run of its L (arrival time, propagation distance, L2 of the slip velocity at the spectrum probe)",

@@ -1,5 +1,5 @@
-// POST /studies, GET /studies, GET /studies/{id}, GET /studies/{id}/speed-accuracy,
-// GET /convergence-map (docs/studies-api.md).
+// POST /studies, GET /studies, GET /studies/{id}, POST /studies/{id}/cancel,
+// GET /studies/{id}/speed-accuracy, GET /convergence-map (docs/studies-api.md).
 #include "server/handlers.hpp"
 #include "server/job_id.hpp"
 #include "server/probe_record.hpp"
@@ -82,6 +82,36 @@ Response get_study(ServerContext& ctx, RequestContext& rc) {
   return json_response(rc.request, http::status::ok, *body);
 }
 
+// 200 when every unfinished run was still queued (all cancelled now), 202 when running
+// runs were asked to stop and will report `cancelled` when they do.
+Response cancel_study(ServerContext& ctx, RequestContext& rc) {
+  if (auto denied = authenticate(ctx, rc)) return std::move(*denied);
+  const auto& id = rc.path_params.at("id");
+  if (!is_valid_job_id(id)) return not_found_study(rc.request, id);
+  if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
+  auto r = ctx.studies.cancel(id, rc.user, ctx.tokens.has_value());
+  using Kind = StudyCancelResult::Kind;
+  switch (r.kind) {
+  case Kind::not_found:
+    return not_found_study(rc.request, id);
+  case Kind::forbidden:
+    return problem_response(rc.request, http::status::forbidden,
+                            "study " + id + " was submitted by another user");
+  case Kind::already_over:
+    return problem_response(rc.request, http::status::conflict,
+                            "study " + id + " is already " + r.status);
+  case Kind::cancelled:
+    break;
+  }
+  auto body = ctx.studies.view(id);
+  if (!body) throw std::runtime_error("study " + id + " vanished while being cancelled");
+  (*body)["cancelled_jobs"] = r.cancelled_jobs;
+  (*body)["cancel_requested_jobs"] = r.cancel_requested_jobs;
+  return json_response(rc.request,
+                       r.cancel_requested_jobs.empty() ? http::status::ok : http::status::accepted,
+                       *body);
+}
+
 Response list_studies(ServerContext& ctx, RequestContext& rc) {
   if (auto bad = unknown_parameters(rc, {"limit", "cursor", "status"})) return std::move(*bad);
   std::vector<api::FieldError> errors;
@@ -110,8 +140,8 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   }
   if (auto it = rc.query.find("status"); it != rc.query.end()) {
     status = it->second;
-    if (status != "running" && status != "finished")
-      errors.push_back({"/query/status", "must be running or finished"});
+    if (status != "running" && status != "finished" && status != "cancelled")
+      errors.push_back({"/query/status", "must be running, finished or cancelled"});
   }
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
@@ -262,6 +292,8 @@ void add_study_routes(Router& router, ServerContext& ctx) {
              [&ctx](RequestContext& rc) { return list_studies(ctx, rc); });
   router.add(http::verb::get, prefix + "/studies/{id}",
              [&ctx](RequestContext& rc) { return get_study(ctx, rc); });
+  router.add(http::verb::post, prefix + "/studies/{id}/cancel",
+             [&ctx](RequestContext& rc) { return cancel_study(ctx, rc); });
   router.add(http::verb::get, prefix + "/studies/{id}/speed-accuracy",
              [&ctx](RequestContext& rc) { return speed_accuracy(ctx, rc); });
   router.add(http::verb::get, prefix + "/convergence-map",

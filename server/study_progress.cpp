@@ -145,6 +145,13 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& rows, const jso
   study.runs_done = done;
   study.runs_total = static_cast<int>(rows.size());
   study.updated_at = now;
+  if (study.status == "cancelled") { // analysed as its runs end, never resumed
+    if (done < study.runs_total)
+      study.finished_at.clear();
+    else if (study.finished_at.empty())
+      study.finished_at = now; // its last run has ended
+    return;
+  }
   const bool finished = done == study.runs_total && !plans_open;
   if (finished && study.status != "finished") study.finished_at = now;
   study.status = finished ? "finished" : "running";

@@ -148,6 +148,43 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   return out;
 }
 
+StudyCancelResult StudyService::cancel(const std::string& id, const std::string& user,
+                                       bool auth_enabled) {
+  using CancelKind = StudyCancelResult::Kind;
+  StudyCancelResult out;
+  supervisor_.exclusive([&] {
+    auto study = studies_.get(id);
+    if (!study) {
+      out.kind = CancelKind::not_found;
+      return;
+    }
+    out.status = study->status;
+    if (auth_enabled && study->submitted_by != user) {
+      out.kind = CancelKind::forbidden;
+      return;
+    }
+    if (study->status != "running") {
+      out.kind = CancelKind::already_over;
+      return;
+    }
+    // Cancelled first, under the step lock: no step can submit a further mesh after this.
+    studies_.set_status(id, "cancelled", now_iso8601());
+    auto runs = supervisor_.cancel_runs_locked(*study);
+    out.cancelled_jobs = std::move(runs.cancelled);
+    out.cancel_requested_jobs = std::move(runs.cancel_requested);
+    try {
+      supervisor_.step_locked(id);
+    } catch (const std::exception& e) { // stored again when its runs end
+      log_error("study " + id + ": analysis after the cancel: " + e.what());
+    }
+  });
+  if (out.kind == CancelKind::cancelled)
+    log_info("study " + id + " cancelled (" + std::to_string(out.cancelled_jobs.size()) +
+             " queued job(s) cancelled, " + std::to_string(out.cancel_requested_jobs.size()) +
+             " running job(s) asked to stop)");
+  return out;
+}
+
 std::optional<json> StudyService::view(const std::string& id) {
   auto study = studies_.get(id);
   if (!study) return std::nullopt;

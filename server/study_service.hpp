@@ -21,6 +21,13 @@ struct StudyCreateResult {
   std::optional<std::string> id;
 };
 
+struct StudyCancelResult {
+  enum class Kind { cancelled, not_found, forbidden, already_over } kind = Kind::cancelled;
+  std::string status;                             // the study's status before the call
+  std::vector<std::string> cancelled_jobs;        // were queued: cancelled now
+  std::vector<std::string> cancel_requested_jobs; // were running: they stop at their next step
+};
+
 class StudyService {
 public:
   StudyService(StudyStore& studies, JobService& jobs, JobQueue& queue, StudySupervisor& supervisor)
@@ -28,6 +35,9 @@ public:
 
   StudyCreateResult create(const std::string& body, const std::string& user);
   std::optional<nlohmann::json> view(const std::string& id); // GET /studies/{id}
+  // POST /studies/{id}/cancel: no further runs, and every queued or running run of the
+  // study is cancelled. `user` must be the submitter when tokens are in use.
+  StudyCancelResult cancel(const std::string& id, const std::string& user, bool auth_enabled);
   StudyStore& store() { return studies_; }
 
 private:

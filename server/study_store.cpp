@@ -156,6 +156,30 @@ std::vector<std::string> StudyStore::running_ids() {
   });
 }
 
+void StudyStore::set_status(const std::string& id, const std::string& status,
+                            const std::string& at) {
+  jobs_.with_db([&](Database& db) {
+    db.prepare("UPDATE studies SET status = ?2, updated_at = ?3 WHERE id = ?1")
+        .bind(1, id)
+        .bind(2, status)
+        .bind(3, at)
+        .run();
+  });
+}
+
+std::vector<std::string> StudyStore::unsettled_cancelled_ids() {
+  return jobs_.with_db([&](Database& db) {
+    auto s = db.prepare(
+        "SELECT s.id FROM studies s WHERE s.status = 'cancelled' AND (s.runs_done < s.runs_total "
+        "OR EXISTS (SELECT 1 FROM study_runs r JOIN jobs j ON j.id = r.job_id "
+        "WHERE r.study_id = s.id AND j.status IN ('queued', 'running'))) ORDER BY s.seq");
+    std::vector<std::string> out;
+    while (s.step())
+      out.push_back(s.text(0));
+    return out;
+  });
+}
+
 std::vector<StudyRunRow> StudyStore::runs(const std::string& study_id) {
   return jobs_.with_db([&](Database& db) {
     auto s = db.prepare(std::string("SELECT ") + run_columns +

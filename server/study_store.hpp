@@ -29,7 +29,7 @@ struct StudyRecord {
   int priority = 0;
   bool fresh = false;
   std::string created_at, updated_at, finished_at;
-  std::string status = "running"; // running | finished
+  std::string status = "running"; // running | finished | cancelled
   int runs_done = 0, runs_total = 0;
   double L_c = api::not_available;
   double spectral_critical_length = api::not_available;
@@ -69,11 +69,17 @@ public:
   std::vector<StudyRecord> list(int limit, std::optional<std::int64_t> before_seq,
                                 const std::string& status);
   std::vector<std::string> running_ids();
+  // Cancelled studies with a run not final, or whose stored progress is behind.
+  std::vector<std::string> unsettled_cancelled_ids();
   std::vector<StudyRunRow> runs(const std::string& study_id);
   // Every succeeded or failed job of a scene, whoever submitted it; reused (cached) copies
   // are left out, their original is there.
   std::vector<StudyRunRow> scene_runs(const std::string& scene_hash);
   std::string study_of_job(const std::string& job_id); // "" = none
+
+  // Sets the study's status and updated_at (cancellation; finished_at follows when the
+  // last run ends, analyse_study).
+  void set_status(const std::string& id, const std::string& status, const std::string& at);
 
   // Stores the statuses of `runs` (by job id) and the study's summary in one transaction.
   void save_analysis(const StudyRecord& study, const std::vector<StudyRunRow>& runs);

@@ -36,7 +36,33 @@ StudySupervisor::~StudySupervisor() {
 void StudySupervisor::start() {
   for (const auto& id : studies_.running_ids())
     request_step(id);
+  // A run of a cancelled study that was still stopping when the server went down is queued
+  // again by the recovery: cancel it before any worker starts, and store the final analysis.
+  for (const auto& id : studies_.unsettled_cancelled_ids()) {
+    exclusive([&] {
+      if (auto study = studies_.get(id)) cancel_runs_locked(*study);
+    });
+    request_step(id);
+  }
   thread_ = std::thread([this] { loop(); });
+}
+
+CancelledRuns StudySupervisor::cancel_runs_locked(const StudyRecord& study) {
+  CancelledRuns out;
+  for (const auto& run : studies_.runs(study.id)) {
+    auto status = parse_status(run.job_status);
+    if (status && is_final(*status)) continue;
+    try {
+      // The study's jobs were submitted under its submitter's name (submit_study_run).
+      auto r = jobs_.cancel(run.job_id, study.submitted_by);
+      if (r.kind == CancelResult::Kind::cancelled) out.cancelled.push_back(run.job_id);
+      if (r.kind == CancelResult::Kind::cancel_requested)
+        out.cancel_requested.push_back(run.job_id);
+    } catch (const std::exception& e) {
+      log_error("study " + study.id + ": cancelling its job " + run.job_id + ": " + e.what());
+    }
+  }
+  return out;
 }
 
 void StudySupervisor::stop() {
@@ -93,6 +119,17 @@ std::string text(double v) {
   return buffer;
 }
 
+// The last plan of a cancelled convergence study, each L that was waiting marked cancelled.
+json cancelled_refinement(const json& result) {
+  json plan = result.is_object() ? result.value("refinement", json::object()) : json::object();
+  for (auto& entry : plan) {
+    if (!entry.is_object() || entry.value("state", "") != "waiting") continue;
+    entry["state"] = "cancelled";
+    entry["reason"] = "study cancelled; " + entry.value("reason", std::string());
+  }
+  return plan;
+}
+
 std::vector<api::StudyRun> study_runs(const std::vector<StudyRunRow>& rows) {
   std::vector<api::StudyRun> runs;
   for (const auto& r : rows)
@@ -114,7 +151,9 @@ void StudySupervisor::step_locked(const std::string& study_id) {
   auto rows = studies_.runs(study_id);
   json refinement = nullptr;
   bool plans_open = false;
-  if (study->kind == "convergence") {
+  if (study->kind == "convergence" && study->status == "cancelled") {
+    refinement = cancelled_refinement(study->result);
+  } else if (study->kind == "convergence") {
     // Each pass submits at most one mesh per L; a reused result can settle a plan at once,
     // so repeat (bounded by the ladder's length).
     for (std::size_t pass = 0; pass <= request.n_d.size(); ++pass) {

@@ -6,7 +6,8 @@
 // recompute the convergence statuses, map and L_c (analyse_study) and store them.
 // Triggers: a job of the study finishing (worker pool), a queued job cancelled, the
 // study's creation, and start-up (every study still `running` is stepped again, so a
-// server restarted mid-study picks up where it stopped).
+// server restarted mid-study picks up where it stopped). A `cancelled` study submits
+// nothing; at start-up its runs that a restart queued again are cancelled.
 #pragma once
 
 #include "server/job_service.hpp"
@@ -19,6 +20,7 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace slipfront::server {
 
@@ -28,6 +30,12 @@ SubmitResult submit_study_run(JobService& jobs, StudyStore& studies, const Study
                               const StudyRequest& request, const nlohmann::json& overrides,
                               const std::string& regime, double L, double n_d,
                               bool ignore_queue_limit);
+
+// The runs of a study that a cancel ended (queued ones) or asked to stop (running ones).
+struct CancelledRuns {
+  std::vector<std::string> cancelled;
+  std::vector<std::string> cancel_requested;
+};
 
 class StudySupervisor {
 public:
@@ -48,6 +56,9 @@ public:
     return f();
   }
   void step_locked(const std::string& study_id); // the caller holds exclusive()
+  // Cancels every unfinished run of `study` (as its submitter); a run that cannot be
+  // cancelled is logged and skipped. The caller holds exclusive().
+  CancelledRuns cancel_runs_locked(const StudyRecord& study);
 
 private:
   void loop();

@@ -194,5 +194,10 @@ class Api:
     def study(self, study_id):
         return self.get_json(f"{API}/studies/{study_id}")
 
+    def cancel_study(self, study_id):
+        response = self.request("POST", f"{API}/studies/{study_id}/cancel", ok=(200, 202),
+                                idempotent=True)
+        return response.json()
+
     def convergence_map(self, params=None):
         return self.get_json(f"{API}/convergence-map", params=params)

@@ -1,7 +1,7 @@
-"""`study create|wait|show`: a grid of runs over L × n_d (SPEC §4 studies API)."""
+"""`study create|wait|show|cancel`: a grid of runs over L × n_d (SPEC §4 studies API)."""
 
 from . import jobspec, studies
-from .errors import UsageError
+from .errors import ServerError, UsageError
 from .output import log, print_json
 
 
@@ -16,9 +16,10 @@ def floats(text, option):
 
 
 def add_parsers(sub, common):
-    p = sub.add_parser("study", parents=[common], help="studies: create, wait, show",
+    p = sub.add_parser("study", parents=[common], help="studies: create, wait, show, cancel",
                        description="Studies over L x n_d (needs the server's studies API).")
-    ssub = p.add_subparsers(dest="study_command", metavar="create|wait|show", required=True)
+    ssub = p.add_subparsers(dest="study_command", metavar="create|wait|show|cancel",
+                            required=True)
 
     c = ssub.add_parser("create", parents=[common], help="create a study")
     c.add_argument("file", nargs="?", help="a study JSON sent as is (else build one from --base)")
@@ -45,6 +46,11 @@ def add_parsers(sub, common):
     s = ssub.add_parser("show", parents=[common], help="summarise a study")
     s.add_argument("id")
     s.set_defaults(func=cmd_show)
+
+    x = ssub.add_parser("cancel", parents=[common],
+                        help="cancel a study: no further runs, its queued/running runs cancelled")
+    x.add_argument("id")
+    x.set_defaults(func=cmd_cancel)
 
 
 def build_body(args):
@@ -95,4 +101,22 @@ def cmd_wait(args, ctx):
 
 def cmd_show(args, ctx):
     show(studies.get(ctx.api(), args.id), args)
+    return 0
+
+
+def cmd_cancel(args, ctx):
+    try:
+        study = ctx.api().cancel_study(args.id)
+    except ServerError as e:
+        if e.status == 409:
+            raise ServerError(f"study {args.id} is not running; nothing to cancel",
+                              status=e.status, problem=e.problem) from e
+        raise
+    if args.json:
+        print_json(study)
+    else:
+        cancelled = study.get("cancelled_jobs", [])
+        stopping = study.get("cancel_requested_jobs", [])
+        print(f"{study['id']} {study['status']}: {len(cancelled)} queued run(s) cancelled, "
+              f"{len(stopping)} running run(s) stopping")
     return 0

@@ -88,10 +88,7 @@ def run_status(run):
 
 
 def is_final(study):
-    if study.get("status") in FINAL_STUDY:
-        return True
-    runs = runs_of(study)
-    return False
+    return study.get("status") in FINAL_STUDY
 
 
 def wait(api, study_id, timeout=None, log=None, sleep=time.sleep):

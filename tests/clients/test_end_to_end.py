@@ -191,6 +191,24 @@ class EndToEnd(unittest.TestCase):
         finest = [c for c in study["convergence_map"]["cells"] if c["n_d"] == 10]
         self.assertTrue(all(c["status"] == "unknown" for c in finest), finest)
 
+    def test_study_cancel(self):
+        long_base = os.path.join(self.tmp, "long_base.json")
+        with open(long_base, "w") as f:
+            json.dump({k: v for k, v in LONG.items() if k != "geometry"}, f)
+        r = self.client("study", "create", "--base", long_base, "--L", "5e-5,1e-5",
+                        "--n-d", "30", "--name", "e2e cancel")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        study_id = r.stdout.strip()
+        r = self.client("study", "cancel", study_id)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout, rf"^{study_id} cancelled: \d queued run\(s\) cancelled, "
+                                   r"\d running run\(s\) stopping$")
+        r = self.client("study", "cancel", study_id)  # not running any more: 409
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("not running", r.stderr)
+        r = self.client("study", "show", study_id, "--json")
+        self.assertEqual(json.loads(r.stdout)["status"], "cancelled")
+
     # -- figures ------------------------------------------------------------------------
 
     def assertFigures(self, stdout, count):

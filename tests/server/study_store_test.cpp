@@ -1,4 +1,4 @@
-// The studies schema (migration 2 -> 3) and StudyStore.
+// The studies schema (migrations 2 -> 3 -> 4) and StudyStore.
 #include "api/job_spec.hpp"
 #include "api/study_analysis.hpp"
 #include "server/job_id.hpp"
@@ -62,7 +62,7 @@ TEST(StudySchema, MigrationFillsTheSceneHashOfExistingJobs) {
     }
   }
   JobStore store(path);
-  EXPECT_EQ(store.user_version(), 3);
+  EXPECT_EQ(store.user_version(), JobStore::schema_version);
   auto ja = store.get(std::string(31, '0') + "0"), jb = store.get(std::string(31, '0') + "1"),
        jc = store.get(std::string(31, '0') + "2");
   ASSERT_TRUE(ja && jb && jc);
@@ -78,6 +78,50 @@ TEST(StudySchema, MigrationFillsTheSceneHashOfExistingJobs) {
                        "'jobs_scene_hash')");
   ASSERT_TRUE(s.step());
   EXPECT_EQ(s.integer(0), 3);
+}
+
+TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
+  TempDir dir("slipfront-study-");
+  const auto path = dir.file("db.sqlite");
+  const std::string study_id(32, 'a'), job_id(32, 'b');
+  {
+    Database raw(path); // a database written by a build at schema version 3
+    raw.exec("PRAGMA foreign_keys = ON");
+    for (int v = 0; v < 3; ++v)
+      raw.exec(schema_migrations()[static_cast<std::size_t>(v)]);
+    raw.set_user_version(3);
+    raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at, study_id) VALUES ('" +
+             job_id + "', 'running', '{}', 'h', '2024', '" + study_id + "')");
+    raw.exec("INSERT INTO studies (id, kind, base_spec, request, scene_hash, created_at, "
+             "runs_total, result) VALUES ('" +
+             study_id + "', 'grid', '{}', '{}', 's', '2024', 1, '{\"x\": 1}')");
+    raw.exec("INSERT INTO study_runs (study_id, job_id, L, n_d) VALUES ('" + study_id + "', '" +
+             job_id + "', 1e-5, 10)");
+    EXPECT_THROW(raw.exec("UPDATE studies SET status = 'cancelled'"), std::exception);
+  }
+  JobStore jobs(path);
+  EXPECT_EQ(jobs.user_version(), 4);
+  StudyStore studies(jobs);
+  auto study = studies.get(study_id);
+  ASSERT_TRUE(study);
+  EXPECT_EQ(study->status, "running");
+  EXPECT_EQ(study->result["x"], 1);
+  ASSERT_EQ(studies.runs(study_id).size(), 1u); // the rebuild did not cascade to study_runs
+  EXPECT_EQ(studies.study_of_job(job_id), study_id);
+
+  studies.set_status(study_id, "cancelled", "2025");
+  EXPECT_EQ(studies.get(study_id)->status, "cancelled");
+  EXPECT_EQ(studies.get(study_id)->updated_at, "2025");
+  EXPECT_TRUE(studies.running_ids().empty());
+  EXPECT_EQ(studies.list(10, std::nullopt, "cancelled").size(), 1u);
+  // Its run is not final: the next start-up must settle it.
+  EXPECT_EQ(studies.unsettled_cancelled_ids(), std::vector<std::string>{study_id});
+  // Foreign keys hold again after the migration.
+  EXPECT_THROW(jobs.with_db([&](Database& db) {
+    db.exec("INSERT INTO study_runs (study_id, job_id, L, n_d) VALUES ('" + std::string(32, 'c') +
+            "', '" + job_id + "', 1e-5, 20)");
+  }),
+               std::exception);
 }
 
 TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {

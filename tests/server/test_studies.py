@@ -1,7 +1,7 @@
 """Studies over real HTTP on loopback (docs/studies-api.md): grid and convergence studies of
 tiny jobs run by the real solver, the stored convergence statuses, map and L_c, cache reuse
 across studies, the supervisor resuming after a crash, the shared convergence map of two
-users, error paths, and the failure_regimes preset's detections.
+users, error paths, the failure_regimes preset's detections, and cancelling a study.
 
     /usr/bin/python3 tests/server/test_studies.py --binary build/slipfront
 """
@@ -290,6 +290,81 @@ class SharedMapAndRestart(unittest.TestCase):
             self.assertTrue(all(r["job_status"] == "succeeded" for r in study["runs"]))
             self.assertIn("submitted n_d = 20", server.read_log())
             server.post(f"/api/v1/jobs/{blocker['id']}/cancel", headers=alice)
+        finally:
+            server.terminate()
+            server.own_dir = True
+            server.cleanup()
+
+
+class Cancel(unittest.TestCase):
+    """POST /studies/{id}/cancel: the queued run cancelled, the running one stopped, no
+    further mesh submitted, and the status kept across a restart; 401/403/404/409."""
+
+    def test_cancel_stops_a_convergence_study_for_good(self):
+        data_dir = tempfile.mkdtemp(prefix="slipfront-cancel-")
+        tokens = os.path.join(data_dir, "tokens")
+        with open(tokens, "w") as f:
+            f.write("alice:alice-token-123\nbob:bob-token-4567\n")
+        os.chmod(tokens, 0o600)
+        args = ["--workers", "1", "--token-file", tokens]
+        alice = {"Authorization": "Bearer alice-token-123"}
+        bob = {"Authorization": "Bearer bob-token-4567"}
+        server = Server(BINARY, data_dir=data_dir, args=args).start()
+        try:
+            # One worker: n_d = 30 runs (about 10 s), n_d = 60 waits; n_d = 120 would follow.
+            body = {"name": "to cancel", "base": {"time": {"duration": 16.0, "stop_on_arrest": False}},
+                    "convergence": {"L": [5e-5], "n_d": [30, 60, 120], "n_d_max": 120}}
+            created = post_study(server, body, alice).json()
+            runs = {r["n_d"]: r["job_id"] for r in created["runs"]}
+            self.assertEqual(sorted(runs), [30, 60])
+            server.wait_status(runs[30], {"running"})
+            url = f"{STUDIES}/{created['id']}/cancel"
+
+            self.assertEqual(server.post(url).status_code, 401)
+            self.assertEqual(server.post(url, headers=bob).status_code, 403)
+            self.assertEqual(server.post(f"{STUDIES}/{'0' * 32}/cancel", headers=alice).status_code,
+                             404)
+            r = server.post(url, headers=alice)
+            self.assertEqual(r.status_code, 202, r.text)  # the running run is still stopping
+            answer = r.json()
+            self.assertEqual(answer["status"], "cancelled")
+            self.assertEqual(answer["cancelled_jobs"], [runs[60]])
+            self.assertEqual(answer["cancel_requested_jobs"], [runs[30]])
+            for job_id in runs.values():
+                self.assertEqual(server.wait_status(job_id, {"cancelled"}, timeout=60.0)["status"],
+                                 "cancelled")
+            again = server.post(url, headers=alice)
+            self.assertEqual(again.status_code, 409, again.text)
+            self.assertIn("already cancelled", again.json()["detail"])
+
+            def settled():  # the supervisor stores the progress after the worker's status
+                deadline = time.monotonic() + 30
+                while time.monotonic() < deadline:
+                    study = server.get(f"{STUDIES}/{created['id']}").json()
+                    if study["progress"]["done"] == 2:
+                        return study
+                    time.sleep(0.05)
+                raise AssertionError(f"progress not stored: {study}")
+
+            def check(study):
+                self.assertEqual(study["status"], "cancelled")
+                self.assertEqual(study["refinement"]["5e-05"]["state"], "cancelled")
+                self.assertEqual(sorted(r["n_d"] for r in study["runs"]), [30, 60])
+                self.assertEqual(study["progress"]["done"], 2)
+                self.assertTrue(study["finished_at"])
+
+            check(settled())
+            listed = server.get(STUDIES, params={"status": "cancelled"}).json()["studies"]
+            self.assertEqual([s["id"] for s in listed], [created["id"]])
+            self.assertEqual(server.get(STUDIES, params={"status": "running"}).json()["count"], 0)
+
+            # A restart neither resumes nor refines it.
+            self.assertEqual(server.terminate(), 0)
+            server.cleanup()
+            server = Server(BINARY, data_dir=data_dir, args=args).start()
+            check(settled())
+            self.assertNotIn("submitted n_d = 120", server.read_log())
+            self.assertEqual(server.get("/api/v1/jobs", params={"status": "queued"}).json()["count"], 0)
         finally:
             server.terminate()
             server.own_dir = True
