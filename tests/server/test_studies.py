@@ -228,31 +228,38 @@ class Studies(unittest.TestCase):
         self.assertEqual(study["convergence_map"], regimes["regularised"]["convergence_map"])
 
 
+ALICE = {"Authorization": "Bearer alice-token-123"}
+BOB = {"Authorization": "Bearer bob-token-4567"}
+
+
+def token_server_args(data_dir):
+    """One worker and a token file of two users, alice and bob (headers ALICE, BOB)."""
+    tokens = os.path.join(data_dir, "tokens")
+    with open(tokens, "w") as f:
+        f.write("alice:alice-token-123\nbob:bob-token-4567\n")
+    os.chmod(tokens, 0o600)
+    return ["--workers", "1", "--token-file", tokens]
+
+
 class SharedMapAndRestart(unittest.TestCase):
     """Two users on a token server; then a crash mid-study and a restart."""
 
     def test_shared_map_and_supervisor_resumes_after_restart(self):
         data_dir = tempfile.mkdtemp(prefix="slipfront-studies-")
-        tokens = os.path.join(data_dir, "tokens")
-        with open(tokens, "w") as f:
-            f.write("alice:alice-token-123\nbob:bob-token-4567\n")
-        os.chmod(tokens, 0o600)
-        args = ["--workers", "1", "--token-file", tokens]
-        alice = {"Authorization": "Bearer alice-token-123"}
-        bob = {"Authorization": "Bearer bob-token-4567"}
+        args = token_server_args(data_dir)
         server = Server(BINARY, data_dir=data_dir, args=args).start()
         try:
             self.assertEqual(post_study(server, {"grid": {"L": [1e-4], "n_d": [5]}}).status_code,
                              401)
             b = base(v_star=3e-4)
             sa = post_study(server, {"name": "a", "base": b, "grid": {"L": [1e-4], "n_d": [5]}},
-                            alice).json()
+                            ALICE).json()
             sb = post_study(server, {"name": "b", "base": b, "grid": {"L": [1e-4], "n_d": [10]}},
-                            bob).json()
+                            BOB).json()
             # A plain job of the same scene counts too.
             job = dict(json.loads(json.dumps(b)), geometry=dict(b["geometry"], nodes_per_meter=8),
                        friction={"v_star": 3e-4, "L": 1e-4})
-            jr = server.submit(job, headers=alice)
+            jr = server.submit(job, headers=ALICE)
             self.assertEqual(jr.status_code, 201, jr.text)
             for s in (sa, sb):
                 wait_finished(server, s["id"])
@@ -272,12 +279,12 @@ class SharedMapAndRestart(unittest.TestCase):
 
             # A convergence study behind a long job on the single worker, then a crash
             # (SIGKILL) while none of its runs has finished.
-            blocker = server.submit(long_job(), headers=alice).json()
+            blocker = server.submit(long_job(), headers=ALICE).json()
             server.wait_status(blocker["id"], {"running"})
             created = post_study(server, {"name": "restart", "base": base(v_star=4e-4),
                                           "priority": 10,
                                           "convergence": {"L": [5e-5], "n_d": [5, 10, 20],
-                                                          "n_d_max": 20}}, alice).json()
+                                                          "n_d_max": 20}}, ALICE).json()
             self.assertEqual(len(created["runs"]), 2)
             now = server.get(f"{STUDIES}/{created['id']}").json()
             self.assertEqual(now["progress"]["done"], 0)
@@ -289,7 +296,7 @@ class SharedMapAndRestart(unittest.TestCase):
             self.assertEqual(sorted(r["n_d"] for r in study["runs"]), [5, 10, 20])
             self.assertTrue(all(r["job_status"] == "succeeded" for r in study["runs"]))
             self.assertIn("submitted n_d = 20", server.read_log())
-            server.post(f"/api/v1/jobs/{blocker['id']}/cancel", headers=alice)
+            server.post(f"/api/v1/jobs/{blocker['id']}/cancel", headers=ALICE)
         finally:
             server.terminate()
             server.own_dir = True
@@ -302,29 +309,23 @@ class Cancel(unittest.TestCase):
 
     def test_cancel_stops_a_convergence_study_for_good(self):
         data_dir = tempfile.mkdtemp(prefix="slipfront-cancel-")
-        tokens = os.path.join(data_dir, "tokens")
-        with open(tokens, "w") as f:
-            f.write("alice:alice-token-123\nbob:bob-token-4567\n")
-        os.chmod(tokens, 0o600)
-        args = ["--workers", "1", "--token-file", tokens]
-        alice = {"Authorization": "Bearer alice-token-123"}
-        bob = {"Authorization": "Bearer bob-token-4567"}
+        args = token_server_args(data_dir)
         server = Server(BINARY, data_dir=data_dir, args=args).start()
         try:
             # One worker: n_d = 30 runs (about 10 s), n_d = 60 waits; n_d = 120 would follow.
             body = {"name": "to cancel", "base": {"time": {"duration": 16.0, "stop_on_arrest": False}},
                     "convergence": {"L": [5e-5], "n_d": [30, 60, 120], "n_d_max": 120}}
-            created = post_study(server, body, alice).json()
+            created = post_study(server, body, ALICE).json()
             runs = {r["n_d"]: r["job_id"] for r in created["runs"]}
             self.assertEqual(sorted(runs), [30, 60])
             server.wait_status(runs[30], {"running"})
             url = f"{STUDIES}/{created['id']}/cancel"
 
             self.assertEqual(server.post(url).status_code, 401)
-            self.assertEqual(server.post(url, headers=bob).status_code, 403)
-            self.assertEqual(server.post(f"{STUDIES}/{'0' * 32}/cancel", headers=alice).status_code,
+            self.assertEqual(server.post(url, headers=BOB).status_code, 403)
+            self.assertEqual(server.post(f"{STUDIES}/{'0' * 32}/cancel", headers=ALICE).status_code,
                              404)
-            r = server.post(url, headers=alice)
+            r = server.post(url, headers=ALICE)
             self.assertEqual(r.status_code, 202, r.text)  # the running run is still stopping
             answer = r.json()
             self.assertEqual(answer["status"], "cancelled")
@@ -333,7 +334,7 @@ class Cancel(unittest.TestCase):
             for job_id in runs.values():
                 self.assertEqual(server.wait_status(job_id, {"cancelled"}, timeout=60.0)["status"],
                                  "cancelled")
-            again = server.post(url, headers=alice)
+            again = server.post(url, headers=ALICE)
             self.assertEqual(again.status_code, 409, again.text)
             self.assertIn("already cancelled", again.json()["detail"])
 
