@@ -52,7 +52,8 @@ void read_friction(ObjectReader& in, Friction& friction) {
   in.number("L", friction.L, positive());
   in.number("v_star", friction.v_star, positive());
   in.choice("strength_update", friction.update,
-            {{"exponential", StrengthUpdate::exponential},
+            {{"exponential_ramp", StrengthUpdate::exponential_ramp},
+             {"exponential", StrengthUpdate::exponential},
              {"explicit_euler", StrengthUpdate::explicit_euler}});
 }
 

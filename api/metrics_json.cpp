@@ -26,9 +26,8 @@ const char* top_name(TopBoundary top) {
 std::string method_description(const SimulationParams& params) {
   std::string method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
   if (params.friction.law == FrictionLaw::coulomb) return method + "; friction: coulomb";
-  const char* update =
-      params.friction.update == StrengthUpdate::exponential ? "exponential" : "explicit_euler";
-  return method + "; friction: prakash_clifton, " + update + " strength update";
+  return method + "; friction: prakash_clifton, " + to_string(params.friction.update) +
+         " strength update";
 }
 
 nlohmann::json metrics_json(const RunResult& result) {

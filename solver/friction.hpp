@@ -7,13 +7,17 @@
 
 namespace slipfront {
 
-// Advance tau_s over one step dt with the pressure p and slip speed |V| frozen over the
-// step. The exponential update is the exact solution for frozen coefficients:
-//   tau_s(t+dt) = mu p + (tau_s(t) - mu p) exp(-dt (|V| + V*) / L),
-// a contraction for every L (stable). Explicit Euler, offered for failure studies, is
-//   tau_s(t+dt) = tau_s(t) - dt (|V| + V*) / L (tau_s(t) - mu p),
-// unstable once dt (|V| + V*) / L > 2.
-double advance_strength(const Friction& friction, double strength, double pressure,
-                        double slip_speed, double dt);
+// Advances tau_s over one step dt. The slip speed |V| is that of the step (the leapfrog
+// velocity over it); the pressure goes from p_start to p_end. With k = (|V| + V*) / L,
+// c = mu max(0, p) and x = k dt:
+//   exponential_ramp (default): exact when c varies linearly from c_start to c_end,
+//     tau_end = c_end + (tau - c_start) exp(-x) - (c_end - c_start) (1 - exp(-x)) / x;
+//     second order in dt, and a convex combination of tau, c_start and c_end (stable).
+//   exponential (the scheme of SPEC §1): exact when c stays at c_end over the step,
+//     tau_end = c_end + (tau - c_end) exp(-x); first order in dt (the target leads by
+//     dt/2), a contraction for every x.
+//   explicit_euler (failure studies): tau_end = tau - x (tau - c_end); unstable once x > 2.
+double advance_strength(const Friction& friction, double strength, double pressure_start,
+                        double pressure_end, double slip_speed, double dt);
 
 } // namespace slipfront

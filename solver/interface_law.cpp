@@ -7,7 +7,8 @@
 namespace slipfront {
 
 InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2, double v1,
-                                         double v2, double f1, double f2, double strength) {
+                                         double v2, double f1, double f2, double strength,
+                                         double previous_pressure) {
   InterfaceNodeStep out;
   // 1. Trial (free) velocity and next normal displacement.
   const double v1_trial = v1 + c.dt * f1 / c.mass;
@@ -20,8 +21,11 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double
   out.contact_force2 = in_contact ? reaction : 0.0;
   out.pressure = out.contact_force2 / c.tributary_length;
 
-  // 3. Strength over the step: this step's pressure, last known slip speed.
-  out.strength = advance_strength(c.friction, strength, out.pressure, std::abs(v1), c.dt);
+  // 3. Strength over the step from the last one to this one: the pressure goes from the
+  //    last step's to this step's, the slip speed is the last half step's (the velocity
+  //    over that interval in the leapfrog scheme).
+  out.strength =
+      advance_strength(c.friction, strength, previous_pressure, out.pressure, std::abs(v1), c.dt);
 
   // 4. Tangential: stick if the plane can hold the node, else slip at strength.
   // The constrained velocities are set exactly (not through the force, whose round-off

@@ -33,7 +33,9 @@ struct InterfaceNodeStep {
 
 // u2: normal displacement now (>= 0); v1, v2: velocity of the previous half step;
 // f1, f2: every force on the node except the contact force of the plane.
+// `strength` and `previous_pressure` are the node's tau_s and p of the last step.
 InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2, double v1,
-                                         double v2, double f1, double f2, double strength);
+                                         double v2, double f1, double f2, double strength,
+                                         double previous_pressure);
 
 } // namespace slipfront

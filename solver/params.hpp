@@ -52,18 +52,21 @@ enum class FrictionLaw {
   coulomb,         // tau_s = mu * max(0, p) at every instant
 };
 
-// How the strength ODE d(tau_s)/dt = -(|V|+V*)/L (tau_s - mu p) is advanced over a step.
+// How the strength ODE d(tau_s)/dt = -(|V|+V*)/L (tau_s - mu p) is advanced over a step
+// (solver/friction.hpp has the formulas, docs/physics.md the accuracy of each).
 enum class StrengthUpdate {
-  exponential,    // exact for coefficients frozen over the step: stable for every L
-  explicit_euler, // forward Euler: unstable once dt (|V|+V*)/L > 2 (offered for failure studies)
+  exponential_ramp, // exact for |V| frozen and p linear over the step: second order, stable
+  exponential,      // exact for |V| and p frozen (p of the step's end): first order, stable
+  explicit_euler,   // forward Euler: unstable once dt (|V|+V*)/L > 2 (for failure studies)
 };
+const char* to_string(StrengthUpdate update);
 
 struct Friction {
   FrictionLaw law = FrictionLaw::prakash_clifton;
   double mu = 0.75;     // static = kinetic coefficient
   double L = 5e-5;      // characteristic length [m]
   double v_star = 1e-4; // reference velocity V* [m/s]
-  StrengthUpdate update = StrengthUpdate::exponential;
+  StrengthUpdate update = StrengthUpdate::exponential_ramp;
 };
 
 // Nucleation ellipse in the x1-t plane (paper appendix A, after Cochard & Rice 2000).

@@ -167,8 +167,8 @@ void RuptureModel::interface_row(bool compute_energy) {
     const double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
     const double f2 = -ky0_[i] + load2_[i] - c0_2;
     const double v1_old = vx[i], v2_old = vy[i];
-    const InterfaceNodeStep r =
-        resolve_interface_node(node_, uy[i], v1_old, v2_old, f1, f2, iface_.strength[i]);
+    const InterfaceNodeStep r = resolve_interface_node(node_, uy[i], v1_old, v2_old, f1, f2,
+                                                       iface_.strength[i], iface_.pressure[i]);
     const double v1_new = r.v1, v2_new = r.v2;
     vx[i] = v1_new;
     vy[i] = v2_new;

@@ -28,7 +28,7 @@ TEST(JobCanonical, EveryFieldIsFilledWithItsDefault) {
   const json canonical = parsed(json::object()).canonical;
   const json expected = json::parse(R"({
     "friction": {"L": 5e-05, "law": "prakash_clifton", "mu": 0.75,
-                 "strength_update": "exponential", "v_star": 0.0001},
+                 "strength_update": "exponential_ramp", "v_star": 0.0001},
     "geometry": {"height": 20.0, "nodes_per_meter": 40.0, "top_boundary": "traction",
                  "width": 40.0, "x_min": -10.0},
     "loading": {"normal_stress": -0.015, "shear_stress": 0.0105},

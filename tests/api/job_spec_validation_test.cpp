@@ -158,7 +158,7 @@ TEST(JobValidation, EnumerationsListTheirSpellings) {
   expect_single_error({{"friction", {{"law", "rate_and_state"}}}}, "/friction/law",
                       R"(must be one of "prakash_clifton", "coulomb", got "rate_and_state")");
   expect_single_error({{"friction", {{"strength_update", "rk4"}}}}, "/friction/strength_update",
-                      R"("exponential", "explicit_euler")");
+                      R"("exponential_ramp", "exponential", "explicit_euler")");
   expect_single_error({{"geometry", {{"top_boundary", "free"}}}}, "/geometry/top_boundary",
                       R"("traction", "absorbing")");
 }

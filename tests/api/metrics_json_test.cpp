@@ -104,6 +104,10 @@ TEST(MetricsJson, MethodNamesDiscretisationBoundaryAndFriction) {
   slipfront::SimulationParams params;
   EXPECT_EQ(method_description(params),
             "Q4 2x2 Gauss, lumped mass, central differences; top boundary: traction; "
+            "friction: prakash_clifton, exponential_ramp strength update");
+  params.friction.update = slipfront::StrengthUpdate::exponential;
+  EXPECT_EQ(method_description(params),
+            "Q4 2x2 Gauss, lumped mass, central differences; top boundary: traction; "
             "friction: prakash_clifton, exponential strength update");
   params.top = slipfront::TopBoundary::absorbing;
   params.friction.law = slipfront::FrictionLaw::coulomb;

@@ -5,13 +5,14 @@
 //   y = x0 + A sin(omega t + phi),  A/A0 = 1/sqrt(1 + (omega/C)^2),  phi = atan(omega/C) < 0
 // (paper eq. B.6 with C < 0: the output lags).
 //
-// The solver advances tau_s^n = advance(tau_s^{n-1}, p^n) with the pressure of the step
-// (the end of the interval) frozen over the step. For that recursion
+// The "exponential" update (SPEC §1's scheme) advances tau_s^n = advance(tau_s^{n-1}, p^n)
+// with the pressure of the step's end frozen over the step. For that recursion
 // y_n = a y_{n-1} + (1 - a) x_n, a = exp(-r dt), r = -C, the exact discrete transfer
 // function is H = (1 - a) / (1 - a exp(-i omega dt)) = H_continuum (1 + i omega dt / 2 + ...):
-// a phase LEAD of omega dt / 2 (first order, the documented choice of "this step's p") and
-// an amplitude error of second order. The test checks the measured response against H
-// to round-off and against the paper's formula within these discretisation errors.
+// a phase LEAD of omega dt / 2 (first order) and an amplitude error of second order. The
+// test checks the measured response against H to round-off and against the paper's formula
+// within these discretisation errors. The default "exponential_ramp" update takes the
+// pressure linear over the step: exact for a linear input, second order for this one.
 #include "verification_support.hpp"
 
 #include "solver/friction.hpp"
@@ -46,10 +47,12 @@ Response drive(const Friction& f, double V, double frequency, double dt) {
   double y = x0;                                         // tau_s(0) = mu p0
   Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
   Eigen::Vector3d Aty = Eigen::Vector3d::Zero();
+  double pressure = x0 / f.mu;
   for (long n = 1; n <= n_settle + n_fit; ++n) {
     const double t = n * dt;
-    const double pressure = (x0 + A0 * std::sin(omega * t)) / f.mu;
-    y = advance_strength(f, y, pressure, std::abs(V), dt);
+    const double previous = pressure;
+    pressure = (x0 + A0 * std::sin(omega * t)) / f.mu;
+    y = advance_strength(f, y, previous, pressure, std::abs(V), dt);
     if (n > n_settle) {
       const Eigen::Vector3d row(1.0, std::sin(omega * t), std::cos(omega * t));
       AtA += row * row.transpose();
@@ -67,6 +70,7 @@ TEST(FrictionFilter, SinusoidalCoulombInputGivesThePapersAmplitudeAndPhase) {
     for (double q : {0.2, 1.0, 5.0}) { // q = omega L / (V* + |V|) = omega / |C|
       Friction f;
       f.L = L;
+      f.update = StrengthUpdate::exponential;
       const double r = (V + f.v_star) / L;
       const double frequency = q * r / (2 * kPi);
       const double dt = std::min(1.0 / frequency, 1.0 / r) / 2000.0;
@@ -102,9 +106,10 @@ TEST(FrictionFilter, SinusoidalCoulombInputGivesThePapersAmplitudeAndPhase) {
           worst_scheme, worst_amp, worst_phase);
 }
 
-TEST(FrictionFilter, PhaseErrorIsFirstOrderInDt) {
+TEST(FrictionFilter, PhaseErrorIsFirstOrderInDtWithTheEndOfStepPressure) {
   Friction f;
   f.L = 1e-4;
+  f.update = StrengthUpdate::exponential;
   const double V = 1e-3, r = (V + f.v_star) / f.L, frequency = r / (2 * kPi);
   double previous = 0;
   for (int N : {200, 400, 800}) {
@@ -127,8 +132,8 @@ double deviation_after(StrengthUpdate update, double dt_rate, int steps) {
   const double p = 0.015, x = f.mu * p;
   double y = x + 1.0, worst = 0;
   for (int n = 0; n < steps; ++n) {
-    const double y_new = advance_strength(f, y, p, V, dt);
-    if (update == StrengthUpdate::exponential) {
+    const double y_new = advance_strength(f, y, p, p, V, dt);
+    if (update != StrengthUpdate::explicit_euler) {
       // A contraction towards x without overshoot: same side, closer.
       EXPECT_GE((y_new - x) * (y - x), 0.0);
       EXPECT_LE(std::abs(y_new - x), std::abs(y - x));
@@ -140,13 +145,14 @@ double deviation_after(StrengthUpdate update, double dt_rate, int steps) {
   return std::max(worst, std::abs(y - x));
 }
 
-TEST(FrictionFilter, ExponentialUpdateIsStableForEveryStepExplicitEulerOnlyBelowTwo) {
-  for (double k : {0.5, 1.9, 2.1, 10.0, 100.0, 1e4}) {
-    const double d = deviation_after(StrengthUpdate::exponential, k, 500);
-    EXPECT_LE(d, 1.0) << "exponential, dt|C| = " << k;
-    measure("strength update exponential dt|C| = %g: max |y - x| over 500 steps = %.3e (start 1)",
-            k, d);
-  }
+TEST(FrictionFilter, ExponentialUpdatesAreStableForEveryStepExplicitEulerOnlyBelowTwo) {
+  for (StrengthUpdate u : {StrengthUpdate::exponential, StrengthUpdate::exponential_ramp})
+    for (double k : {0.5, 1.9, 2.1, 10.0, 100.0, 1e4}) {
+      const double d = deviation_after(u, k, 500);
+      EXPECT_LE(d, 1.0) << to_string(u) << ", dt|C| = " << k;
+      measure("strength update %s dt|C| = %g: max |y - x| over 500 steps = %.3e (start 1)",
+              to_string(u), k, d);
+    }
   for (double k : {0.5, 1.0, 1.5, 1.9}) {
     const double d = deviation_after(StrengthUpdate::explicit_euler, k, 500);
     EXPECT_LE(d, 1.0) << "explicit Euler, dt|C| = " << k;
@@ -164,13 +170,53 @@ TEST(FrictionFilter, ExponentialUpdateIsStableForEveryStepExplicitEulerOnlyBelow
 TEST(FrictionFilter, CoulombLawIsMuTimesCompressivePressure) {
   Friction f;
   f.law = FrictionLaw::coulomb;
-  EXPECT_EQ(advance_strength(f, 123.0, 0.02, 1.0, 0.1), 0.75 * 0.02);
-  EXPECT_EQ(advance_strength(f, 123.0, -0.02, 1.0, 0.1), 0.0);
+  EXPECT_EQ(advance_strength(f, 123.0, 0.01, 0.02, 1.0, 0.1), 0.75 * 0.02);
+  EXPECT_EQ(advance_strength(f, 123.0, 0.01, -0.02, 1.0, 0.1), 0.0);
   f.law = FrictionLaw::prakash_clifton; // tends to mu max(0, p): an open node loses strength
   double y = 0.01;
   for (int n = 0; n < 1000; ++n)
-    y = advance_strength(f, y, -0.02, 1e-3, 0.01);
+    y = advance_strength(f, y, -0.02, -0.02, 1e-3, 0.01);
   EXPECT_LT(std::abs(y), 1e-12);
+}
+
+TEST(FrictionFilter, RampUpdateIsExactForAPressureLinearOverTheStep) {
+  // One step against the closed-form solution of tau' = -k (tau - c(t)), c linear from c0
+  // to c1, written independently: tau(t) = c(t) + s/k ... with s = (c1 - c0)/dt, i.e.
+  // tau(t) = c(t) - s/k + (tau0 - c0 + s/k) exp(-k t).
+  Friction f;
+  for (double x : {1e-6, 1e-3, 0.3, 1.0, 7.0, 300.0}) { // k dt
+    for (double p1 : {0.0, 0.012, 0.03}) {
+      const double p0 = 0.015, tau0 = 0.0105, V = 2e-3, dt = 0.01;
+      f.L = dt * (V + f.v_star) / x;
+      const double k = (V + f.v_star) / f.L, c0 = f.mu * p0, c1 = f.mu * p1, s = (c1 - c0) / dt;
+      const double exact = c1 - s / k + (tau0 - c0 + s / k) * std::exp(-k * dt);
+      const double ramp = advance_strength(f, tau0, p0, p1, V, dt);
+      EXPECT_NEAR(ramp, exact, 1e-13 + 1e-9 * std::abs(s / k)) << "k dt = " << x << " p1 " << p1;
+      // A convex combination of tau0, c0 and c1: never outside their range.
+      EXPECT_GE(ramp, std::min({tau0, c0, c1}) - 1e-18);
+      EXPECT_LE(ramp, std::max({tau0, c0, c1}) + 1e-18);
+    }
+  }
+}
+
+TEST(FrictionFilter, RampUpdateIsSecondOrderInDt) {
+  // Sinusoidal input at omega = |C|: the phase error against the paper's -atan(1) falls by
+  // 4 per halving of dt (the end-of-step pressure: by 2, test above).
+  Friction f;
+  f.L = 1e-4;
+  const double V = 1e-3, r = (V + f.v_star) / f.L, frequency = r / (2 * kPi);
+  double previous = 0;
+  for (int N : {50, 100, 200}) {
+    const double dt = 1.0 / (frequency * N);
+    const Response m = drive(f, V, frequency, dt);
+    const double e = std::hypot(m.phase + std::atan(1.0), m.amplitude_ratio - std::sqrt(0.5));
+    if (previous > 0) {
+      EXPECT_NEAR(previous / e, 4.0, 0.1) << "N = " << N;
+    }
+    measure("ramp update, %d steps per period: response error %.4e%s", N, e,
+            previous > 0 ? "" : " (then falls by 4 with each halving of dt)");
+    previous = e;
+  }
 }
 
 } // namespace

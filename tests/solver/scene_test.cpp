@@ -107,6 +107,42 @@ TEST(PaperScene, CoarseMeshesReproduceTheArrestedSupershearRupture) {
   }
 }
 
+// The strength update's time-step error at small L (docs/small-l-study.md): on a fixed mesh
+// (n_d = 20, L = 5e-6 m) halve dt. With the pressure of the step's end frozen over the step
+// (SPEC §1's "exponential") the arrival at x1 = 11 m moves by about 0.4 % and the propagation
+// distance by 2.5 %; with the pressure linear over the step (the default "exponential_ramp")
+// the change is several times smaller and the distance does not move.
+TEST(PaperScene, RampStrengthUpdateRemovesMostOfTheTimeStepErrorAtSmallL) {
+  struct Change {
+    double arrival, distance;
+  };
+  auto change_on_halving = [](StrengthUpdate update) {
+    Metrics m[2];
+    for (int k = 0; k < 2; ++k) {
+      SimulationParams p = verification::paper_scene(20, 5e-6);
+      p.probes.arrival_x1 = 11.0;
+      p.friction.update = update;
+      p.time.safety_factor = k == 0 ? 0.5 : 0.25;
+      m[k] = run_simulation(p).metrics;
+      EXPECT_EQ(m[k].outcome, Outcome::arrested) << to_string(update);
+    }
+    const Change c{std::abs(m[1].arrival_time_at_probe / m[0].arrival_time_at_probe - 1),
+                   std::abs(m[1].propagation_distance / m[0].propagation_distance - 1)};
+    measure("n_d=20 L=5e-6, %s update, safety factor 0.5 -> 0.25: arrival at 11 m %.5f -> %.5f s "
+            "(%.3f %%), propagation distance %.4g -> %.4g m (%.2f %%)",
+            to_string(update), m[0].arrival_time_at_probe, m[1].arrival_time_at_probe,
+            100 * c.arrival, m[0].propagation_distance, m[1].propagation_distance,
+            100 * c.distance);
+    return c;
+  };
+  const Change end_pressure = change_on_halving(StrengthUpdate::exponential);
+  const Change ramp = change_on_halving(StrengthUpdate::exponential_ramp);
+  EXPECT_LT(ramp.arrival, 0.0015);
+  EXPECT_LT(ramp.distance, 0.005);
+  EXPECT_GT(end_pressure.arrival, 2.0 * ramp.arrival);
+  EXPECT_GT(end_pressure.distance, 0.01);
+}
+
 } // namespace
 } // namespace slipfront
 
