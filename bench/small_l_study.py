@@ -30,21 +30,28 @@ import sys
 import h5py
 import numpy as np
 
-# (friction, n_d, safety factor): the time-step ladder at n_d = 40 and 80, then the finest
-# mesh at the default and at half the default step.
-CASES = [({"L": L}, nd, sf) for L in (5e-6, 1e-5) for nd, sf in
-         ((40, 0.5), (40, 0.25), (40, 0.125), (80, 0.5), (80, 0.25), (160, 0.5))]
-CASES += [({"L": 5e-6}, 160, 0.25)]
+# (friction, n_d, safety factor). SPEC §1's strength update ("exponential", the pressure of
+# the step's end frozen over the step): the time-step ladder at n_d = 40 and 80, the finest
+# mesh at the default and at half the default step. The default update ("exponential_ramp",
+# the pressure linear over the step): the same ladder. Plain Coulomb friction on 3 meshes.
+END, RAMP = {"strength_update": "exponential"}, {"strength_update": "exponential_ramp"}
+CASES = [(dict(update, L=L), nd, sf) for update in (END, RAMP) for L in (5e-6, 1e-5)
+         for nd, sf in ((40, 0.5), (40, 0.25), (40, 0.125), (80, 0.5), (80, 0.25), (160, 0.5))]
+CASES += [(dict(END, L=5e-6), 160, 0.25)]
 CASES += [({"law": "coulomb"}, nd, 0.5) for nd in (40, 80, 160)]
 # --with-320: the next mesh for both L (about 30-40 min each with 2 threads, 2.7 GB).
-CASES_320 = [({"L": 5e-6}, 320, 0.5), ({"L": 1e-5}, 320, 0.5)]
+CASES_320 = [(dict(RAMP, L=5e-6), 320, 0.5), (dict(RAMP, L=1e-5), 320, 0.5)]
 
 SMOOTHING_LENGTH = 0.3  # m: the residual keeps wavelengths below this
 EARLY, LATE = (2.0, 2.5), (3.5, 4.0)  # s: windows of the paper's scene (front at x1 ~ 2-5 m)
 
 
 def case_name(friction, nd, sf):
-    law = "coulomb" if friction.get("law") == "coulomb" else f"L{friction['L']:g}"
+    if friction.get("law") == "coulomb":
+        law = "coulomb"
+    else:
+        update = "ramp" if friction["strength_update"] == "exponential_ramp" else "end"
+        law = f"{update}_L{friction['L']:g}"
     return f"{law}_nd{nd}_sf{sf:g}"
 
 
@@ -111,7 +118,7 @@ def zoom_figure(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    picks = [r for r in rows if r[0].startswith("L5e-06") and r[0].endswith("sf0.5")]
+    picks = [r for r in rows if r[0].startswith("end_L5e-06") and r[0].endswith("sf0.5")]
     fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4), squeeze=False)
     for ax, (name, _, h5, _) in zip(axes[0], picks):
         with h5py.File(h5, "r") as h:
