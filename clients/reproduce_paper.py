@@ -336,9 +336,10 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
             add(f"- {f}")
         add("")
         if not args.quick:
-            add("Why the smallest L do not converge on this solver, and why L = 5e-6 m moves away "
-                "at n_d = 160: [docs/small-l-study.md](small-l-study.md) (time-step ladder, "
-                "plain Coulomb friction and the mesh-scale oscillation, `bench/small_l_study.py`).\n")
+            add("Why the smallest L need finer meshes here, and why L = 5e-6 m moves away at "
+                "n_d = 160: [docs/small-l-study.md](small-l-study.md) (the strength update's "
+                "time-step error, plain Coulomb friction and the mesh-scale oscillation, "
+                "`bench/small_l_study.py`).\n")
 
     # convergence map table
     add("## Convergence map\n")
