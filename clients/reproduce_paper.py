@@ -202,6 +202,15 @@ def chosen_run(study, L):
     return (runs[-1], False) if runs else (None, False)
 
 
+def figure2_run(study):
+    """The run of the paper's Fig. 2 values (SPEC §3 quotes them at n_d = 40): L = 5e-5 m at
+    n_d = 40 when the study has it, else the run drawn for L = 5e-5 m."""
+    for r in runs_by_L(study).get(5e-5, []):
+        if abs(float(r["n_d"]) - 40) < 1e-9 and r.get("job_status") == "succeeded":
+            return r
+    return chosen_run(study, 5e-5)[0]
+
+
 def peak_at(result, x1):
     import numpy as np
     node = int(np.argmin(np.abs(result.x1 - x1)))
@@ -284,7 +293,8 @@ def make_figures(study, speed_acc, chosen, results, fig_dir, formats, log_fn):
     return made
 
 
-def write_report(path, args, study, speed_acc, chosen, results, metrics, figures, timing):
+def write_report(path, args, study, speed_acc, chosen, results, metrics, figures, timing,
+                 fig2=(None, None)):
     rel = os.path.relpath
     out_dir = os.path.dirname(os.path.abspath(path))
     by_L = runs_by_L(study)
@@ -320,10 +330,11 @@ def write_report(path, args, study, speed_acc, chosen, results, metrics, figures
     add("## Our numbers beside the paper's\n")
     add("| quantity | paper (SPEC §3) | ours | run |")
     add("| --- | --- | --- | --- |")
-    for row in comparison_rows(study, chosen, results, metrics):
+    for row in comparison_rows(study, chosen, results, metrics, fig2):
         add("| " + " | ".join(row) + " |")
     add("")
-    add("The drawn run of an L is its coarsest mesh-converged run (the paper's triangle); "
+    add("The Fig. 2 rows (L = 5e-5 m) use the n_d = 40 run, as SPEC §3 quotes them. "
+        "The drawn run of an L is its coarsest mesh-converged run (the paper's triangle); "
         "where an L has no converged run, its finest finished run, marked *(not converged)*. "
         "Rupture speed: the solver's `/front/rupture_speed`; ‘early’ is the median over "
         "x1 ∈ [1, 3] m, ‘late’ the median over the 2 m ending 0.5 m before the arrest; "
@@ -452,7 +463,9 @@ def differences(study, metrics, chosen):
     return out
 
 
-def comparison_rows(study, chosen, results, metrics):
+def comparison_rows(study, chosen, results, metrics, fig2=(None, None)):
+    """SPEC §3 against our runs. `fig2` = (run, result) of figure2_run(); the Fig. 3 rows use
+    the run drawn for each L (the coarsest mesh-converged one, the paper's triangle)."""
     rows = []
 
     def tag(L):
@@ -465,19 +478,22 @@ def comparison_rows(study, chosen, results, metrics):
         r, _ = chosen.get(L, (None, False))
         return metrics.get(r["job_id"]) if r else None
 
-    if 5e-5 in chosen:
-        mm = m(5e-5) or {}
+    run2, res2 = fig2
+    if run2 is not None:
+        mm = metrics.get(run2["job_id"]) or {}
+        conv = (run2.get("convergence") or {}).get("status")
+        tag2 = f"n_d = {float(run2['n_d']):g}" + (" *(not converged)*" if conv == "not_converged"
+                                                  else "")
         rows.append(["L = 5e-5: max slip velocity", "≈ 8 mm/s (early)",
-                     fmt((mm.get("max_slip_velocity") or float("nan")) * 1e3, 3, "mm/s"), tag(5e-5)])
-        res = results.get(5e-5)
-        if res is not None:
-            s = speed_summary(res)
+                     fmt((mm.get("max_slip_velocity") or float("nan")) * 1e3, 3, "mm/s"), tag2])
+        if res2 is not None:
+            s = speed_summary(res2)
             rows.append(["L = 5e-5: super-shear (c_s < V_r < c_p)", "almost everywhere",
                          fmt(100 * s["supershear_fraction"], 3, "% of front past x1 = 1 m")
-                         if "supershear_fraction" in s else "—", tag(5e-5)])
+                         if "supershear_fraction" in s else "—", tag2])
         rows.append(["L = 5e-5: arrest position", "≈ 12.5 m", fmt(mm.get("arrest_position"), 4, "m"),
-                     tag(5e-5)])
-        rows.append(["L = 5e-5: outcome", "arrested", str(mm.get("outcome")), tag(5e-5)])
+                     tag2])
+        rows.append(["L = 5e-5: outcome", "arrested", str(mm.get("outcome")), tag2])
     for L in (1e-4, 5e-5):
         res = results.get(L)
         if res is None:
@@ -656,6 +672,13 @@ def report(args, api, study, speed_acc, wall, server):
             continue  # nothing to draw
         path = results_mod.resolve_source(r["job_id"], lambda: api, cache, log)
         results[L] = results_mod.load_result(path)
+    fig2_run = figure2_run(study)
+    fig2 = (fig2_run, None)
+    if fig2_run is not None:
+        same = chosen.get(5e-5, (None, False))[0]
+        fig2 = (fig2_run, results.get(5e-5) if same and same["job_id"] == fig2_run["job_id"]
+                else results_mod.load_result(
+                    results_mod.resolve_source(fig2_run["job_id"], lambda: api, cache, log)))
     formats = [f.strip() for f in args.format.split(",") if f.strip()]
     figures = make_figures(study, speed_acc, chosen, results, fig_dir, formats, log)
     timing_load = getattr(args, "loadavg", loadavg())
@@ -668,7 +691,7 @@ def report(args, api, study, speed_acc, wall, server):
               "workers": args.workers if server else "(external server)",
               "finished_utc": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"),
               "command": cmd}
-    write_report(out, args, study, speed_acc, chosen, results, metrics, figures, timing)
+    write_report(out, args, study, speed_acc, chosen, results, metrics, figures, timing, fig2)
     log(f"wrote {out}")
     log(f"study wall {wall:.1f} s; sum of run wall times {run_sum:.1f} s; L_c {study.get('L_c')}; "
         f"spectral {study.get('spectral_critical_length')}")

@@ -186,12 +186,13 @@ TEST(PaperScene, StrengthStaysBetweenZeroAndMuMaxPressure) {
   EXPECT_EQ(runs[1].metrics.outcome, Outcome::diverged);
   EXPECT_NE(runs[1].metrics.message.find("frictional strength"), std::string::npos)
       << runs[1].metrics.message;
-  measure("strength range n_d=10 L=5e-5: exponential [%.4g, %.4g] Pa within [0, mu max p = %.4g], "
-          "arrest %.3f m; explicit Euler [%.4g, %.4g] Pa (mu max p = %.4g), outcome %s, arrest "
-          "%.3f m, max |V| %.4g m/s",
-          ranges[0].lo, ranges[0].hi, mu * ranges[0].p_max, runs[0].metrics.arrest_position,
-          ranges[1].lo, ranges[1].hi, mu * ranges[1].p_max, to_string(runs[1].metrics.outcome),
-          runs[1].metrics.arrest_position, runs[1].metrics.max_slip_velocity);
+  measure(
+      "strength range n_d=10 L=5e-5: default update [%.4g, %.4g] Pa within [0, mu max p = %.4g], "
+      "arrest %.3f m; explicit Euler [%.4g, %.4g] Pa (mu max p = %.4g), outcome %s, arrest "
+      "%.3f m, max |V| %.4g m/s",
+      ranges[0].lo, ranges[0].hi, mu * ranges[0].p_max, runs[0].metrics.arrest_position,
+      ranges[1].lo, ranges[1].hi, mu * ranges[1].p_max, to_string(runs[1].metrics.outcome),
+      runs[1].metrics.arrest_position, runs[1].metrics.max_slip_velocity);
 }
 
 } // namespace
