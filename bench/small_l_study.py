@@ -119,6 +119,8 @@ def zoom_figure(rows, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     picks = [r for r in rows if r[0].startswith("end_L5e-06") and r[0].endswith("sf0.5")]
+    if not picks:
+        return
     fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4), squeeze=False)
     for ax, (name, _, h5, _) in zip(axes[0], picks):
         with h5py.File(h5, "r") as h:

@@ -33,9 +33,9 @@ double advance_strength(const Friction& friction, double strength, double pressu
   // e = tau - c obeys e' = -k e - s with s = (c_end - c_start)/dt constant over the step:
   // e(dt) = e(0) exp(-x) - (s/k)(1 - exp(-x)), and s/k = (c_end - c_start)/x.
   const double c_start = friction.mu * std::max(0.0, pressure_start);
-  const double one_minus_decay = -std::expm1(-x); // accurate for small x
-  return c_end + (strength - c_start) * (1.0 - one_minus_decay) -
-         (c_end - c_start) * (one_minus_decay / x);
+  const double one_minus_decay = -std::expm1(-x);                 // accurate for small x
+  const double ramp_weight = x > 0.0 ? one_minus_decay / x : 1.0; // limit x -> 0
+  return c_end + (strength - c_start) * (1.0 - one_minus_decay) - (c_end - c_start) * ramp_weight;
 }
 
 } // namespace slipfront

@@ -3,8 +3,9 @@
 //   1. the trial motion from every force except contact and friction;
 //   2. normal: the reaction that makes the next normal displacement exactly zero; if it is
 //      compressive the node is in contact with p = reaction/dx, otherwise open with p = 0;
-//   3. strength: tau_s advanced over the step with THIS step's p and the LAST known |V|
-//      (the slip velocity of the previous half step), see friction.hpp;
+//   3. strength: tau_s advanced from the last step to this one with the slip speed of that
+//      interval (the previous half step's |V|) and the pressure going from the last step's
+//      p to this step's (default) or frozen at this step's (SPEC §1), see friction.hpp;
 //   4. tangential: the force that makes the next tangential velocity zero; if its size is
 //      at most tau_s dx the node sticks, otherwise it slips with tau_s dx opposing the trial
 //      slip direction. An open node carries no traction.

@@ -256,8 +256,9 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) 
       m.max_slip_velocity = std::max(m.max_slip_velocity, v);
       max_coulomb_strength = std::max(max_coulomb_strength, params.friction.mu * f.pressure[i]);
     }
-    // A stable strength update keeps tau_s between its start and mu p (friction.hpp), so
-    // within [0, the largest mu p seen]; leaving that range means the update is unstable
+    // A stable strength update makes tau_s a convex combination of its start and the mu p
+    // of the step (friction.hpp), so it stays within [0, the largest mu p seen, p0
+    // included]; leaving that range means the update is unstable
     // even if it stays bounded (explicit Euler with dt (|V| + V*) / L > 2).
     for (int i = 0; i < nx && strength_message.empty(); ++i) {
       const double ts = f.strength[i];
