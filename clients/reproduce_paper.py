@@ -475,10 +475,6 @@ def comparison_rows(study, chosen, results, metrics, fig2=(None, None)):
             return "no finished run"
         return f"n_d = {float(r['n_d']):g}" + ("" if conv else " *(not converged)*")
 
-    def m(L):
-        r, _ = chosen.get(L, (None, False))
-        return metrics.get(r["job_id"]) if r else None
-
     run2, res2 = fig2
     if run2 is not None:
         mm = metrics.get(run2["job_id"]) or {}
@@ -611,7 +607,6 @@ def parse_args(argv):
 
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    started = time.time()
     server = None
     tmp = None
     try:

@@ -7,6 +7,8 @@
 
 namespace slipfront {
 
+const char* to_string(StrengthUpdate update); // the job JSON spelling
+
 // Advances tau_s over one step dt. The slip speed |V| is that of the step (the leapfrog
 // velocity over it); the pressure goes from p_start to p_end. With k = (|V| + V*) / L,
 // c = mu max(0, p) and x = k dt:

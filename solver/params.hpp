@@ -59,7 +59,6 @@ enum class StrengthUpdate {
   exponential,      // exact for |V| and p frozen (p of the step's end): first order, stable
   explicit_euler,   // forward Euler: unstable once dt (|V|+V*)/L > 2 (for failure studies)
 };
-const char* to_string(StrengthUpdate update);
 
 struct Friction {
   FrictionLaw law = FrictionLaw::prakash_clifton;

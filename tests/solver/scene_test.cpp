@@ -4,6 +4,8 @@
 // mesh-converged in the slip velocity. Tolerances, and why, are in docs/verification.md.
 #include "scene_support.hpp"
 
+#include "solver/friction.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
