@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake git pkg-config
   libeigen3-dev libboost1.81-all-dev nlohmann-json3-dev libsqlite3-dev sqlite3
-  libhdf5-dev hdf5-tools libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libhdf5-dev hdf5-tools libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-requests
   curl wrk
 )

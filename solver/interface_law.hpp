@@ -17,7 +17,7 @@
 namespace slipfront {
 
 struct InterfaceNodeConstants {
-  double mass = 0; // lumped mass of the node [kg/m]
+  double mass1 = 0, mass2 = 0; // mass seen by the law along x1 and x2 [kg/m]
   double dt = 0;
   double tributary_length = 0; // dx
   Friction friction;
@@ -32,11 +32,11 @@ struct InterfaceNodeStep {
   double v1 = 0, v2 = 0; // velocity of the next half step (exactly 0 when held by the plane)
 };
 
-// u2: normal displacement now (>= 0); v1, v2: velocity of the previous half step;
-// f1, f2: every force on the node except the contact force of the plane.
-// `strength` and `previous_pressure` are the node's tau_s and p of the last step.
-InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2, double v1,
-                                         double v2, double f1, double f2, double strength,
-                                         double previous_pressure);
+// u2: normal displacement now (>= 0); v1_trial, v2_trial: velocities of the next half step
+// without the plane's force; slip_speed: |V| over the last interval (enters the strength
+// update); strength, previous_pressure: the node's tau_s and p of the last step.
+InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2,
+                                         double v1_trial, double v2_trial, double slip_speed,
+                                         double strength, double previous_pressure);
 
 } // namespace slipfront

@@ -105,7 +105,22 @@ struct InterfaceTraction {
 };
 using ExtraInterfaceLoad = std::function<InterfaceTraction(double x1, double t)>;
 
+// The numerical method (SPEC §4 "method"): a result always says which one produced it.
+enum class Method {
+  finite_element, // "fe": Q4 elements of the block, explicit central differences (SPEC §1)
+  spectral_bi,    // "spectral_bi": the elastic half-space by the spectral boundary-integral method
+};
+
+// Options of the spectral boundary-integral method (docs/spectral-bi.md).
+struct SpectralOptions {
+  double time_step_factor = 0.25; // beta: dt = beta dx / c_s
+  double memory_periods = 4.0;    // q: mode k keeps q periods 2 pi / (|k| c_s) of its history
+  int corrector_passes = 1;       // passes of the local solve after the predictor (0 = none)
+};
+
 struct SimulationParams {
+  Method method = Method::finite_element;
+  SpectralOptions spectral;
   Material material;
   Geometry geometry;
   TopBoundary top = TopBoundary::traction;

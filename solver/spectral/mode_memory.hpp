@@ -1,0 +1,61 @@
+// The elastodynamic memory of the half-space, mode by mode (docs/spectral-bi.md).
+//
+// For each Fourier mode k_n = 2 pi n / w of the interface it keeps the velocity history
+// V_hat_j of the last M_n steps (M_n = q mode periods 2 pi / (|k_n| c_s), at most the whole
+// run) and the convolution weights
+//     W_m = int g(|k| c_s t') dt' over t' in [(m - 1/2) dt, (m + 1/2) dt]   (m >= 1),
+//     W_0 = int over [0, dt/2],
+// so that at t_{n+1/2}, with V piecewise constant over the steps,
+//     (g * V)(t_{n+1/2}) = W_0 V^{n+1/2} + sum_{m >= 1} W_m V^{n+1/2-m}.
+// The truncation drops the lags beyond M_n: in the velocity form this keeps the static
+// response exact and loses only the tail int_{t_w}^inf g V of a kernel decaying as T^-3/2.
+#pragma once
+
+#include "solver/spectral/half_space_kernels.hpp"
+
+#include <complex>
+#include <cstddef>
+#include <vector>
+
+namespace slipfront::spectral {
+
+// Sums over the stored history of one mode (the parts of f_hat that are already known).
+struct ModeHistorySums {
+  std::complex<double> w11_v1, w22_v2, w12_v2, w12_v1;
+};
+
+class ModeMemory {
+public:
+  // modes: n = 0 .. N/2; k_n = 2 pi n / width. Weights are scaled by rho c_s (= mu / c_s),
+  // so that mu |k| W_m = rho c_s int g dT.
+  ModeMemory(int modes, double width, double dt, double shear_speed, double impedance_s,
+             double memory_periods, long max_steps, const HalfSpaceKernels& kernels);
+
+  int modes() const { return int(length_.size()); }
+  long length(int n) const { return length_[n]; } // M_n (0 for the uniform mode)
+  std::size_t stored_values() const { return history_.size(); }
+
+  // The weights of the current interval (m = 0), scaled like the others.
+  const KernelValues& current_weights(int n) const { return w0_[n]; }
+
+  // Sums over lags 1 .. min(M_n, pushed) for the modes [first, last).
+  void history_sums(int first, int last, ModeHistorySums* out) const;
+
+  // Store the velocities of the step just finished as lag 1 of the next step.
+  void push(const std::complex<double>* v1, const std::complex<double>* v2);
+
+  // Work of mode n's sum (for splitting the modes between threads).
+  long work(int n) const { return std::min(length_[n], pushed_); }
+
+private:
+  std::vector<long> length_; // M_n
+  std::vector<std::size_t>
+      offset_;                   // start of mode n in history_ (4 doubles a lag) and weights_ (3)
+  std::vector<long> head_;       // position of lag 1 in the ring of mode n
+  std::vector<double> history_;  // V1 re, V1 im, V2 re, V2 im per lag, newest first (ring)
+  std::vector<double> weights_;  // W11, W22, W12 per lag m = 1 .. M_n
+  std::vector<KernelValues> w0_; // m = 0 (g fields only)
+  long pushed_ = 0;
+};
+
+} // namespace slipfront::spectral
