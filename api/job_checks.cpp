@@ -60,12 +60,14 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
     check_whole_elements("/geometry/width", "width", g.width, g.nodes_per_meter,
                          min_elements_along_x1, errors);
   }
-  if (!g.auto_height && !has_error(errors, "/geometry/height")) {
+  const bool has_height = job.params.method == Method::finite_element; // BI: a half-space
+  if (has_height && !g.auto_height && !has_error(errors, "/geometry/height")) {
     check_whole_elements("/geometry/height", "height", g.height, g.nodes_per_meter, 1.0, errors);
   }
   const SimulationParams& p = job.params;
-  if (g.auto_height && !any_error(errors, {"/time/duration", "/material/density",
-                                           "/material/young_modulus", "/material/poisson_ratio"})) {
+  if (has_height && g.auto_height &&
+      !any_error(errors, {"/time/duration", "/material/density", "/material/young_modulus",
+                          "/material/poisson_ratio"})) {
     // "auto" height grows with the duration: h = c_p * duration / 2.
     const double elements = 0.5 * p.material.p_wave_speed() * p.time.duration * g.nodes_per_meter;
     if (elements > max_elements_per_axis) {

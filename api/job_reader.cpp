@@ -31,13 +31,27 @@ void read_height(ObjectReader& in, Geometry& geometry) {
                    geometry.auto_height ? nlohmann::json("auto") : nlohmann::json(geometry.height));
 }
 
+// A field that the chosen method has no use for is an error, not silently ignored.
+void reject_for_method(ObjectReader& in, const std::string& key, const char* why) {
+  if (in.raw(key) != nullptr)
+    in.error(key, std::string("is not used by method \"spectral_bi\": ") + why);
+}
+
 void read_geometry(ObjectReader& in, SimulationParams& params) {
   in.number("width", params.geometry.width, positive());
-  read_height(in, params.geometry);
+  if (params.method == Method::finite_element) {
+    read_height(in, params.geometry);
+  } else {
+    reject_for_method(in, "height", "the half-space has no height; remove the field");
+  }
   in.number("x_min", params.geometry.x_min, any_finite());
   in.number("nodes_per_meter", params.geometry.nodes_per_meter, positive());
-  in.choice("top_boundary", params.top,
-            {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
+  if (params.method == Method::finite_element) {
+    in.choice("top_boundary", params.top,
+              {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
+  } else {
+    reject_for_method(in, "top_boundary", "the half-space has no top; remove the field");
+  }
 }
 
 void read_loading(ObjectReader& in, Loading& loading) {
@@ -65,12 +79,24 @@ void read_nucleation(ObjectReader& in, Nucleation& nucleation) {
   in.number("alpha", nucleation.alpha, closed_interval(0.0, 1.0));
 }
 
-void read_time(ObjectReader& in, TimeControl& time) {
+void read_time(ObjectReader& in, TimeControl& time, Method method) {
   in.number("duration", time.duration, positive());
-  in.number("safety_factor", time.safety_factor,
-            left_open(0.0, 2.0)); // > 1: unstable, for failure studies
+  if (method == Method::finite_element) {
+    in.number("safety_factor", time.safety_factor,
+              left_open(0.0, 2.0)); // > 1: unstable, for failure studies
+  } else {
+    reject_for_method(in, "safety_factor",
+                      "its time step is spectral_bi.time_step_factor * dx / c_s");
+  }
   in.boolean("stop_on_arrest", time.stop_on_arrest);
   in.number("arrest_window", time.arrest_window, positive());
+}
+
+// The options of the spectral boundary-integral method (docs/spectral-bi.md).
+void read_spectral(ObjectReader& in, SpectralOptions& options) {
+  in.number("time_step_factor", options.time_step_factor, left_open(0.0, 1.0));
+  in.number("memory_periods", options.memory_periods, left_open(0.0, 256.0));
+  in.integer("corrector_passes", options.corrector_passes, 0, 4);
 }
 
 void read_output(ObjectReader& in, OutputSampling& output) {
@@ -88,12 +114,20 @@ void read_probes(ObjectReader& in, Probes& probes) {
 
 void read_job_fields(ObjectReader& in, JobSpec& job) {
   SimulationParams& params = job.params;
+  // The method first: it decides which other fields exist.
+  in.choice("method", params.method,
+            {{"fe", Method::finite_element}, {"spectral_bi", Method::spectral_bi}});
+  if (params.method == Method::spectral_bi) {
+    in.object("spectral_bi", [&](ObjectReader& b) { read_spectral(b, params.spectral); });
+  } else if (in.raw("spectral_bi") != nullptr) {
+    in.error("spectral_bi", "is used only with \"method\": \"spectral_bi\" (the method is \"fe\")");
+  }
   in.object("material", [&](ObjectReader& m) { read_material(m, params.material); });
   in.object("geometry", [&](ObjectReader& g) { read_geometry(g, params); });
   in.object("loading", [&](ObjectReader& l) { read_loading(l, params.loading); });
   in.object("friction", [&](ObjectReader& f) { read_friction(f, params.friction); });
   in.object("nucleation", [&](ObjectReader& n) { read_nucleation(n, params.nucleation); });
-  in.object("time", [&](ObjectReader& t) { read_time(t, params.time); });
+  in.object("time", [&](ObjectReader& t) { read_time(t, params.time, params.method); });
   in.object("output", [&](ObjectReader& o) { read_output(o, params.output); });
   in.object("probe", [&](ObjectReader& p) { read_probes(p, params.probes); });
   in.integer("threads", params.threads, 0, max_threads);

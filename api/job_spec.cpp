@@ -47,11 +47,18 @@ std::string canonical_text(const nlohmann::json& canonical) {
   return canonical.dump();
 }
 
-std::string spec_hash(const nlohmann::json& canonical) {
+nlohmann::json physics_canonical(const nlohmann::json& canonical) {
   nlohmann::json physics = canonical;
   for (const char* key : {"name", "tags", "threads", "output"})
     physics.erase(key);
-  return sha256_hex(canonical_text(physics));
+  // "method": "fe" is the method every record had before the field existed: leaving it out
+  // keeps FE hashes (the result cache, the studies' scenes) those of the older records.
+  if (physics.value("method", "fe") == "fe") physics.erase("method");
+  return physics;
+}
+
+std::string spec_hash(const nlohmann::json& canonical) {
+  return sha256_hex(canonical_text(physics_canonical(canonical)));
 }
 
 } // namespace slipfront::api

@@ -49,8 +49,12 @@ ParseResult parse_job_text(const std::string& text, const ValidationLimits& limi
 // The canonical text: canonical JSON dumped with sorted keys and no whitespace.
 std::string canonical_text(const nlohmann::json& canonical);
 
-// SHA-256 (lower-case hex) of the canonical text of the physics: the canonical spec
-// without `name`, `tags`, `threads` and `output` (which do not change the metrics).
+// The canonical spec without what does not change the metrics (`name`, `tags`, `threads`,
+// `output`) and without `"method": "fe"` (the default, left out so that FE hashes are those
+// of the records made before the method field existed).
+nlohmann::json physics_canonical(const nlohmann::json& canonical);
+
+// SHA-256 (lower-case hex) of the canonical text of physics_canonical(canonical).
 std::string spec_hash(const nlohmann::json& canonical);
 
 // SHA-256 of arbitrary bytes / of a file's content (lower-case hex).

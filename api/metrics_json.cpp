@@ -4,6 +4,7 @@
 #include "solver/friction.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace slipfront::api {
 
@@ -24,8 +25,24 @@ const char* top_name(TopBoundary top) {
 
 } // namespace
 
+const char* method_name(Method method) {
+  return method == Method::spectral_bi ? "spectral_bi" : "fe";
+}
+
 std::string method_description(const SimulationParams& params) {
-  std::string method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
+  std::string method;
+  if (params.method == Method::spectral_bi) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "spectral boundary integral, elastic half-space (velocity-form memory "
+                  "truncated after %g mode periods), dt = %g dx / c_s, %d corrector pass%s",
+                  params.spectral.memory_periods, params.spectral.time_step_factor,
+                  params.spectral.corrector_passes,
+                  params.spectral.corrector_passes == 1 ? "" : "es");
+    method = text;
+  } else {
+    method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
+  }
   if (params.friction.law == FrictionLaw::coulomb) return method + "; friction: coulomb";
   return method + "; friction: prakash_clifton, " + to_string(params.friction.update) +
          " strength update";
@@ -61,13 +78,15 @@ nlohmann::json metrics_json(const RunResult& result) {
                {"height", json_number(result.mesh.height)},
                {"threads", result.mesh.threads}};
   j["code_version"] = code_version();
-  j["method"] = discretisation;
+  j["method"] = "fe";
+  j["method_description"] = discretisation;
   return j;
 }
 
 nlohmann::json metrics_json(const RunResult& result, const SimulationParams& params) {
   nlohmann::json j = metrics_json(result);
-  j["method"] = method_description(params);
+  j["method"] = method_name(params.method);
+  j["method_description"] = method_description(params);
   return j;
 }
 

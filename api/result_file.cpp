@@ -198,10 +198,12 @@ void ResultFileWriter::finish(const RunResult& result, const nlohmann::json& can
   hdf5::write_attribute(root, "spec_sha256", spec_hash(canonical_spec));
   hdf5::write_attribute(root, "metrics", metrics.dump());
   hdf5::write_attribute(root, "code_version", code_version());
-  const auto method = metrics.find("method");
-  hdf5::write_attribute(root, "method",
-                        method != metrics.end() && method->is_string() ? method->get<std::string>()
+  for (const char* key : {"method", "method_description"}) {
+    const auto value = metrics.find(key);
+    hdf5::write_attribute(root, key,
+                          value != metrics.end() && value->is_string() ? value->get<std::string>()
                                                                        : std::string());
+  }
   hdf5::write_attribute(root, "created", iso_time_now());
   w.close();
 

@@ -335,9 +335,7 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& v, d
 // Scene of SPEC §2 "Critical length": everything but L and n_d (and what never changes
 // the metrics, as in spec_hash).
 std::string scene_hash(const nlohmann::json& canonical) {
-  json scene = canonical;
-  for (const char* key : {"output", "name", "tags", "threads"})
-    scene.erase(key);
+  json scene = physics_canonical(canonical); // so the method separates scenes
   if (scene.contains("friction") && scene["friction"].is_object()) scene["friction"].erase("L");
   if (scene.contains("geometry") && scene["geometry"].is_object())
     scene["geometry"].erase("nodes_per_meter");

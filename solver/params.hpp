@@ -113,8 +113,8 @@ enum class Method {
 
 // Options of the spectral boundary-integral method (docs/spectral-bi.md).
 struct SpectralOptions {
-  double time_step_factor = 0.25; // beta: dt = beta dx / c_s
-  double memory_periods = 4.0;    // q: mode k keeps q periods 2 pi / (|k| c_s) of its history
+  double time_step_factor = 0.5; // beta: dt = beta dx / c_s
+  double memory_periods = 8.0;   // q: mode k keeps q periods 2 pi / (|k| c_s) of its history
   int corrector_passes = 1;       // passes of the local solve after the predictor (0 = none)
 };
 

@@ -6,6 +6,7 @@
 #include "solver/mesh_size.hpp"
 #include "solver/nucleation.hpp"
 #include "solver/rupture_model.hpp"
+#include "solver/spectral/spectral_model.hpp"
 #include "solver/thread_team.hpp"
 
 #include <algorithm>
@@ -22,6 +23,8 @@ double resolved_height(const SimulationParams& params) {
 }
 
 double estimated_memory_bytes(const SimulationParams& params) {
+  if (params.method == Method::spectral_bi)
+    return spectral::SpectralModel::estimated_memory_bytes(params);
   const MeshSize m = mesh_size(params);
   const double nodes = double(m.nx + 2) * m.ny;
   const double fields = 4.0 * 8.0 * nodes;    // u and v, two components each

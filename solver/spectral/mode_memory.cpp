@@ -30,14 +30,20 @@ inline void accumulate(const double* __restrict w, const double* __restrict h, l
 
 } // namespace
 
+long ModeMemory::memory_length(int n, double width, double dt, double shear_speed,
+                               double memory_periods, long max_steps) {
+  if (n == 0) return 0;
+  const double k = 2.0 * std::numbers::pi * n / width;
+  const double window = memory_periods * 2.0 * std::numbers::pi / (k * shear_speed); // [s]
+  return std::clamp(long(std::ceil(window / dt)), 1L, std::max(1L, max_steps));
+}
+
 ModeMemory::ModeMemory(int modes, double width, double dt, double shear_speed, double impedance_s,
                        double memory_periods, long max_steps, const HalfSpaceKernels& kernels)
     : length_(modes, 0), offset_(modes + 1, 0), head_(modes, 0), w0_(modes) {
   const double two_pi = 2.0 * std::numbers::pi;
   for (int n = 1; n < modes; ++n) {
-    const double k = two_pi * n / width;
-    const double window = memory_periods * two_pi / (k * shear_speed); // q periods [s]
-    length_[n] = std::clamp(long(std::ceil(window / dt)), 1L, std::max(1L, max_steps));
+    length_[n] = memory_length(n, width, dt, shear_speed, memory_periods, max_steps);
     offset_[n + 1] = offset_[n] + std::size_t(length_[n]);
   }
   history_.assign(4 * offset_[modes], 0.0);

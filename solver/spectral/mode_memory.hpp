@@ -31,6 +31,10 @@ public:
   ModeMemory(int modes, double width, double dt, double shear_speed, double impedance_s,
              double memory_periods, long max_steps, const HalfSpaceKernels& kernels);
 
+  // M_n: the lags mode n keeps (0 for the uniform mode n = 0).
+  static long memory_length(int n, double width, double dt, double shear_speed,
+                            double memory_periods, long max_steps);
+
   int modes() const { return int(length_.size()); }
   long length(int n) const { return length_[n]; } // M_n (0 for the uniform mode)
   std::size_t stored_values() const { return history_.size(); }

@@ -39,6 +39,23 @@ long SpectralModel::max_steps(const SimulationParams& p) {
   return long(std::ceil(p.time.duration / time_step(p) - 1e-9)) + 1;
 }
 
+double SpectralModel::estimated_memory_bytes(const SimulationParams& p) {
+  const int nx = mesh_size(p).nx, modes = nx / 2 + 1;
+  const long steps = max_steps(p);
+  double lags = 0;
+  for (int n = 1; n < modes; ++n)
+    lags += double(ModeMemory::memory_length(n, p.geometry.width, time_step(p),
+                                             p.material.s_wave_speed(), p.spectral.memory_periods,
+                                             steps));
+  const double memory = 7.0 * 8.0 * lags; // 4 history + 3 weight doubles a lag
+  const double fields = 40.0 * 8.0 * nx;  // nodal and modal vectors
+  const double table = 6.0 * 8.0 * kernel_span(p) / HalfSpaceKernels::table_step;
+  const double records = 4.0 * 8.0 * double(steps);   // probe records
+  const double sample_buffer = 64.0 * 6.0 * 8.0 * nx; // a chunk of samples in the writer
+  const double baseline = 16.0e6;                     // code, libraries, HDF5 caches
+  return memory + fields + table + records + sample_buffer + baseline;
+}
+
 double SpectralModel::kernel_span(const SimulationParams& p) {
   // The last weight of mode n ends at (M_n + 1/2) |k_n| c_s dt <= 2 pi q + 3/2 pi beta, and
   // never beyond the run: (max_steps + 1/2) |k_max| c_s dt with |k_max| = pi / dx.

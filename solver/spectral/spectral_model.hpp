@@ -55,6 +55,8 @@ public:
   static double kernel_span(const SimulationParams& params);
   // Steps of a run that goes to `duration`.
   static long max_steps(const SimulationParams& params);
+  // Bytes the run will hold (memory of the modes, interface fields, probe records).
+  static double estimated_memory_bytes(const SimulationParams& params);
 
 private:
   using complex = std::complex<double>;

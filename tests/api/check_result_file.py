@@ -31,6 +31,7 @@ METRICS = [
     "front_threshold", "arrest_position", "propagation_distance", "arrival_time_at_probe",
     "rupture_speed", "max_slip_velocity", "outcome", "energy_error", "wall_time_s", "steps", "dt",
     "stable_dt", "simulated_time", "spectral_critical_length", "mesh", "code_version", "method",
+    "method_description",
 ]
 OUTCOMES = {"arrested", "running_at_end", "no_rupture"}  # a diverged run leaves no file
 
@@ -90,7 +91,7 @@ def check_records(f):
 
 
 def check_root(f):
-    for key in ("spec", "metrics", "code_version", "spec_sha256", "method", "created"):
+    for key in ("spec", "metrics", "code_version", "spec_sha256", "method", "method_description", "created"):
         expect(isinstance(f.attrs.get(key), str), f"root attribute {key} missing or not a string")
     spec = json.loads(f.attrs["spec"])
     for key in ("material", "geometry", "loading", "friction", "nucleation", "time", "output",

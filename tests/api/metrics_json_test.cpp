@@ -63,7 +63,8 @@ TEST(MetricsJson, HoldsEverySpecMetricByName) {
                            "message",
                            "mesh",
                            "code_version",
-                           "method"}) {
+                           "method",
+                           "method_description"}) {
     EXPECT_TRUE(j.contains(name)) << name;
   }
   EXPECT_EQ(j["arrest_position"], 12.5);
@@ -114,9 +115,16 @@ TEST(MetricsJson, MethodNamesDiscretisationBoundaryAndFriction) {
   EXPECT_EQ(method_description(params),
             "Q4 2x2 Gauss, lumped mass, central differences; top boundary: absorbing; "
             "friction: coulomb");
-  EXPECT_EQ(metrics_json(example_result(), params)["method"], method_description(params));
-  EXPECT_EQ(metrics_json(example_result())["method"],
+  EXPECT_EQ(metrics_json(example_result(), params)["method_description"],
+            method_description(params));
+  EXPECT_EQ(metrics_json(example_result(), params)["method"], "fe");
+  EXPECT_EQ(metrics_json(example_result())["method_description"],
             "Q4 2x2 Gauss, lumped mass, central differences");
+  params.method = slipfront::Method::spectral_bi;
+  EXPECT_EQ(metrics_json(example_result(), params)["method"], "spectral_bi");
+  EXPECT_EQ(method_description(params),
+            "spectral boundary integral, elastic half-space (velocity-form memory truncated "
+            "after 8 mode periods), dt = 0.5 dx / c_s, 1 corrector pass; friction: coulomb");
 }
 
 TEST(FrontJson, ArraysWithNullWhereUndefined) {

@@ -56,7 +56,8 @@ TEST(RunJob, WritesTheResultFileAndReportsItsDigest) {
   EXPECT_EQ(output.result_size, fs::file_size(path));
   EXPECT_EQ(output.result_sha256, slipfront::api::sha256_file(path));
   EXPECT_EQ(output.metrics["steps"], output.result.metrics.steps);
-  EXPECT_NE(output.metrics["method"].get<std::string>().find("top boundary: traction"),
+  EXPECT_EQ(output.metrics["method"], "fe");
+  EXPECT_NE(output.metrics["method_description"].get<std::string>().find("top boundary: traction"),
             std::string::npos);
   EXPECT_EQ(own_sink.begins, 1);
   EXPECT_GT(own_sink.samples, 10);
