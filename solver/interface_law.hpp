@@ -11,8 +11,8 @@
 //      slip direction. An open node carries no traction.
 #pragma once
 
+#include "solver/interface_fields.hpp"
 #include "solver/params.hpp"
-#include "solver/simulation.hpp"
 
 namespace slipfront {
 

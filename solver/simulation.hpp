@@ -7,8 +7,9 @@
 // and returns the metrics of SPEC §2 with the front profile and the probe records.
 #pragma once
 
-#include "metrics.hpp"
-#include "params.hpp"
+#include "solver/interface_fields.hpp"
+#include "solver/metrics.hpp"
+#include "solver/params.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -28,9 +29,6 @@ struct Progress {
   double steps_per_s = 0.0;
   double eta_s = 0.0; // wall time left if the run goes to `duration`
 };
-
-// Node state at the interface, as stored in /interface/state.
-enum class NodeState : std::int8_t { stick = 0, slip = 1, open = 2 };
 
 // The sampled interface nodes (every `space_stride`-th node).
 struct InterfaceLayout {
