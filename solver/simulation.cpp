@@ -70,22 +70,6 @@ private:
   double last_new_arrival_ = -std::numeric_limits<double>::infinity();
 };
 
-int nearest_node(double x1, double x_min, double dx, int nx) {
-  const long i = std::lround((x1 - x_min) / dx);
-  return int(((i % nx) + nx) % nx);
-}
-
-// Value at x1 of a nodal quantity, linear between the two nodes around x1 (NaN if either is).
-double interpolate_nodal(const std::vector<double>& values, double x1, double x_min, double dx) {
-  const int nx = int(values.size());
-  const double s = (x1 - x_min) / dx;
-  const long i0 = long(std::floor(s));
-  const double w = s - double(i0);
-  auto at = [&](long i) { return values[((i % nx) + nx) % nx]; };
-  if (w < 1e-9) return at(i0);
-  return (1 - w) * at(i0) + w * at(i0 + 1);
-}
-
 InterfaceSample make_sample(const InterfaceFields& f, double t, int stride) {
   InterfaceSample s;
   s.time = t;
@@ -105,74 +89,6 @@ struct FloatModeGuard {
   unsigned saved = set_flush_denormals(true);
   ~FloatModeGuard() { restore_float_mode(saved); }
 };
-
-void derive_front_metrics(const SimulationParams& p, const MeshInfo& mesh,
-                          const FrontTracker& front, RunResult& r) {
-  Metrics& m = r.metrics;
-  const auto patch = p.nucleation.enabled ? nucleation_patch(p.nucleation)
-                                          : Interval{std::numeric_limits<double>::infinity(),
-                                                     -std::numeric_limits<double>::infinity()};
-  r.front.x1.resize(mesh.nx);
-  for (int i = 0; i < mesh.nx; ++i)
-    r.front.x1[i] = p.geometry.x_min + i * mesh.dx;
-  r.front.arrival_time = front.arrival();
-  r.front.rupture_speed.assign(mesh.nx, kNaN);
-
-  const RupturedStretch stretch =
-      ruptured_stretch(r.front.x1, r.front.arrival_time, patch.lo, patch.hi, p.geometry.width);
-  m.arrest_position = stretch.any_slip ? stretch.right : kNaN;
-  m.propagation_distance = stretch.any_slip ? stretch.right - stretch.left : 0.0;
-  m.probe_x1 = p.probes.arrival_x1;
-  m.arrival_time_at_probe =
-      interpolate_nodal(r.front.arrival_time, p.probes.arrival_x1, p.geometry.x_min, mesh.dx);
-
-  // V_r along the stretch, on unwrapped positions; max and mean outside the nucleation patch
-  // (inside it the nucleation, not the rupture, sets the front).
-  std::vector<double> xs, ts;
-  for (std::size_t k = 0; k < stretch.nodes.size(); ++k) {
-    xs.push_back(stretch.left + double(k) * mesh.dx);
-    ts.push_back(r.front.arrival_time[stretch.nodes[k]]);
-  }
-  const std::vector<double> vr = rupture_speed_profile(xs, ts, std::max(0.25, 2.0 * mesh.dx));
-  double vmax = kNaN, vsum = 0;
-  int count = 0;
-  for (std::size_t k = 0; k < stretch.nodes.size(); ++k) {
-    r.front.rupture_speed[stretch.nodes[k]] = vr[k];
-    if (std::isnan(vr[k]) || (xs[k] >= patch.lo && xs[k] <= patch.hi)) continue;
-    vmax = std::isnan(vmax) ? vr[k] : std::max(vmax, vr[k]);
-    vsum += vr[k];
-    ++count;
-  }
-  m.max_rupture_speed = vmax;
-  m.mean_rupture_speed = count > 0 ? vsum / count : kNaN;
-  if (m.outcome != Outcome::diverged && !stretch.ruptured) m.outcome = Outcome::no_rupture;
-  if (stretch.nodes.size() == std::size_t(mesh.nx))
-    m.warnings.push_back(
-        "the whole periodic interface slipped: the rupture met itself across the seam");
-}
-
-void derive_spectral_estimate(const SimulationParams& p, const RunResult& r, double dt,
-                              Metrics& m) {
-  // The strength record at the spectrum probe from half a second before the front arrives
-  // to the end; |V| = the peak slip speed there (docs/metrics.md).
-  m.spectral_frequency = m.spectral_velocity = m.spectral_critical_length = kNaN;
-  if (p.friction.law != FrictionLaw::prakash_clifton) return;
-  const double arrival =
-      interpolate_nodal(r.front.arrival_time, p.probes.spectrum_x1, p.geometry.x_min, r.mesh.dx);
-  if (std::isnan(arrival)) return;
-  std::vector<double> window;
-  double vpeak = 0;
-  for (std::size_t k = 0; k < r.probes.time.size(); ++k) {
-    if (r.probes.time[k] < arrival - 0.5) continue;
-    window.push_back(r.probes.strength_spectrum[k]);
-    vpeak = std::max(vpeak, std::abs(r.probes.slip_velocity_spectrum[k]));
-  }
-  const double f = spectral_cutoff_frequency(window, dt);
-  if (std::isnan(f)) return;
-  m.spectral_frequency = f;
-  m.spectral_velocity = vpeak;
-  m.spectral_critical_length = filter_critical_length(f, p.friction.v_star, vpeak);
-}
 
 } // namespace
 
@@ -331,18 +247,9 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) 
   m.simulated_time = n * dt;
   if (m.outcome != Outcome::diverged)
     m.outcome = arrested ? Outcome::arrested : Outcome::running_at_end;
-  derive_front_metrics(params, result.mesh, front, result);
-  derive_spectral_estimate(params, result, dt, m);
-
-  // Energy balance at the last sampled step: E - E(0) = W - D, with E(0) = 0.
-  if (!result.energy.time.empty()) {
-    const std::size_t k = result.energy.time.size() - 1;
-    const double stored = result.energy.kinetic[k] + result.energy.strain[k];
-    const double net = result.energy.external_work[k] - result.energy.dissipated[k];
-    const double scale =
-        std::max({std::abs(result.energy.external_work[k]), std::abs(stored), 1e-300});
-    m.energy_error = std::abs(stored - net) / scale;
-  }
+  derive_front_metrics(params, result.mesh.dx, front.arrival(), result.front, m);
+  derive_spectral_estimate(params, result.front, result.probes, result.mesh.dx, dt, m);
+  m.energy_error = energy_balance_error(result.energy);
 
   const double reflection_time = 2.0 * model.height() / mat.p_wave_speed();
   if (m.simulated_time > reflection_time) {
