@@ -2,12 +2,15 @@
 //
 //   RunResult r = run_simulation(params, hooks);
 //
+// It builds the rupture method (make_rupture_method.hpp) and runs the time loop on it
+// (time_loop.hpp).
 // The run reports progress through a callback, stops cooperatively when the cancel flag
 // is set, streams sampled interface fields to an optional SampleSink (the HDF5 writer),
 // and returns the metrics of SPEC §2 with the front profile and the probe records.
 #pragma once
 
 #include "solver/interface_fields.hpp"
+#include "solver/mesh_info.hpp"
 #include "solver/metrics.hpp"
 #include "solver/params.hpp"
 #include "solver/records.hpp"
@@ -62,17 +65,6 @@ struct RunHooks {
   double progress_interval_s = 0.5;
   const std::atomic<bool>* cancel = nullptr; // checked every step; run ends within one step
   SampleSink* sink = nullptr;
-};
-
-// The discrete system that was actually run.
-struct MeshInfo {
-  int nx = 0; // nodes along x1 (periodic: no duplicate node)
-  int ny = 0; // nodes along x2, including interface and top
-  double dx = 0.0;
-  double height = 0.0; // after "auto" resolution
-  double stable_dt = 0.0;
-  double dt = 0.0;
-  int threads = 1;
 };
 
 struct RunResult {

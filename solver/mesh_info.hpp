@@ -1,0 +1,17 @@
+// What a rupture method actually ran: its discretisation and time step.
+#pragma once
+
+namespace slipfront {
+
+// The discrete system that was actually run.
+struct MeshInfo {
+  int nx = 0; // nodes along x1 (periodic: no duplicate node)
+  int ny = 0; // nodes along x2, including interface and top
+  double dx = 0.0;
+  double height = 0.0; // after "auto" resolution
+  double stable_dt = 0.0;
+  double dt = 0.0;
+  int threads = 1;
+};
+
+} // namespace slipfront
