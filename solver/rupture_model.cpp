@@ -28,7 +28,7 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   load2_.assign(nx_, 0.0);
   kx0_.assign(nx_, 0.0);
   ky0_.assign(nx_, 0.0);
-  node_ = {node_mass(0), dt_, dx_, params.friction};
+  node_ = {node_mass(0), node_mass(0), dt_, dx_, params.friction};
 
   const double p0 = std::abs(params.loading.normal_stress);
   iface_.x1.resize(nx_);
@@ -157,7 +157,7 @@ void RuptureModel::interface_row(bool compute_energy) {
   // sees C - C0.
   const double c0_1 = -params_.loading.shear_stress * dx_;
   const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
-  const double m = node_.mass;
+  const double m = node_mass(0);
   double* vx = v_.x.row(0);
   double* vy = v_.y.row(0);
   const double* ux = u_.x.row(0);
@@ -167,8 +167,12 @@ void RuptureModel::interface_row(bool compute_energy) {
     const double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
     const double f2 = -ky0_[i] + load2_[i] - c0_2;
     const double v1_old = vx[i], v2_old = vy[i];
-    const InterfaceNodeStep r = resolve_interface_node(node_, uy[i], v1_old, v2_old, f1, f2,
-                                                       iface_.strength[i], iface_.pressure[i]);
+    // The trial (free) velocities of the next half step; the slip speed over the last
+    // interval is that of the last half step.
+    const double v1_trial = v1_old + dt_ * f1 / m;
+    const double v2_trial = v2_old + dt_ * f2 / m;
+    const InterfaceNodeStep r = resolve_interface_node(
+        node_, uy[i], v1_trial, v2_trial, std::abs(v1_old), iface_.strength[i], iface_.pressure[i]);
     const double v1_new = r.v1, v2_new = r.v2;
     vx[i] = v1_new;
     vy[i] = v2_new;
