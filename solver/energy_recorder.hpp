@@ -5,6 +5,8 @@
 #include "solver/interface_fields.hpp"
 #include "solver/records.hpp"
 
+#include <utility>
+
 namespace slipfront {
 
 class EnergyRecorder {

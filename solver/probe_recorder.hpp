@@ -6,6 +6,8 @@
 #include "solver/params.hpp"
 #include "solver/records.hpp"
 
+#include <utility>
+
 namespace slipfront {
 
 class ProbeRecorder {

@@ -66,7 +66,7 @@ RunResult run_time_loop(RuptureMethod& method, const SimulationParams& params,
       ++n;
       break;
     }
-    if (arrest.update(t_n, front.last_new_arrival())) {
+    if (arrest.update(t_n, front.last_new_arrival())) { // arrested, with stop_on_arrest
       ++n;
       break;
     }
