@@ -13,15 +13,15 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double
   // 1. Next normal displacement of the trial (free) motion.
   const double u2_trial = u2 + c.dt * v2_trial;
 
-  // 2. Normal reaction that closes the gap exactly: u2_next = u2_trial + dt^2 R / m = 0.
+  // 2. Normal reaction that closes the gap exactly: u2_next = u2_trial + dt^2 R / m2 = 0.
   const double reaction = -c.mass2 * u2_trial / (c.dt * c.dt);
   const bool in_contact = reaction > 0.0;
   out.contact_force2 = in_contact ? reaction : 0.0;
   out.pressure = out.contact_force2 / c.tributary_length;
 
   // 3. Strength over the step from the last one to this one: the pressure goes from the
-  //    last step's to this step's, the slip speed is the last half step's (the velocity
-  //    over that interval in the leapfrog scheme).
+  //    last step's to this step's, the slip speed is that of the last interval (FE: the
+  //    last half step's, the velocity over that interval in the leapfrog scheme).
   out.strength =
       advance_strength(c.friction, strength, previous_pressure, out.pressure, slip_speed, c.dt);
 
@@ -35,7 +35,7 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double
     out.v1 = v1_trial;
     return out;
   }
-  const double stick_force = -c.mass1 * v1_trial / c.dt;
+  const double stick_force = -c.mass1 * v1_trial / c.dt; // makes v1 = v1_trial + dt F/m1 = 0
   const double limit = out.strength * c.tributary_length;
   if (std::abs(stick_force) <= limit) {
     out.state = NodeState::stick;

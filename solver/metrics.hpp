@@ -1,6 +1,9 @@
 // Derived metrics of a run (SPEC §2). How each one is computed: docs/metrics.md.
 #pragma once
 
+#include "solver/params.hpp"
+#include "solver/records.hpp"
+
 #include <string>
 #include <vector>
 
@@ -71,5 +74,27 @@ RupturedStretch ruptured_stretch(const std::vector<double>& x1,
 // `fraction` of the power of the detrended, Hann-windowed signal lies (DC excluded).
 double spectral_cutoff_frequency(const std::vector<double>& signal, double dt,
                                  double fraction = 0.99);
+
+// The node nearest to x1 on the periodic line of nx nodes x_min + i dx.
+int nearest_node(double x1, double x_min, double dx, int nx);
+
+// Value at x1 of a nodal quantity, linear between the two nodes around x1 (NaN if either is).
+double interpolate_nodal(const std::vector<double>& values, double x1, double x_min, double dx);
+
+// The front profile (node positions, arrival times, V_r) and the front metrics of a run
+// from the arrival times (NaN where the front never came): arrest position, propagation
+// distance, arrival at probes.arrival_x1, max and mean V_r outside the nucleation patch;
+// sets the outcome to no_rupture if nothing outside the patch slipped (unless diverged).
+void derive_front_metrics(const SimulationParams& p, double dx,
+                          const std::vector<double>& arrival_time, FrontProfile& front, Metrics& m);
+
+// The spectral estimate of L_c (paper eq. 6) from the strength record at the spectrum probe,
+// from half a second before the front arrives there to the end (NaN when undefined).
+void derive_spectral_estimate(const SimulationParams& p, const FrontProfile& front,
+                              const ProbeRecords& probes, double dx, double dt, Metrics& m);
+
+// Energy balance at the last record: |E - (W - D)| / max(|W|, |E|), E = kinetic + strain
+// (E(0) = 0); 0 without records.
+double energy_balance_error(const EnergyRecords& energy);
 
 } // namespace slipfront

@@ -115,7 +115,7 @@ enum class Method {
 struct SpectralOptions {
   double time_step_factor = 0.5; // beta: dt = beta dx / c_s
   double memory_periods = 8.0;   // q: mode k keeps q periods 2 pi / (|k| c_s) of its history
-  int corrector_passes = 1;       // passes of the local solve after the predictor (0 = none)
+  int corrector_passes = 1;      // passes of the local solve after the predictor (0 = none)
 };
 
 struct SimulationParams {

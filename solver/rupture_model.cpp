@@ -157,7 +157,7 @@ void RuptureModel::interface_row(bool compute_energy) {
   // sees C - C0.
   const double c0_1 = -params_.loading.shear_stress * dx_;
   const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
-  const double m = node_.mass1;
+  const double m = node_mass(0);
   double* vx = v_.x.row(0);
   double* vy = v_.y.row(0);
   const double* ux = u_.x.row(0);
@@ -167,7 +167,9 @@ void RuptureModel::interface_row(bool compute_energy) {
     const double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
     const double f2 = -ky0_[i] + load2_[i] - c0_2;
     const double v1_old = vx[i], v2_old = vy[i];
-    const double v1_trial = v1_old + dt_ * f1 / m; // the motion without the plane's force
+    // The trial (free) velocities of the next half step; the slip speed over the last
+    // interval is that of the last half step.
+    const double v1_trial = v1_old + dt_ * f1 / m;
     const double v2_trial = v2_old + dt_ * f2 / m;
     const InterfaceNodeStep r = resolve_interface_node(
         node_, uy[i], v1_trial, v2_trial, std::abs(v1_old), iface_.strength[i], iface_.pressure[i]);

@@ -2,13 +2,18 @@
 //
 //   RunResult r = run_simulation(params, hooks);
 //
+// It builds the rupture method (make_rupture_method.hpp) and runs the time loop on it
+// (time_loop.hpp).
 // The run reports progress through a callback, stops cooperatively when the cancel flag
 // is set, streams sampled interface fields to an optional SampleSink (the HDF5 writer),
 // and returns the metrics of SPEC §2 with the front profile and the probe records.
 #pragma once
 
-#include "metrics.hpp"
-#include "params.hpp"
+#include "solver/interface_fields.hpp"
+#include "solver/mesh_info.hpp"
+#include "solver/metrics.hpp"
+#include "solver/params.hpp"
+#include "solver/records.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -28,9 +33,6 @@ struct Progress {
   double steps_per_s = 0.0;
   double eta_s = 0.0; // wall time left if the run goes to `duration`
 };
-
-// Node state at the interface, as stored in /interface/state.
-enum class NodeState : std::int8_t { stick = 0, slip = 1, open = 2 };
 
 // The sampled interface nodes (every `space_stride`-th node).
 struct InterfaceLayout {
@@ -63,36 +65,6 @@ struct RunHooks {
   double progress_interval_s = 0.5;
   const std::atomic<bool>* cancel = nullptr; // checked every step; run ends within one step
   SampleSink* sink = nullptr;
-};
-
-// Time series recorded every step at the probe points.
-struct ProbeRecords {
-  std::vector<double> time;
-  std::vector<double> slip_velocity_arrival;  // V at probes.arrival_x1
-  std::vector<double> slip_velocity_spectrum; // V at probes.spectrum_x1
-  std::vector<double> strength_spectrum;      // tau_s at probes.spectrum_x1
-  double arrival_node_x1 = 0.0;               // the node nearest to the requested x1
-  double spectrum_node_x1 = 0.0;
-};
-
-// Energy balance sampled in time (perturbation energies, see docs/physics.md).
-struct EnergyRecords {
-  std::vector<double> time;
-  std::vector<double> kinetic;
-  std::vector<double> strain;
-  std::vector<double> external_work; // work of the load changes (pre-stress release, nucleation)
-  std::vector<double> dissipated;    // frictional dissipation
-};
-
-// The discrete system that was actually run.
-struct MeshInfo {
-  int nx = 0; // nodes along x1 (periodic: no duplicate node)
-  int ny = 0; // nodes along x2, including interface and top
-  double dx = 0.0;
-  double height = 0.0; // after "auto" resolution
-  double stable_dt = 0.0;
-  double dt = 0.0;
-  int threads = 1;
 };
 
 struct RunResult {

@@ -44,4 +44,11 @@ private:
 unsigned set_flush_denormals(bool on);
 void restore_float_mode(unsigned state);
 
+// Flushes denormals on the calling thread while it lives; restores the caller's
+// floating-point mode when it goes, however the scope ends.
+struct FloatModeGuard {
+  unsigned saved = set_flush_denormals(true);
+  ~FloatModeGuard() { restore_float_mode(saved); }
+};
+
 } // namespace slipfront

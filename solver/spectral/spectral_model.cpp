@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace slipfront::spectral {
@@ -102,6 +103,12 @@ SpectralModel::SpectralModel(const SimulationParams& params, int threads)
   iface_.pressure.assign(nx_, p0);
   iface_.strength.assign(nx_, params.friction.mu * p0);
   iface_.state.assign(nx_, std::int8_t(NodeState::stick));
+}
+
+MeshInfo SpectralModel::mesh_info() const {
+  // No bulk: one row of nodes, no height, and no closed-form stable step (docs/spectral-bi.md).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return {nx_, 1, dx_, nan, nan, dt_, team_.size(), Method::spectral_bi};
 }
 
 void SpectralModel::known_memory_term() {

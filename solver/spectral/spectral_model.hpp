@@ -18,9 +18,10 @@
 // corrected with the solved V^{n+1/2} (`corrector_passes`).
 #pragma once
 
+#include "solver/interface_fields.hpp"
 #include "solver/interface_law.hpp"
 #include "solver/params.hpp"
-#include "solver/rupture_model.hpp" // InterfaceFields, EnergyBalance
+#include "solver/rupture_method.hpp"
 #include "solver/spectral/half_space_kernels.hpp"
 #include "solver/spectral/mode_memory.hpp"
 #include "solver/spectral/real_fft.hpp"
@@ -32,22 +33,22 @@
 
 namespace slipfront::spectral {
 
-class SpectralModel {
+class SpectralModel : public RuptureMethod {
 public:
   explicit SpectralModel(const SimulationParams& params, int threads = 1);
 
-  void step(bool compute_energy);
+  void step(bool compute_energy) override;
+  double dt() const override { return dt_; }
+  const InterfaceFields& interface() const override { return iface_; }
+  const EnergyBalance& energy() const override { return energy_; }
+  MeshInfo mesh_info() const override;
 
   int nx() const { return nx_; }
   double dx() const { return dx_; }
-  double dt() const { return dt_; }
   long steps_done() const { return step_; }
   double time() const { return step_ * dt_; }
   int threads() const { return team_.size(); }
   const ModeMemory& memory() const { return *memory_; }
-
-  const InterfaceFields& interface() const { return iface_; }
-  const EnergyBalance& energy() const { return energy_; }
 
   // Time step of the method: beta dx / c_s.
   static double time_step(const SimulationParams& params);

@@ -33,6 +33,7 @@ TEST(JobCanonical, EveryFieldIsFilledWithItsDefault) {
                  "width": 40.0, "x_min": -10.0},
     "loading": {"normal_stress": -0.015, "shear_stress": 0.0105},
     "material": {"density": 1.0, "poisson_ratio": 0.25, "young_modulus": 2.5},
+    "method": "fe",
     "name": "",
     "nucleation": {"a": 0.6, "alpha": 0.8, "b": 3.6, "enabled": true, "v": 0.825},
     "output": {"interval": 0.02, "space_stride": 1},
@@ -107,8 +108,26 @@ TEST(JobCanonical, CanonicalFormParsesToTheSameJob) {
 TEST(JobCanonical, SpecHashIsTheSha256OfThePhysicsText) {
   const auto spec = parsed(json::object());
   json physics = spec.canonical;
-  for (const char* key : {"name", "tags", "threads", "output"})
+  // "method": "fe" is left out: an FE spec hashes as it did before the field existed.
+  for (const char* key : {"name", "tags", "threads", "output", "method"})
     physics.erase(key);
   EXPECT_EQ(spec.sha256, slipfront::api::sha256_hex(physics.dump()));
   EXPECT_EQ(slipfront::api::spec_hash(spec.canonical), spec.sha256);
+}
+
+TEST(JobCanonical, SpectralBiCanonicalHasItsSectionAndNoBlockFields) {
+  const auto spec = parsed({{"method", "spectral_bi"}, {"friction", {{"L", 5e-6}}}});
+  const json& c = spec.canonical;
+  EXPECT_EQ(c["method"], "spectral_bi");
+  EXPECT_EQ(
+      c["spectral_bi"],
+      json::parse(R"({"corrector_passes": 1, "memory_periods": 8.0, "time_step_factor": 0.5})"));
+  EXPECT_FALSE(c["geometry"].contains("height"));
+  EXPECT_FALSE(c["geometry"].contains("top_boundary"));
+  EXPECT_FALSE(c["time"].contains("safety_factor"));
+  // The method is part of the physics: the same scene by FE hashes differently.
+  EXPECT_NE(spec.sha256, hash_of({{"friction", {{"L", 5e-6}}}}));
+  EXPECT_EQ(hash_of({{"method", "fe"}}), hash_of(json::object()));
+  EXPECT_NE(hash_of({{"method", "spectral_bi"}, {"spectral_bi", {{"memory_periods", 16}}}}),
+            hash_of({{"method", "spectral_bi"}}));
 }

@@ -329,3 +329,57 @@ TEST(JobValidation, MemoryLimitRefusesHugeMeshes) {
   ASSERT_FALSE(huge.ok());
   EXPECT_EQ(huge.errors[0].pointer, "/geometry/nodes_per_meter");
 }
+
+TEST(JobValidationMethod, MethodIsFeOrSpectralBi) {
+  expect_single_error({{"method", "bem"}}, "/method", "\"fe\"");
+  expect_single_error({{"method", 1}}, "/method", "spectral_bi");
+  const ParseResult bi =
+      parse_job({{"method", "spectral_bi"},
+                 {"spectral_bi",
+                  {{"time_step_factor", 0.25}, {"memory_periods", 16}, {"corrector_passes", 2}}}});
+  ASSERT_TRUE(bi.ok());
+  EXPECT_EQ(bi.spec->params.method, slipfront::Method::spectral_bi);
+  EXPECT_EQ(bi.spec->params.spectral.time_step_factor, 0.25);
+  EXPECT_EQ(bi.spec->params.spectral.memory_periods, 16.0);
+  EXPECT_EQ(bi.spec->params.spectral.corrector_passes, 2);
+}
+
+TEST(JobValidationMethod, FieldsTheMethodDoesNotUseAreErrorsNamingTheField) {
+  expect_single_error({{"method", "spectral_bi"}, {"geometry", {{"height", 20}}}},
+                      "/geometry/height", "not used by method \"spectral_bi\"");
+  expect_single_error({{"method", "spectral_bi"}, {"geometry", {{"top_boundary", "absorbing"}}}},
+                      "/geometry/top_boundary", "not used by method \"spectral_bi\"");
+  expect_single_error({{"method", "spectral_bi"}, {"time", {{"safety_factor", 0.5}}}},
+                      "/time/safety_factor", "time_step_factor");
+  expect_single_error({{"spectral_bi", {{"memory_periods", 8}}}}, "/spectral_bi",
+                      "only with \"method\": \"spectral_bi\"");
+}
+
+TEST(JobValidationMethod, SpectralOptionsAreRangeChecked) {
+  const json base = {{"method", "spectral_bi"}};
+  json j = base;
+  j["spectral_bi"] = {{"time_step_factor", 0}};
+  expect_single_error(j, "/spectral_bi/time_step_factor", "(0, 1]");
+  j["spectral_bi"] = {{"time_step_factor", 1.5}};
+  expect_single_error(j, "/spectral_bi/time_step_factor", "(0, 1]");
+  j["spectral_bi"] = {{"memory_periods", 1e9}};
+  expect_single_error(j, "/spectral_bi/memory_periods", "(0, 256]");
+  j["spectral_bi"] = {{"corrector_passes", 9}};
+  expect_single_error(j, "/spectral_bi/corrector_passes", "");
+  j["spectral_bi"] = {{"no_such_option", 1}};
+  expect_single_error(j, "/spectral_bi/no_such_option", "");
+}
+
+TEST(JobValidationMethod, SpectralMemoryEstimateIsChecked) {
+  // n_d = 2000 over 40 m: 80 000 nodes, ~1.1e7 lags of memory (~0.6 GB) is refused up
+  // front under a 0.3 GB limit.
+  slipfront::api::ValidationLimits limits;
+  limits.max_memory_bytes = 3e8;
+  const ParseResult r =
+      parse_job({{"method", "spectral_bi"}, {"geometry", {{"nodes_per_meter", 2000}}}}, limits);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.errors[0].pointer, "/geometry/nodes_per_meter");
+  const ParseResult small = parse_job({{"method", "spectral_bi"}}, limits);
+  ASSERT_TRUE(small.ok());
+  EXPECT_LT(small.spec->memory_estimate_bytes, 2e8);
+}

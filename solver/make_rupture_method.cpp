@@ -1,0 +1,20 @@
+#include "solver/make_rupture_method.hpp"
+
+#include "solver/fe_method.hpp"
+#include "solver/spectral/spectral_model.hpp"
+
+#include <algorithm>
+#include <thread>
+
+namespace slipfront {
+
+std::unique_ptr<RuptureMethod> make_rupture_method(const SimulationParams& params) {
+  if (params.method == Method::spectral_bi) {
+    const int threads = params.threads > 0 ? params.threads
+                                           : int(std::max(1u, std::thread::hardware_concurrency()));
+    return std::make_unique<spectral::SpectralModel>(params, threads);
+  }
+  return std::make_unique<FiniteElementMethod>(params);
+}
+
+} // namespace slipfront

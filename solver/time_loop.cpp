@@ -1,0 +1,93 @@
+#include "solver/time_loop.hpp"
+
+#include "solver/arrest_rule.hpp"
+#include "solver/divergence_check.hpp"
+#include "solver/energy_recorder.hpp"
+#include "solver/front_tracker.hpp"
+#include "solver/interface_sampler.hpp"
+#include "solver/probe_recorder.hpp"
+#include "solver/progress_reporter.hpp"
+#include "solver/thread_team.hpp"
+
+#include <cmath>
+
+namespace slipfront {
+
+namespace {
+
+bool cancel_requested(const RunHooks& hooks) {
+  return hooks.cancel && hooks.cancel->load(std::memory_order_relaxed);
+}
+
+} // namespace
+
+RunResult run_time_loop(RuptureMethod& method, const SimulationParams& params,
+                        const RunHooks& hooks, std::chrono::steady_clock::time_point started) {
+  FloatModeGuard float_mode;
+  RunResult result;
+  result.mesh = method.mesh_info();
+  Metrics& m = result.metrics;
+  const double dt = method.dt();
+  m.front_threshold = params.probes.front_threshold;
+  m.dt = dt;
+  const long total_steps = long(std::ceil(params.time.duration / dt - 1e-9));
+  const std::vector<double>& x1 = method.interface().x1;
+
+  ProbeRecorder probes(params.probes, params.geometry.x_min, result.mesh.dx, x1);
+  InterfaceSampler sampler(hooks.sink, params.output, dt, total_steps, x1);
+  EnergyRecorder energy(dt);
+  DivergenceCheck divergence(params);
+  FrontTracker front(result.mesh.nx, params.probes.front_threshold);
+  ArrestRule arrest(params);
+  ProgressReporter progress(hooks, params.time.duration, dt, total_steps, started);
+
+  long n = 0;
+  for (; n < total_steps; ++n) {
+    if (cancel_requested(hooks)) {
+      result.cancelled = true;
+      m.message = "cancelled at t = " + std::to_string(n * dt) + " s";
+      break;
+    }
+    const bool energy_step = energy.due(n);
+    method.step(energy_step);
+    const double t_n = n * dt;
+    const InterfaceFields& f = method.interface();
+    front.update(f.half_velocity, t_n + 0.5 * dt, dt);
+    divergence.check(f);
+    probes.record(f, t_n);
+    if (energy_step) {
+      energy.record(method.energy(), t_n);
+      divergence.check_energy(method.energy());
+    }
+    sampler.record(f, n, t_n);
+    if (divergence.diverged()) {
+      m.outcome = Outcome::diverged;
+      m.message = divergence.message(t_n, n);
+      ++n;
+      break;
+    }
+    if (arrest.update(t_n, front.last_new_arrival())) { // arrested, with stop_on_arrest
+      ++n;
+      break;
+    }
+    progress.after_step(n);
+  }
+
+  m.steps = n;
+  m.simulated_time = n * dt;
+  m.max_slip_velocity = divergence.max_slip_velocity();
+  if (m.outcome != Outcome::diverged)
+    m.outcome = arrest.arrested() ? Outcome::arrested : Outcome::running_at_end;
+  result.probes = probes.take();
+  result.energy = energy.take();
+  derive_front_metrics(params, result.mesh.dx, front.arrival(), result.front, m);
+  derive_spectral_estimate(params, result.front, result.probes, result.mesh.dx, dt, m);
+  m.energy_error = energy_balance_error(result.energy);
+  for (std::string& warning : method.end_warnings(m.simulated_time))
+    m.warnings.push_back(std::move(warning));
+  m.wall_time_s = progress.wall_seconds();
+  progress.final_report(n, m.simulated_time, m.wall_time_s);
+  return result;
+}
+
+} // namespace slipfront

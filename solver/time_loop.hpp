@@ -1,0 +1,21 @@
+// The time loop of one run, for any rupture method (the shape of a scene in uguca's
+// examples): for each step, check the cancel flag, step the method, let each observer
+// record (front, divergence, probes, energy), dump the interface when due, stop if the
+// run diverged or arrested, report progress. Then derive the metrics (docs/metrics.md).
+#pragma once
+
+#include "solver/params.hpp"
+#include "solver/rupture_method.hpp"
+#include "solver/simulation.hpp"
+
+#include <chrono>
+
+namespace slipfront {
+
+// `started`: where the run's wall time counts from (run_simulation passes the time before
+// it built the method, so that wall_time_s includes the set-up).
+RunResult
+run_time_loop(RuptureMethod& method, const SimulationParams& params, const RunHooks& hooks,
+              std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now());
+
+} // namespace slipfront
