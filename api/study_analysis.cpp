@@ -287,6 +287,35 @@ std::size_t agreeing_prefix(const std::vector<std::vector<bool>>& agree) {
   return prefix;
 }
 
+// How much the metrics change from each mesh-converged L to the next larger one: what a
+// reader needs when no L meets the rule (docs/studies.md).
+json steps_in_L(const std::vector<Reference>& refs, const ConvergenceTolerances& tol) {
+  json steps = json::array();
+  for (std::size_t k = 1; k < refs.size(); ++k) {
+    const Comparison c = compare(*refs[k].run, *refs[k - 1].run, tol);
+    steps.push_back({{"from_L", refs[k - 1].L},
+                     {"to_L", refs[k].L},
+                     {"changes", changes_json(c.distance_change, c.arrival_change)},
+                     {"agree", c.agree}});
+  }
+  return steps;
+}
+
+// "1e-06 -> 5e-06: 2.8 % / n/a; ..." for the reason text.
+std::string describe_steps(const json& steps) {
+  std::string out;
+  for (const json& step : steps) {
+    const auto change = [&](const char* key) {
+      const json& v = step["changes"][key];
+      return v.is_number() ? percent(v.get<double>()) : std::string("n/a");
+    };
+    out += (out.empty() ? "" : "; ") + text(step["from_L"].get<double>()) + " -> " +
+           text(step["to_L"].get<double>()) + ": " + change(distance_key) + " / " +
+           change("arrival_time");
+  }
+  return out;
+}
+
 void explain_critical_length(json& result, const std::vector<Reference>& refs, std::size_t prefix) {
   result["L_c"] = nullptr;
   result["next_larger_L"] = nullptr;
@@ -297,9 +326,15 @@ void explain_critical_length(json& result, const std::vector<Reference>& refs, s
   }
   if (prefix < 2) {
     result["next_larger_L"] = refs[1].L;
-    result["reason"] = "the two smallest mesh-converged L (" + text(refs[0].L) + ", " +
-                       text(refs[1].L) + ") already disagree: L_c is below " + text(refs[1].L) +
-                       "; add smaller L";
+    const bool none_agree = std::none_of(result["steps_in_L"].begin(), result["steps_in_L"].end(),
+                                         [](const json& step) { return step["agree"] == true; });
+    result["reason"] = (none_agree ? std::string("no L meets the rule: ") : std::string()) +
+                       "the two smallest mesh-converged L (" + text(refs[0].L) + ", " +
+                       text(refs[1].L) + ") already disagree, so L_c is below " + text(refs[1].L) +
+                       " if it exists for this slip event; change of propagation_distance / "
+                       "arrival_time_at_probe from each L to the next: " +
+                       describe_steps(result["steps_in_L"]) +
+                       "; add smaller L (or plain Coulomb friction)";
     return;
   }
   result["L_c"] = refs[prefix - 1].L;
@@ -340,6 +375,24 @@ std::string scene_hash(const nlohmann::json& canonical) {
   if (scene.contains("geometry") && scene["geometry"].is_object())
     scene["geometry"].erase("nodes_per_meter");
   return sha256_hex(canonical_text(scene));
+}
+
+std::string counterpart_scene_hash(const nlohmann::json& canonical) {
+  json other = canonical;
+  if (other.value("method", "fe") == "spectral_bi") {
+    other["method"] = "fe";
+    other.erase("spectral_bi");
+  } else {
+    other["method"] = "spectral_bi";
+    other.erase("fe");
+    if (other.contains("geometry") && other["geometry"].is_object()) {
+      other["geometry"].erase("height");
+      other["geometry"].erase("top_boundary");
+    }
+    if (other.contains("time") && other["time"].is_object()) other["time"].erase("safety_factor");
+  }
+  const ParseResult parsed = parse_job(other);
+  return parsed.ok() ? scene_hash(parsed.spec->canonical) : std::string();
 }
 
 std::string to_string(ConvergenceStatus status) {
@@ -423,6 +476,7 @@ nlohmann::json critical_length(const std::vector<StudyRun>& runs,
   }
   json result = {{"references", references},
                  {"comparisons", table},
+                 {"steps_in_L", steps_in_L(refs, tol)},
                  {"excluded", excluded},
                  {"tolerances",
                   {{distance_key, tol.propagation_distance}, {"arrival_time", tol.arrival_time}}}};
@@ -433,6 +487,53 @@ nlohmann::json critical_length(const std::vector<StudyRun>& runs,
   result["spectral_from_L"] = smallest ? json(refs.front().L) : json(nullptr);
   result["spectral_run_id"] = smallest ? json(smallest->id) : json(nullptr);
   return result;
+}
+
+nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
+                                  const std::vector<StudyRun>& bi_runs,
+                                  const ConvergenceTolerances& tol) {
+  const auto fe_statuses = convergence_statuses(fe_runs, tol);
+  const auto bi_statuses = convergence_statuses(bi_runs, tol);
+  std::vector<double> Ls = study_values(fe_runs, &StudyRun::L);
+  for (double L : study_values(bi_runs, &StudyRun::L))
+    Ls.push_back(L);
+  Ls = unique_sorted(Ls);
+  // spectral_velocity: the peak |V| at the spectrum probe (x1 = 6 m in the paper's scene).
+  const char* keys[] = {"arrest_position", distance_key, arrival_key, "max_slip_velocity",
+                        "spectral_velocity"};
+  auto side = [&](const StudyRun* run) -> json {
+    if (!run) return nullptr;
+    json j = {{"run_id", run->id},
+              {"n_d", run->n_d},
+              {"outcome", outcome_of(*run)},
+              {"wall_time_s", json_number(run->wall_time_s)}};
+    for (const char* key : keys)
+      j[key] = json_number(metric(*run, key));
+    return j;
+  };
+  json rows = json::array();
+  for (double L : Ls) {
+    const StudyRun* fe = reference_run(fe_runs, fe_statuses, L);
+    const StudyRun* bi = reference_run(bi_runs, bi_statuses, L);
+    json row = {{"L", L}, {"fe", side(fe)}, {"spectral_bi", side(bi)}};
+    if (fe && bi) {
+      json differences;
+      for (const char* key : keys) // (fe - bi) / bi
+        differences[key] = json_number(relative_change(metric(*fe, key), metric(*bi, key)));
+      row["differences"] = differences;
+      const Comparison c = compare(*fe, *bi, tol);
+      row["agree"] = c.agree;
+      row["reason"] = c.reason;
+    } else {
+      row["differences"] = nullptr;
+      row["agree"] = nullptr;
+      row["reason"] = std::string("no mesh-converged run of this L by ") + (fe   ? "spectral_bi"
+                                                                            : bi ? "fe"
+                                                                                 : "either method");
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 // SPEC intro: "every result says how accurate it is and what it cost".

@@ -19,6 +19,12 @@ namespace slipfront::api {
 // tags and threads: runs with the same scene hash belong to one convergence map.
 std::string scene_hash(const nlohmann::json& canonical);
 
+// The scene of the same physics by the other method: the spec with "method" swapped and the
+// fields only one method has dropped (FE: geometry.height, geometry.top_boundary,
+// time.safety_factor and the "fe" section; BI: the "spectral_bi" section). Empty if the
+// swapped spec is not valid.
+std::string counterpart_scene_hash(const nlohmann::json& canonical);
+
 // One run of a study, as the server knows it.
 struct StudyRun {
   std::string id;
@@ -68,6 +74,13 @@ nlohmann::json convergence_map(const std::vector<StudyRun>& runs,
 // spectral estimate of the smallest mesh-converged L.
 nlohmann::json critical_length(const std::vector<StudyRun>& runs,
                                const ConvergenceTolerances& tol = {});
+
+// The same L by both methods: the reference (finest, mesh-converged) run of each, its
+// metrics, and the relative differences (fe - spectral_bi) / spectral_bi. One row per L of
+// either set; a side is null where that method has no mesh-converged run of the L.
+nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
+                                  const std::vector<StudyRun>& bi_runs,
+                                  const ConvergenceTolerances& tol = {});
 
 // Per finished run: cost and errors relative to the reference run of its L.
 nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs,

@@ -21,4 +21,8 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& runs,
 // The map and L_c of any set of runs of one scene (GET /convergence-map).
 nlohmann::json scene_analysis(const std::vector<StudyRunRow>& runs);
 
+// The cross-method table (api::cross_method_table) of one scene's FE and BI runs.
+nlohmann::json cross_method(const std::vector<StudyRunRow>& fe_rows,
+                            const std::vector<StudyRunRow>& bi_rows);
+
 } // namespace slipfront::server

@@ -5,6 +5,7 @@
 #include "server/failure_regimes.hpp"
 #include "server/job_id.hpp"
 #include "server/log.hpp"
+#include "server/study_progress.hpp"
 
 #include "api/study_analysis.hpp"
 
@@ -188,7 +189,22 @@ StudyCancelResult StudyService::cancel(const std::string& id, const std::string&
 std::optional<json> StudyService::view(const std::string& id) {
   auto study = studies_.get(id);
   if (!study) return std::nullopt;
-  return study_to_json(*study, studies_.runs(id));
+  json j = study_to_json(*study, studies_.runs(id));
+  // The same scene by the other method, from every run the group has made of it.
+  auto base = jobs_.validate(
+      run_document(StudyRequest{.base = study->base}, study->id, json::object(), "", 5e-5, 10));
+  if (base.spec) {
+    const std::string other = api::counterpart_scene_hash(base.spec->canonical);
+    const bool is_fe = base.spec->params.method == Method::finite_element;
+    j["method"] = is_fe ? "fe" : "spectral_bi";
+    j["counterpart_scene_hash"] = other.empty() ? json(nullptr) : json(other);
+    if (!other.empty()) {
+      const auto mine = studies_.scene_runs(study->scene_hash);
+      const auto theirs = studies_.scene_runs(other);
+      j["cross_method"] = is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
+    }
+  }
+  return j;
 }
 
 json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, bool summary) {

@@ -517,3 +517,55 @@ TEST(RefinementPlan, FailedMeshCountsAsTried) {
                                       without_result("b", 5e-5, 20, "failed")};
   EXPECT_EQ(refinement_plan(5e-5, runs, ladder, 160).next_n_d, 40);
 }
+
+TEST(CriticalLength, WhenNoLMeetsTheRuleTheVerdictSaysSoWithTheChangePerStepInL) {
+  // Every step in L changes the propagation distance by ~2 % (the BI ladder of the paper's
+  // scene): no L_c, and the reason lists each step's changes.
+  auto runs =
+      joined({converged_pair("a", 1e-6, 12.50, 9.050), converged_pair("b", 5e-6, 12.80, 9.057),
+              converged_pair("c", 1e-5, 13.05, 9.095)});
+  const json result = critical_length(runs);
+  EXPECT_TRUE(result["L_c"].is_null());
+  ASSERT_EQ(result["steps_in_L"].size(), 2u);
+  EXPECT_EQ(result["steps_in_L"][0]["from_L"], 1e-6);
+  EXPECT_EQ(result["steps_in_L"][0]["to_L"], 5e-6);
+  EXPECT_NEAR(result["steps_in_L"][0]["changes"]["propagation_distance"].get<double>(),
+              0.30 / 12.50, 1e-12);
+  EXPECT_EQ(result["steps_in_L"][1]["agree"], false);
+  const std::string reason = result["reason"];
+  EXPECT_EQ(reason.rfind("no L meets the rule", 0), 0u) << reason;
+  EXPECT_NE(reason.find("1e-06 -> 5e-06: 2.4 %"), std::string::npos) << reason;
+}
+
+TEST(CrossMethod, SameLByBothMethodsWithTheirReferencesAndDifferences) {
+  const auto fe = joined(
+      {converged_pair("fe-a", 5e-5, 14.25, 9.0467), converged_pair("fe-b", 1e-4, 15.00, 9.120)});
+  auto bi = joined({converged_pair("bi-a", 5e-5, 14.25, 9.0439)});
+  bi.push_back(finished("bi-x", 1e-3, 20, 0.0, never, "no_rupture"));
+  const json table = slipfront::api::cross_method_table(fe, bi);
+  ASSERT_EQ(table.size(), 3u); // every L of either method, ascending
+  EXPECT_EQ(table[0]["L"], 5e-5);
+  EXPECT_EQ(table[0]["fe"]["run_id"], "fe-a-40");
+  EXPECT_EQ(table[0]["spectral_bi"]["run_id"], "bi-a-40");
+  EXPECT_NEAR(table[0]["differences"]["arrival_time_at_probe"].get<double>(),
+              (9.0467 - 9.0439) / 9.0439, 1e-12);
+  EXPECT_EQ(table[0]["agree"], true);
+  EXPECT_EQ(table[1]["L"], 1e-4);
+  EXPECT_TRUE(table[1]["spectral_bi"].is_null());
+  EXPECT_EQ(table[1]["reason"], "no mesh-converged run of this L by spectral_bi");
+  EXPECT_TRUE(table[2]["fe"].is_null()); // 1e-3: one BI run, no partner: not converged
+  EXPECT_EQ(table[2]["reason"], "no mesh-converged run of this L by either method");
+}
+
+TEST(CrossMethod, CounterpartSceneSwapsTheMethodAndDropsItsOwnFields) {
+  using slipfront::api::counterpart_scene_hash;
+  using slipfront::api::parse_job;
+  using slipfront::api::scene_hash;
+  const auto fe = parse_job({{"geometry", {{"height", 10}, {"nodes_per_meter", 20}}}});
+  const auto bi = parse_job({{"method", "spectral_bi"}, {"geometry", {{"nodes_per_meter", 80}}}});
+  ASSERT_TRUE(fe.ok() && bi.ok());
+  EXPECT_EQ(counterpart_scene_hash(fe.spec->canonical), scene_hash(bi.spec->canonical));
+  EXPECT_EQ(counterpart_scene_hash(bi.spec->canonical),
+            scene_hash(parse_job(json::object()).spec->canonical)); // FE at its defaults
+  EXPECT_NE(scene_hash(fe.spec->canonical), scene_hash(bi.spec->canonical));
+}
