@@ -191,8 +191,9 @@ std::optional<json> StudyService::view(const std::string& id) {
   if (!study) return std::nullopt;
   json j = study_to_json(*study, studies_.runs(id));
   // The same scene by the other method, from every run the group has made of it.
-  auto base = jobs_.validate(
-      run_document(StudyRequest{.base = study->base}, study->id, json::object(), "", 5e-5, 10));
+  StudyRequest request;
+  request.base = study->base;
+  auto base = jobs_.validate(run_document(request, study->id, json::object(), "", 5e-5, 10));
   if (base.spec) {
     const std::string other = api::counterpart_scene_hash(base.spec->canonical);
     const bool is_fe = base.spec->params.method == Method::finite_element;
