@@ -44,13 +44,29 @@ void DivergenceCheck::check(const InterfaceFields& f) {
 
 void DivergenceCheck::check_energy(const EnergyBalance& e) {
   if (!std::isfinite(e.kinetic) || !std::isfinite(e.strain)) diverged_ = true;
+  // Passivity: the solid (the FE block's kinetic + strain energy, or the energy that crossed
+  // into the BI half-space) cannot hold less than nothing. A negative value beyond round-off
+  // means the discrete scheme gave back more energy than it received: it is unstable.
+  const double stored = e.kinetic + e.strain;
+  const double scale = std::max({std::abs(e.external_work), std::abs(e.dissipated), 1e-300});
+  if (stored < -1e-9 * scale && energy_message_.empty()) {
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "the energy in the solid became negative (%.4g J/m against %.4g J/m of load "
+                  "work): the scheme returns more energy than it received",
+                  stored, e.external_work);
+    energy_message_ = msg;
+    diverged_ = true;
+  }
 }
 
 std::string DivergenceCheck::message(double t_n, long step) const {
   char msg[200];
   std::snprintf(msg, sizeof msg, "diverged at t = %.6g s (step %ld): ", t_n, step);
   std::string out = msg;
-  if (strength_message_.empty()) {
+  if (!energy_message_.empty()) {
+    out += energy_message_;
+  } else if (strength_message_.empty()) {
     std::snprintf(msg, sizeof msg, "slip speed above %.3g m/s or a non-finite field", speed_limit_);
     out += msg;
   } else {

@@ -1,7 +1,8 @@
 // Divergence of a run: a slip speed far above anything the loads can drive (1000 times the
 // particle velocity that the whole remote load would cause, |tau| / (rho c_s)), a
 // non-finite value anywhere (NaN fails the speed test; the energy sums on the steps they
-// are evaluated), or a strength outside its physical range (an unstable strength update).
+// are evaluated), a strength outside its physical range (an unstable strength update), or a
+// negative energy in the solid (a scheme that returns more energy than it received).
 // Also keeps the largest |V| seen (the max_slip_velocity metric).
 #pragma once
 
@@ -32,6 +33,7 @@ private:
   double max_slip_velocity_ = 0.0;
   bool diverged_ = false;
   std::string strength_message_;
+  std::string energy_message_;
 };
 
 } // namespace slipfront

@@ -128,6 +128,19 @@ TEST(DivergenceCheck, NaNAndNonFiniteEnergyDiverge) {
   EXPECT_TRUE(b.diverged());
 }
 
+TEST(DivergenceCheck, NegativeEnergyInTheSolidIsAnInstability) {
+  // EnergyBalance {kinetic, strain, external_work, dissipated}.
+  SimulationParams p;
+  DivergenceCheck ok(p);
+  ok.check_energy({0.0, -1e-20, 1e-4, 0.5e-4}); // round-off below zero is not a divergence
+  EXPECT_FALSE(ok.diverged());
+  DivergenceCheck bad(p);
+  bad.check_energy({0.0, -1e-8, 1e-4, 0.5e-4});
+  EXPECT_TRUE(bad.diverged());
+  EXPECT_NE(bad.message(1.0, 10).find("energy in the solid became negative"), std::string::npos)
+      << bad.message(1.0, 10);
+}
+
 TEST(DivergenceCheck, StrengthAboveTheLargestMuPIsUnstable) {
   SimulationParams p;
   const double p0 = std::abs(p.loading.normal_stress);
