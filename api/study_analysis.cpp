@@ -489,11 +489,28 @@ nlohmann::json critical_length(const std::vector<StudyRun>& runs,
   return result;
 }
 
+namespace {
+
+// The runs of one scene by both methods, with each method's reference run of an L.
+struct TwoMethods {
+  const std::vector<StudyRun>& fe_runs;
+  const std::vector<StudyRun>& bi_runs;
+  std::vector<RunConvergence> fe_statuses, bi_statuses;
+
+  TwoMethods(const std::vector<StudyRun>& fe, const std::vector<StudyRun>& bi,
+             const ConvergenceTolerances& tol)
+      : fe_runs(fe), bi_runs(bi), fe_statuses(convergence_statuses(fe, tol)),
+        bi_statuses(convergence_statuses(bi, tol)) {}
+  const StudyRun* fe_reference(double L) const { return reference_run(fe_runs, fe_statuses, L); }
+  const StudyRun* bi_reference(double L) const { return reference_run(bi_runs, bi_statuses, L); }
+};
+
+} // namespace
+
 nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
                                   const std::vector<StudyRun>& bi_runs,
                                   const ConvergenceTolerances& tol) {
-  const auto fe_statuses = convergence_statuses(fe_runs, tol);
-  const auto bi_statuses = convergence_statuses(bi_runs, tol);
+  const TwoMethods both(fe_runs, bi_runs, tol);
   std::vector<double> Ls = study_values(fe_runs, &StudyRun::L);
   for (double L : study_values(bi_runs, &StudyRun::L))
     Ls.push_back(L);
@@ -513,8 +530,8 @@ nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
   };
   json rows = json::array();
   for (double L : Ls) {
-    const StudyRun* fe = reference_run(fe_runs, fe_statuses, L);
-    const StudyRun* bi = reference_run(bi_runs, bi_statuses, L);
+    const StudyRun* fe = both.fe_reference(L);
+    const StudyRun* bi = both.bi_reference(L);
     json row = {{"L", L}, {"fe", side(fe)}, {"spectral_bi", side(bi)}};
     if (fe && bi) {
       json differences;
@@ -576,12 +593,11 @@ nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs, const Convergen
 nlohmann::json speed_accuracy_across_methods(const std::vector<StudyRun>& fe_runs,
                                              const std::vector<StudyRun>& bi_runs,
                                              const ConvergenceTolerances& tol) {
-  const auto fe_statuses = convergence_statuses(fe_runs, tol);
-  const auto bi_statuses = convergence_statuses(bi_runs, tol);
+  const TwoMethods both(fe_runs, bi_runs, tol);
   // The reference of an L: the finer of the two methods' references (BI on a tie).
   auto reference_of = [&](double L) -> std::pair<const StudyRun*, const char*> {
-    const StudyRun* fe = reference_run(fe_runs, fe_statuses, L);
-    const StudyRun* bi = reference_run(bi_runs, bi_statuses, L);
+    const StudyRun* fe = both.fe_reference(L);
+    const StudyRun* bi = both.bi_reference(L);
     if (fe && (!bi || finer(fe->n_d, bi->n_d))) return {fe, "fe"};
     return {bi, bi ? "spectral_bi" : nullptr};
   };

@@ -11,13 +11,12 @@ import io
 import json
 import os
 import sys
-import time
 import unittest
 
 import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from server_harness import Server  # noqa: E402
+from server_harness import Server, wait_study  # noqa: E402
 
 BINARY = None
 JOBS, STUDIES = "/api/v1/jobs", "/api/v1/studies"
@@ -37,17 +36,6 @@ def scene(method):
 
 def post(server, path, body):
     return server.post(path, data=json.dumps(body), headers={"Content-Type": "application/json"})
-
-
-def wait_study(server, study_id, timeout=120.0):
-    deadline = time.monotonic() + timeout
-    study = None
-    while time.monotonic() < deadline:
-        study = server.get(f"{STUDIES}/{study_id}").json()
-        if study["status"] == "finished":
-            return study
-        time.sleep(0.2)
-    raise AssertionError(f"study {study_id} not finished: {json.dumps(study)[:1500]}")
 
 
 class Methods(unittest.TestCase):
