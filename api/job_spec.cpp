@@ -3,6 +3,7 @@
 #include "api/job_checks.hpp"
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
+#include "api/json_parse.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
@@ -32,15 +33,13 @@ ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& li
 }
 
 ParseResult parse_job_text(const std::string& text, const ValidationLimits& limits) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) { // syntax errors, number overflow
+  auto document = parse_bounded_json(text);
+  if (!document.ok()) {
     ParseResult result;
-    result.errors.push_back({"", std::string("not valid JSON: ") + e.what()});
+    result.errors.push_back(document.error);
     return result;
   }
-  return parse_job(document, limits);
+  return parse_job(document.value, limits);
 }
 
 std::string canonical_text(const nlohmann::json& canonical) {

@@ -2,8 +2,12 @@
 
 #include "server/clock.hpp"
 #include "server/job_id.hpp"
+#include "server/log.hpp"
 
+#include "api/json_parse.hpp"
 #include "api/study_analysis.hpp"
+
+#include <filesystem>
 
 namespace slipfront::server {
 
@@ -55,13 +59,11 @@ api::ParseResult JobService::validate(nlohmann::json doc) const {
 }
 
 SubmitResult JobService::submit(const std::string& body, const SubmitOptions& options) {
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(body);
-  } catch (const nlohmann::json::parse_error& e) {
-    return failure(Kind::bad_json, {{"", std::string("not valid JSON: ") + e.what()}});
-  }
-  return submit_document(std::move(doc), options);
+  auto parsed = api::parse_bounded_json(body);
+  if (parsed.status == api::JsonParse::Status::syntax)
+    return failure(Kind::bad_json, {parsed.error});
+  if (!parsed.ok()) return failure(Kind::invalid, {parsed.error});
+  return submit_document(std::move(parsed.value), options);
 }
 
 SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions& given) {

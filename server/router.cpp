@@ -56,8 +56,10 @@ Response Router::dispatch(const Request& request) const {
     } catch (const std::exception& e) {
       log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
                 e.what());
+      // The exception's text may quote internals (SQL, library messages): it goes to the
+      // log only.
       return problem_response(request, http::status::internal_server_error,
-                              std::string("internal error: ") + e.what());
+                              "internal error (the server log has the details)");
     }
   }
   if (!allow.empty()) {

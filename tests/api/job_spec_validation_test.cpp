@@ -190,10 +190,10 @@ TEST(JobValidation, NonFiniteNumbersAreRefused) {
   expect_single_error({{"geometry", {{"x_min", infinity}}}}, "/geometry/x_min",
                       "must be a finite number, got a non-finite number");
   expect_single_error({{"friction", {{"L", std::nan("")}}}}, "/friction/L", "non-finite");
-  // In JSON text, 1e999 overflows in the parser: one error for the whole document.
+  // In JSON text, 1e999 overflows in the parser: one error, naming the member (issue 10).
   const ParseResult result = parse_job_text(R"({"geometry": {"x_min": 1e999}})");
   ASSERT_EQ(result.errors.size(), 1u);
-  EXPECT_EQ(result.errors[0].pointer, "");
+  EXPECT_EQ(result.errors[0].pointer, "/geometry/x_min");
   EXPECT_NE(result.errors[0].reason.find("overflow"), std::string::npos) << result.errors[0].reason;
 }
 
@@ -328,4 +328,17 @@ TEST(JobValidation, MemoryLimitRefusesHugeMeshes) {
   const ParseResult huge = parse_job({{"geometry", {{"nodes_per_meter", 4000}}}});
   ASSERT_FALSE(huge.ok());
   EXPECT_EQ(huge.errors[0].pointer, "/geometry/nodes_per_meter");
+}
+
+// Issue 10, defect 1: nesting is bounded while parsing, before any recursive walk.
+TEST(JobValidation, DeepNestingIsRefusedWhileParsing) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const ParseResult result = parse_job_text(R"({"tags": )" + deep + "}");
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].pointer.rfind("/tags/0/0", 0), 0u) << result.errors[0].pointer;
+  EXPECT_NE(result.errors[0].reason.find("nests deeper than"), std::string::npos);
+  // Syntax errors are told by position, not in the JSON library's words.
+  const ParseResult syntax = parse_job_text("{\"a\": tru}");
+  ASSERT_EQ(syntax.errors.size(), 1u);
+  EXPECT_EQ(syntax.errors[0].reason.find("json.exception"), std::string::npos);
 }

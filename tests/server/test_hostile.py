@@ -1,0 +1,150 @@
+"""Hostile input against a live server over loopback (issue 10): every bad request gets its
+4xx naming the field, never a 5xx or the JSON library's own messages, changes nothing, and
+the server still answers /healthz afterwards.
+
+    /usr/bin/python3 tests/server/test_hostile.py --binary build/slipfront
+"""
+
+import argparse
+import json
+import os
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from server_harness import TINY, Server  # noqa: E402
+
+BINARY = None
+JOBS = "/api/v1/jobs"
+STUDIES = "/api/v1/studies"
+LIBRARY_WORDS = ("json.exception", "parse_error", "out_of_range", "type_error", "[json")
+
+
+def nested(levels, inner="1"):
+    return "[" * levels + inner + "]" * levels
+
+
+def nested_objects(levels):
+    return '{"a":' * levels + "1" + "}" * levels
+
+
+class HostileInput(unittest.TestCase):
+    """One open server (no auth); each case checks the answer, then that nothing changed
+    and the server is alive."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.server = Server(BINARY, args=["--workers", "1", "--queue-limit", "20",
+                                          "--request-timeout-s", "5"]).start()
+        # One real job so that listings and result paths have something to walk.
+        r = cls.server.submit(dict(TINY, name="hostile-seed"))
+        assert r.status_code == 201, r.text
+        cls.seed = cls.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+
+    @classmethod
+    def tearDownClass(cls):
+        code = cls.server.terminate()
+        cls.server.cleanup()
+        assert code == 0, f"server exit code {code}"
+
+    def counts(self):
+        jobs = self.server.get(JOBS, params={"limit": 1000, "fields": "id"}).json()["count"]
+        studies = len(self.server.get(STUDIES).json()["studies"])
+        return jobs, studies
+
+    def setUp(self):
+        self.before = self.counts()
+
+    def tearDown(self):
+        r = self.server.get("/healthz")
+        self.assertEqual(r.status_code, 200, r.text)
+        if self.before is not None:  # None: a test that creates jobs on purpose
+            self.assertEqual(self.counts(), self.before, "a rejected request changed the state")
+
+    def assertRejected(self, r, status, pointer=None):
+        self.assertEqual(r.status_code, status, r.text)
+        self.assertTrue(r.headers["Content-Type"].startswith("application/problem+json"))
+        for word in LIBRARY_WORDS:
+            self.assertNotIn(word, r.text)
+        body = r.json()
+        if pointer is not None:
+            pointers = [e["pointer"] for e in body.get("errors", [])]
+            self.assertIn(pointer, pointers, body)
+        return body
+
+    def post_raw(self, path, text):
+        return self.server.post(path, data=text.encode(),
+                                headers={"Content-Type": "application/json"}, timeout=30)
+
+    # --- defect 1: nesting depth, shared by every endpoint that parses a body ----------
+    def test_deep_array_to_studies_is_422_not_a_crash(self):
+        self.assertRejected(self.post_raw(STUDIES, nested(60000)), 422)
+        self.assertRejected(self.post_raw(STUDIES, '{"tags": ' + nested(60000) + "}"), 422)
+
+    def test_deep_array_to_jobs_is_422(self):
+        self.assertRejected(self.post_raw(JOBS, nested(60000)), 422)
+
+    def test_deep_objects_to_studies_and_jobs(self):
+        for path in (STUDIES, JOBS):
+            self.assertRejected(self.post_raw(path, nested_objects(60000)), 422)
+
+    def test_deep_value_inside_a_field_is_named(self):
+        body = '{"name": "x", "base": {"name": ' + nested(100) + "}}"
+        b = self.assertRejected(self.post_raw(STUDIES, body), 422)
+        self.assertTrue(b["errors"][0]["pointer"].startswith("/base/name/0/0"), b)
+        body = '{"tags": ' + nested(100) + "}"
+        b = self.assertRejected(self.post_raw(JOBS, body), 422)
+        self.assertTrue(b["errors"][0]["pointer"].startswith("/tags/0/0"), b)
+
+    def test_deep_but_allowed_nesting_gets_the_ordinary_answer(self):
+        # 20 levels is within the bound: the validator answers for the field.
+        b = self.assertRejected(self.post_raw(JOBS, '{"tags": ' + nested(20) + "}"), 422)
+        self.assertIn("/tags/0", [e["pointer"] for e in b["errors"]])
+
+    # --- defect 9: numbers beyond a double, non-finite filters, library messages -------
+    def test_number_overflow_in_job_names_the_field(self):
+        cases = [
+            ('{"time": {"duration": 1e999}}', "/time/duration"),
+            ('{"material": {"density": -1e999}}', "/material/density"),
+            ('{"geometry": {"nodes_per_meter": 5, "height": 1E+400}}', "/geometry/height"),
+            ('{"tags": ["a", 1e999]}', "/tags/1"),
+            ('{"unknown": {"x/y": [0, 1e999]}}', "/unknown/x~1y/1"),
+            ("1e999", ""),
+            ('{"priority": 1e999}', "/priority"),
+        ]
+        for text, pointer in cases:
+            with self.subTest(text=text):
+                self.assertRejected(self.post_raw(JOBS, text), 422, pointer)
+
+    def test_number_overflow_in_study_names_the_field(self):
+        cases = [
+            ('{"grid": {"L": [1e-5, 1e999], "n_d": [10]}}', "/grid/L/1"),
+            ('{"grid": {"L": [1e-5], "n_d": [10]}, "base": {"time": {"duration": 1e999}}}',
+             "/base/time/duration"),
+            ('{"convergence": {"L": [1e-5], "n_d_max": 1e999}}', "/convergence/n_d_max"),
+        ]
+        for text, pointer in cases:
+            with self.subTest(text=text):
+                self.assertRejected(self.post_raw(STUDIES, text), 422, pointer)
+
+    def test_syntax_errors_are_400_in_our_words(self):
+        for path in (JOBS, STUDIES):
+            for text in ("{", "[1,]", '{"a" 1}', "nul", '"\\uZZZZ"', "\xff", ""):
+                with self.subTest(path=path, text=text):
+                    b = self.assertRejected(self.post_raw(path, text), 400)
+                    self.assertIn("not valid JSON", json.dumps(b))
+
+    def test_non_finite_query_filters_are_rejected(self):
+        for key in ("L_min", "L_max", "n_d_min", "n_d_max"):
+            for value in ("nan", "NaN", "inf", "-inf", "infinity", "1e999"):
+                with self.subTest(key=key, value=value):
+                    self.assertRejected(self.server.get(JOBS, params={key: value}), 400,
+                                        "/query/" + key)
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--binary", required=True)
+    args, rest = parser.parse_known_args()
+    BINARY = os.path.abspath(args.binary)
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
