@@ -33,6 +33,8 @@ void ServerApp::start() {
     throw std::runtime_error("cannot create data dir " + config_.data_dir +
                              "/results: " + ec.message());
   config_.data_dir = fs::canonical(config_.data_dir).string();
+  // Before anything reads or recovers the directory's jobs.
+  data_dir_lock_ = std::make_unique<DataDirLock>(config_.data_dir);
   if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
 
   store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db");

@@ -1,12 +1,14 @@
 // The whole server: store, queue, workers, HTTP. serve_main() builds one from the flags;
 // tests may build one with another JobRunner.
 //
-// start(): open (and migrate) the database, re-queue jobs a crash left running, queue every
-// queued job, start the workers, bind the listener. shutdown(): stop accepting, stop the
-// running jobs at their next step and put them back to queued, close the database.
+// start(): lock the data dir (DataDirLock: one server per directory), open (and migrate) the
+// database, re-queue jobs a crash left running, queue every queued job, start the workers, bind the
+// listener. shutdown(): stop accepting, stop the running jobs at their next step and put them back
+// to queued, close the database.
 #pragma once
 
 #include "server/auth.hpp"
+#include "server/data_dir_lock.hpp"
 #include "server/handlers.hpp"
 #include "server/job_queue.hpp"
 #include "server/job_runner.hpp"
@@ -54,6 +56,7 @@ private:
   std::string code_version_;
   std::unique_ptr<JobRunner> runner_;
   std::optional<TokenTable> tokens_;
+  std::unique_ptr<DataDirLock> data_dir_lock_; // released last, after the store is closed
   std::unique_ptr<JobStore> store_;
   std::unique_ptr<JobQueue> queue_;
   RunningJobs running_;
