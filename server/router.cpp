@@ -3,6 +3,7 @@
 #include "server/log.hpp"
 #include "server/query_string.hpp"
 #include "server/responses.hpp"
+#include "server/sqlite_db.hpp"
 
 namespace slipfront::server {
 
@@ -37,6 +38,12 @@ void Router::add(http::verb method, const std::string& pattern, Handler handler)
   routes_.push_back({method, pattern, split_path(pattern), std::move(handler)});
 }
 
+void Router::on_storage_unavailable(int retry_after_s,
+                                    std::function<void(const std::string&)> record) {
+  retry_after_s_ = retry_after_s;
+  record_storage_error_ = std::move(record);
+}
+
 Response Router::dispatch(const Request& request) const {
   auto target = parse_target(request.target());
   if (!target)
@@ -53,6 +60,18 @@ Response Router::dispatch(const Request& request) const {
     RequestContext ctx{request, target->path, std::move(params), target->query, {}};
     try {
       return route.handler(ctx);
+    } catch (const SqliteError& e) {
+      log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
+                e.what());
+      if (!e.unavailable())
+        return problem_response(request, http::status::internal_server_error,
+                                "internal error (the server log has the details)");
+      if (record_storage_error_) record_storage_error_(e.what());
+      auto res = problem_response(request, http::status::service_unavailable,
+                                  "the server's storage cannot take writes now (disk full or I/O "
+                                  "error); retry later");
+      res.set(http::field::retry_after, std::to_string(retry_after_s_));
+      return res;
     } catch (const std::exception& e) {
       log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
                 e.what());

@@ -15,8 +15,11 @@ using Handler = std::function<Response(RequestContext&)>;
 class Router {
 public:
   void add(http::verb method, const std::string& pattern, Handler handler);
-  // Runs the matching handler; errors it throws become a 500 problem (logged with context).
+  // Runs the matching handler; errors it throws become a 500 problem (logged with context),
+  // except storage that cannot take writes now (disk full...): 503 with Retry-After.
   Response dispatch(const Request& request) const;
+  // What a storage failure answers: Retry-After, and a callback told of each (for /healthz).
+  void on_storage_unavailable(int retry_after_s, std::function<void(const std::string&)> record);
 
   struct Route {
     http::verb method;
@@ -28,6 +31,8 @@ public:
 
 private:
   std::vector<Route> routes_;
+  int retry_after_s_ = 30;
+  std::function<void(const std::string&)> record_storage_error_;
 };
 
 } // namespace slipfront::server

@@ -72,7 +72,10 @@ void ServerApp::start() {
 
   context_.reset(new ServerContext{*service_, *store_, *queue_, running_, stats_, tokens_,
                                    config_.data_dir, config_.workers, config_.retry_after_s,
-                                   draining_, *studies_});
+                                   draining_, *studies_, config_.min_free_bytes});
+  router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
+    stats_.record_storage_error(what);
+  });
   add_job_routes(router_, *context_);
   add_result_routes(router_, *context_);
   add_ops_routes(router_, *context_);

@@ -17,6 +17,7 @@ std::string usage_text() {
          "         [--workers N] [--queue-limit N] [--max-memory-bytes X]\n"
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
+         "         [--min-free-bytes X]\n"
          "see docs/server.md\n";
 }
 
@@ -77,6 +78,11 @@ const std::map<std::string, Setter>& setters() {
       {"db-progress-interval-s",
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.db_progress_interval_s = parse_number<double>(f, v);
+       }},
+      {"min-free-bytes",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.min_free_bytes = parse_number<double>(f, v);
+         if (!(c.min_free_bytes >= 0)) throw UsageError(f + ": must be >= 0");
        }},
   };
   return table;

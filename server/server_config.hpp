@@ -20,6 +20,7 @@ struct ServerConfig {
   int request_timeout_s = 30; // to receive a request; idle keep-alive connections
   int retry_after_s = 30;     // Retry-After of 503 answers
   double db_progress_interval_s = 3.0;
+  double min_free_bytes = 64.0 * 1024 * 1024; // /healthz is degraded below this free space
 };
 
 class UsageError : public std::runtime_error {

@@ -1,19 +1,31 @@
-"""Faults around a live server (issue 10): a second server on the same data dir. Each
-asserts what must hold: no accepted job lost or stuck, no 500, the database intact.
+"""Faults around a live server (issue 10): a second server on the same data dir, a full disk
+(a small tmpfs as data dir). Each asserts what must hold:
+no accepted job lost or stuck, no 500, the database intact.
 
     /usr/bin/python3 tests/server/test_faults.py --binary build/slipfront
 """
 
 import argparse
+import json
 import os
+import shutil
+import sqlite3
+import subprocess
 import sys
+import tempfile
+import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from server_harness import TERMINAL, Server, long_job  # noqa: E402
+from server_harness import TERMINAL, TINY, Server, long_job  # noqa: E402
 
 BINARY = None
 JOBS = "/api/v1/jobs"
+
+
+def integrity(data_dir):
+    with sqlite3.connect(os.path.join(data_dir, "slipfront.db")) as db:
+        return db.execute("PRAGMA integrity_check").fetchone()[0]
 
 
 class SecondServerOnTheSameDir(unittest.TestCase):
@@ -47,6 +59,86 @@ class SecondServerOnTheSameDir(unittest.TestCase):
         finally:
             first.own_dir = True
             first.cleanup()
+
+
+class FullDisk(unittest.TestCase):
+    """Defect 3: a data dir on a 3 MiB tmpfs, filled while a job runs and another waits."""
+
+    def setUp(self):
+        self.mount = tempfile.mkdtemp(prefix="slipfront-tmpfs-")
+        r = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=3m", "tmpfs", self.mount],
+                           capture_output=True)
+        if r.returncode != 0:
+            os.rmdir(self.mount)
+            self.skipTest("cannot mount a tmpfs here (needs root): "
+                          + r.stderr.decode(errors="replace").strip())
+
+    def tearDown(self):
+        subprocess.run(["umount", "-l", self.mount], capture_output=True)
+        shutil.rmtree(self.mount, ignore_errors=True)
+
+    def fill(self):
+        path = os.path.join(self.mount, "filler")
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT, 0o644)
+        try:
+            for _ in range(4096):  # at most 4 MiB, more than the tmpfs holds
+                try:
+                    os.write(fd, b"\0" * 1024)
+                except OSError:
+                    break
+        finally:
+            os.close(fd)
+        return path
+
+    def test_jobs_survive_a_full_disk(self):
+        data = os.path.join(self.mount, "data")
+        log_dir = tempfile.mkdtemp(prefix="slipfront-fulldisk-log-")
+        server = Server(BINARY, data_dir=data,
+                        args=["--workers", "1", "--min-free-bytes", "262144",
+                              "--retry-after-s", "7"])
+        server.log_path = os.path.join(log_dir, "server.log")  # not on the full disk
+        server.start()
+        try:
+            self.assertEqual(server.get("/healthz").json()["status"], "ok")
+            running = server.submit(dict(long_job("full-disk-running"))).json()["id"]
+            server.wait_status(running, {"running"}, timeout=30)
+            queued = server.submit(dict(TINY, name="full-disk-queued")).json()["id"]
+            filler = self.fill()
+
+            health = server.get("/healthz")
+            self.assertEqual(health.status_code, 503, health.text)
+            self.assertEqual(health.json()["status"], "degraded")
+            self.assertLess(health.json()["storage"]["free_bytes"], 262144)
+
+            codes = []
+            for i in range(40):  # each commit needs room in the WAL: the disk refuses soon
+                r = server.submit(dict(TINY, name=f"while-full-{i}"), params={"fresh": "true"})
+                codes.append(r.status_code)
+                self.assertIn(r.status_code, (201, 503), r.text)
+                if r.status_code == 503:
+                    self.assertEqual(r.headers.get("Retry-After"), "7")
+                    break
+            self.assertIn(503, codes, "the full disk never refused a submission")
+            self.assertIsNotNone(server.get("/healthz").json()["storage"]["last_error"])
+            accepted = [j["id"] for j in
+                        server.get(JOBS, params={"limit": 100, "fields": "id"}).json()["jobs"]]
+
+            cancel = server.post(f"{JOBS}/{running}/cancel")
+            self.assertIn(cancel.status_code, (200, 202, 409, 503), cancel.text)
+            time.sleep(2)
+            os.remove(filler)
+            if cancel.status_code == 503:
+                server.post(f"{JOBS}/{running}/cancel")
+            # Space is back: every accepted job reaches a final state, none stays stuck.
+            for job_id in accepted:
+                done = server.wait_status(job_id, TERMINAL, timeout=90)
+                self.assertIn(done["status"], TERMINAL)
+            self.assertEqual(server.get(f"{JOBS}/{queued}").json()["status"], "succeeded")
+            self.assertEqual(server.terminate(), 0)
+            self.assertEqual(integrity(data), "ok")
+        finally:
+            server.cleanup()
+            shutil.rmtree(log_dir, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -131,3 +131,59 @@ TEST(WorkerPool, DrainRequeuesRunningJobs) {
   EXPECT_EQ(job->attempts, 1);
   EXPECT_EQ(f.running.size(), 0u);
 }
+
+namespace {
+// Another connection holding the database's write lock: every write of the store fails
+// with SQLITE_BUSY (after its 5 s busy timeout), as writes fail on a full disk.
+struct WriteLock {
+  explicit WriteLock(const std::string& path) : db(path) { db.exec("BEGIN IMMEDIATE"); }
+  void release() {
+    if (held) db.exec("COMMIT");
+    held = false;
+  }
+  ~WriteLock() { release(); }
+  Database db;
+  bool held = true;
+};
+
+Job wait_final(Fixture& f, const std::string& id, int seconds) {
+  for (int i = 0; i < seconds * 20; ++i) {
+    auto job = f.store.get(id);
+    if (job && is_final(job->status)) return *job;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return *f.store.get(id);
+}
+} // namespace
+
+// Issue 10, defect 3: a queued job whose start hit a storage error left the in-memory queue
+// and never ran until a restart.
+TEST(WorkerPool, JobWhoseStartHitAStorageErrorStaysRunnable) {
+  Fixture f;
+  auto ok = f.submit("ok");
+  WriteLock lock(f.dir.str() + "/db.sqlite");
+  f.pool.start();                                       // mark_running fails after 5 s
+  std::this_thread::sleep_for(std::chrono::seconds(6)); // the first start has failed
+  EXPECT_EQ(f.store.get(ok)->status, JobStatus::queued);
+  EXPECT_TRUE(f.stats.last_storage_error().has_value());
+  lock.release();
+  Job done = wait_final(f, ok, 20);
+  EXPECT_EQ(done.status, JobStatus::succeeded);
+  f.pool.drain();
+}
+
+// ... and a running job whose end could not be stored stayed `running` forever.
+TEST(WorkerPool, EndThatCannotBeStoredIsRetried) {
+  Fixture f;
+  f.pool.start();
+  auto slow = f.submit("wait");
+  f.wait_for(slow, running_status);
+  WriteLock lock(f.dir.str() + "/db.sqlite");
+  EXPECT_TRUE(f.running.request_cancel(slow, "alice")); // finish() now fails
+  std::this_thread::sleep_for(std::chrono::seconds(7));
+  EXPECT_EQ(f.store.get(slow)->status, JobStatus::running);
+  lock.release();
+  Job done = wait_final(f, slow, 20);
+  EXPECT_EQ(done.status, JobStatus::cancelled);
+  f.pool.drain();
+}
