@@ -50,6 +50,13 @@ std::vector<api::FieldError> take_server_fields(nlohmann::json& doc, SubmitOptio
 
 } // namespace
 
+bool JobService::result_file_exists(const Job& job) const {
+  std::error_code ec;
+  const auto path =
+      std::filesystem::path(options_.data_dir.empty() ? "." : options_.data_dir) / job.result.path;
+  return std::filesystem::is_regular_file(path, ec);
+}
+
 api::ParseResult JobService::validate(nlohmann::json doc) const {
   // One solver thread per job unless the spec asks: N workers use N cores.
   if (doc.is_object() && !doc.contains("threads")) doc["threads"] = 1;
@@ -108,7 +115,14 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
   job.study_id = options.study_id;
 
   if (!job.fresh) {
-    if (auto earlier = store_.find_reusable(spec.sha256, options_.code_version)) {
+    auto earlier = store_.find_reusable(spec.sha256, options_.code_version);
+    if (earlier && !result_file_exists(*earlier)) {
+      // Deleted by hand (or lost): never point a new job at it; run the job again.
+      log_error("job " + earlier->id + ": result file " + earlier->result.path +
+                " is missing; identical jobs are run again instead of reusing it");
+      earlier.reset();
+    }
+    if (earlier) {
       job.status = JobStatus::succeeded;
       job.started_at = job.created_at;
       job.finished_at = job.created_at;

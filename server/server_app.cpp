@@ -55,6 +55,7 @@ void ServerApp::start() {
   so.max_memory_bytes = config_.max_memory_bytes;
   so.code_version = code_version_;
   so.auth_enabled = tokens_.has_value();
+  so.data_dir = config_.data_dir;
   service_ = std::make_unique<JobService>(so, *store_, *queue_, running_);
 
   WorkerOptions wo;

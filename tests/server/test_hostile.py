@@ -141,6 +141,23 @@ class HostileInput(unittest.TestCase):
                     self.assertRejected(self.server.get(JOBS, params={key: value}), 400,
                                         "/query/" + key)
 
+    # --- defect 8: a result file deleted behind the server's back -------------------------
+    def test_deleted_result_file_is_410_and_never_reused(self):
+        self.before = None
+        spec = dict(TINY, name="to-delete", loading={"shear_stress": 0.01041})
+        r = self.server.submit(spec)
+        self.assertEqual(r.status_code, 201, r.text)
+        first = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+        os.remove(os.path.join(self.server.data_dir, "results", first["id"] + ".h5"))
+        b = self.assertRejected(self.server.get(first["result"]["url"]), 410)
+        self.assertIn("no longer on the server", b["detail"])
+        # An identical job is not pointed at the missing file: it runs again.
+        r = self.server.submit(dict(spec, name="to-delete-again"))
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertNotEqual(r.json()["cache"], "hit", r.json())
+        again = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+        self.assertEqual(self.server.get(again["result"]["url"]).status_code, 200)
+
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
