@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace slipfront::server {
 
@@ -19,7 +21,8 @@ public:
   std::size_t size() const { return users_by_token_.size(); }
 
 private:
-  std::map<std::string, std::string, std::less<>> users_by_token_;
+  std::map<std::string, std::string, std::less<>> users_by_token_; // duplicate check only
+  std::vector<std::pair<std::string, std::string>> digests_;       // (SHA-256 hex of token, user)
 };
 
 } // namespace slipfront::server

@@ -45,15 +45,23 @@ void Router::on_storage_unavailable(int retry_after_s,
 }
 
 Response Router::dispatch(const Request& request) const {
+  Response response = answer(request);
+  if (request.method() == http::verb::head) response.drop_body();
+  return response;
+}
+
+Response Router::answer(const Request& request) const {
   auto target = parse_target(request.target());
   if (!target)
     return problem_response(request, http::status::bad_request, "malformed request target");
   auto segments = split_path(target->path);
   std::string allow;
+  // HEAD is answered by the GET route, without the body (RFC 9110 §9.3.2).
+  const bool head = request.method() == http::verb::head;
   for (const auto& route : routes_) {
     std::map<std::string, std::string> params;
     if (!match(route.segments, segments, params)) continue;
-    if (route.method != request.method()) {
+    if (route.method != request.method() && !(head && route.method == http::verb::get)) {
       allow += (allow.empty() ? "" : ", ") + std::string(http::to_string(route.method));
       continue;
     }

@@ -30,6 +30,8 @@ public:
   const std::vector<Route>& routes() const { return routes_; }
 
 private:
+  Response answer(const Request& request) const;
+
   std::vector<Route> routes_;
   int retry_after_s_ = 30;
   std::function<void(const std::string&)> record_storage_error_;

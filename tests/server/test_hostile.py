@@ -158,6 +158,36 @@ class HostileInput(unittest.TestCase):
         again = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
         self.assertEqual(self.server.get(again["result"]["url"]).status_code, 200)
 
+    # --- defect 11: HEAD, log lines -------------------------------------------------------
+    def test_head_answers_like_get_without_the_body(self):
+        seed = self.seed["id"]
+        for path in ["/healthz", "/metrics", "/api/v1/openapi.json", JOBS, f"{JOBS}/{seed}",
+                     f"{JOBS}/{seed}/result.h5", f"{JOBS}/{seed}/metrics", f"{JOBS}/{seed}/front",
+                     STUDIES, f"{JOBS}/{'0' * 32}", "/nowhere"]:
+            with self.subTest(path=path):
+                get = self.server.get(path)
+                head = self.server.session.head(self.server.url(path), timeout=10)
+                self.assertEqual(head.status_code, get.status_code)
+                self.assertEqual(head.content, b"")
+                self.assertEqual(head.headers.get("Content-Type"), get.headers.get("Content-Type"))
+                if path.endswith("result.h5"):
+                    self.assertEqual(int(head.headers["Content-Length"]), len(get.content))
+                    self.assertEqual(head.headers["ETag"], get.headers["ETag"])
+        # The connection is still in step after HEAD answers (keep-alive).
+        self.assertEqual(self.server.get("/healthz").status_code, 200)
+
+    def test_control_characters_in_names_cannot_forge_log_lines(self):
+        self.before = None
+        r = self.server.submit(dict(TINY, name="x\n2026-01-01T00:00:00Z error FORGED\r\x1b[2J"),
+                               params={"fresh": "true"})  # run, so that its name is logged
+        self.assertEqual(r.status_code, 201, r.text)
+        self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+        log = self.server.read_log()
+        self.assertIn("\\x0a2026-01-01T00:00:00Z error FORGED", log)
+        for line in log.splitlines():
+            self.assertFalse(line.startswith("2026-01-01T00:00:00Z error FORGED"), line)
+            self.assertNotIn("\x1b", line)
+
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
