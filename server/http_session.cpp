@@ -10,9 +10,15 @@ namespace slipfront::server {
 namespace net = boost::asio;
 
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, ServerStats& stats,
-                         SessionLimits limits)
+                         SessionLimits limits, std::shared_ptr<std::atomic<int>> open_count)
     : stream_(std::move(socket)), read_deadline_(stream_.get_executor()), router_(router),
-      stats_(stats), limits_(limits) {}
+      stats_(stats), limits_(limits), open_count_(std::move(open_count)) {
+  if (open_count_) ++*open_count_;
+}
+
+HttpSession::~HttpSession() {
+  if (open_count_) --*open_count_;
+}
 
 void HttpSession::run() {
   net::dispatch(stream_.get_executor(),

@@ -6,11 +6,34 @@
 
 #include <boost/asio/ip/address.hpp>
 
+#include <sys/resource.h>
+
 #include <filesystem>
 
 namespace slipfront::server {
 
 namespace net = boost::asio;
+
+namespace {
+// The descriptors a process may open: the soft limit raised to the hard one. Connections
+// are capped below it, leaving room for the database, result files and the listener itself.
+int connection_cap(int wanted) {
+  constexpr rlim_t reserve = 64;
+  struct rlimit lim {};
+  if (getrlimit(RLIMIT_NOFILE, &lim) != 0) return wanted;
+  if (lim.rlim_cur < lim.rlim_max) {
+    lim.rlim_cur = lim.rlim_max;
+    setrlimit(RLIMIT_NOFILE, &lim);
+    getrlimit(RLIMIT_NOFILE, &lim);
+  }
+  if (lim.rlim_cur == RLIM_INFINITY) return wanted;
+  const rlim_t room = lim.rlim_cur > 2 * reserve ? lim.rlim_cur - reserve : lim.rlim_cur / 2;
+  if (static_cast<rlim_t>(wanted) <= room) return wanted;
+  log_info("--max-connections " + std::to_string(wanted) + " lowered to " + std::to_string(room) +
+           ": the process may open " + std::to_string(lim.rlim_cur) + " file descriptors");
+  return static_cast<int>(room);
+}
+} // namespace
 
 ServerApp::ServerApp(ServerConfig config, std::unique_ptr<JobRunner> runner,
                      std::string code_version)
@@ -88,6 +111,7 @@ void ServerApp::start() {
   SessionLimits limits;
   limits.max_body_bytes = config_.max_body_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
+  limits.max_connections = connection_cap(config_.max_connections);
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);

@@ -17,7 +17,7 @@ std::string usage_text() {
          "         [--workers N] [--queue-limit N] [--max-memory-bytes X]\n"
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
-         "         [--min-free-bytes X]\n"
+         "         [--min-free-bytes X] [--max-connections N]\n"
          "see docs/server.md\n";
 }
 
@@ -83,6 +83,11 @@ const std::map<std::string, Setter>& setters() {
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.min_free_bytes = parse_number<double>(f, v);
          if (!(c.min_free_bytes >= 0)) throw UsageError(f + ": must be >= 0");
+       }},
+      {"max-connections",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.max_connections = parse_number<int>(f, v);
+         if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
        }},
   };
   return table;

@@ -1,5 +1,5 @@
 """Faults around a live server (issue 10): a second server on the same data dir, a full disk
-(a small tmpfs as data dir). Each asserts what must hold:
+(a small tmpfs as data dir), running out of file descriptors. Each asserts what must hold:
 no accepted job lost or stuck, no 500, the database intact.
 
     /usr/bin/python3 tests/server/test_faults.py --binary build/slipfront
@@ -8,7 +8,9 @@ no accepted job lost or stuck, no 500, the database intact.
 import argparse
 import json
 import os
+import resource
 import shutil
+import socket
 import sqlite3
 import subprocess
 import sys
@@ -139,6 +141,63 @@ class FullDisk(unittest.TestCase):
         finally:
             server.cleanup()
             shutil.rmtree(log_dir, ignore_errors=True)
+
+
+class DescriptorExhaustion(unittest.TestCase):
+    """Defect 5: near the descriptor limit the accept loop spun and logged the same line
+    megabytes a second, and /healthz was unreachable."""
+
+    def test_health_answers_with_every_descriptor_taken(self):
+        def low_fd_limit():
+            resource.setrlimit(resource.RLIMIT_NOFILE, (160, 160))
+
+        server = Server(BINARY, args=["--workers", "1", "--request-timeout-s", "20"],
+                        preexec_fn=low_fd_limit).start()
+        idle = []
+        try:
+            host, port = server.base[len("http://"):].split(":")
+            for _ in range(300):  # more connections than the server may have descriptors
+                idle.append(socket.create_connection((host, int(port)), timeout=5))
+            time.sleep(0.5)
+            log_before = os.path.getsize(server.log_path)
+            cpu_before = self.cpu_seconds(server.proc.pid)
+            started = time.monotonic()
+            time.sleep(2.0)
+            cpu = self.cpu_seconds(server.proc.pid) - cpu_before
+            logged = os.path.getsize(server.log_path) - log_before
+            self.assertLess(cpu, 0.5, f"{cpu:.2f} s of CPU in 2 s while idle connections wait")
+            self.assertLess(logged, 20000, f"{logged} bytes logged in 2 s")
+            # Health checks get an answer at once (503 while over the cap), not a hang.
+            t0 = time.monotonic()
+            r = server.get("/healthz", timeout=5)
+            self.assertIn(r.status_code, (200, 503))
+            self.assertLess(time.monotonic() - t0, 2.0)
+            self.assertLess(time.monotonic() - started, 10)
+        finally:
+            for s in idle:
+                s.close()
+        # With the idle connections gone, everything answers again.
+        deadline = time.monotonic() + 10
+        status = None
+        while time.monotonic() < deadline:
+            try:
+                status = server.get("/healthz", timeout=2).status_code
+            except Exception:  # noqa: BLE001 - a reset while the server closes the old ones
+                status = None
+            if status == 200:
+                break
+            time.sleep(0.2)
+        self.assertEqual(status, 200)
+        r = server.submit(dict(TINY, name="after-exhaustion"))
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertEqual(server.terminate(), 0)
+        server.cleanup()
+
+    @staticmethod
+    def cpu_seconds(pid):
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 if __name__ == "__main__":
