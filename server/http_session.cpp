@@ -4,6 +4,7 @@
 #include "server/responses.hpp"
 
 #include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
 
 namespace slipfront::server {
 
@@ -103,6 +104,15 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
     return close();
   if (ec) return reject(http::status::bad_request, "malformed request: " + ec.message());
   Request req = parser_->release();
+  if (limits_.offload_pool && router_.offloaded(req)) {
+    // A long handler: the I/O thread goes back to other connections meanwhile.
+    net::post(*limits_.offload_pool, [self = shared_from_this(), req = std::move(req)] {
+      auto response = std::make_shared<Response>(self->router_.dispatch(req));
+      net::post(self->stream_.get_executor(),
+                [self, response] { self->send(std::move(*response), false); });
+    });
+    return;
+  }
   Response response = router_.dispatch(req);
   send(std::move(response), false);
 }

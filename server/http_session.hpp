@@ -9,6 +9,7 @@
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <boost/asio/thread_pool.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -22,6 +23,8 @@ struct SessionLimits {
   std::chrono::seconds request_timeout{30}; // to receive a whole request (and idle keep-alive)
   std::chrono::seconds write_timeout{600};  // to send a whole response (large result files)
   int max_connections = 256; // open at once; more are answered 503 and closed at once
+  // Where offloaded routes (Router::offloaded) run; null = on the I/O thread.
+  boost::asio::thread_pool* offload_pool = nullptr;
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {

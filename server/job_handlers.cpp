@@ -256,8 +256,9 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
 void add_job_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::post, prefix + "/jobs",
              [&ctx](RequestContext& rc) { return submit(ctx, rc); });
-  router.add(http::verb::get, prefix + "/jobs",
-             [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs", [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); },
+      true);
   router.add(http::verb::get, prefix + "/jobs/{id}",
              [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
   router.add(http::verb::post, prefix + "/jobs/{id}/cancel",

@@ -258,6 +258,8 @@ JobStore::JobStore(const std::string& path) : db_(path) {
   db_.exec("PRAGMA synchronous = FULL");
   migrate(); // with foreign keys off: a migration may rebuild a referenced table
   db_.exec("PRAGMA foreign_keys = ON");
+  probe_db_.emplace(path);
+  probe_db_->exec("PRAGMA busy_timeout = 1000");
 }
 
 JobStore::~JobStore() {
@@ -269,8 +271,8 @@ JobStore::~JobStore() {
 }
 
 std::int64_t JobStore::user_version() {
-  std::lock_guard lock(mutex_);
-  return db_.user_version();
+  std::lock_guard lock(probe_mutex_);
+  return probe_db_->user_version();
 }
 
 void JobStore::migrate() {

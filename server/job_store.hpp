@@ -93,6 +93,8 @@ public:
     std::lock_guard lock(mutex_);
     return f(db_);
   }
+  // On a connection of its own (the health check's): never waits behind a long listing
+  // holding the store's lock.
   std::int64_t user_version();
 
 private:
@@ -101,6 +103,8 @@ private:
 
   std::mutex mutex_;
   Database db_;
+  std::mutex probe_mutex_;
+  std::optional<Database> probe_db_; // opened after the migrations
 };
 
 // The schema migrations: entry i takes user_version i to i + 1.

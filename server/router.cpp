@@ -34,8 +34,22 @@ bool match(const std::vector<std::string>& pattern, const std::vector<std::strin
 }
 } // namespace
 
-void Router::add(http::verb method, const std::string& pattern, Handler handler) {
-  routes_.push_back({method, pattern, split_path(pattern), std::move(handler)});
+void Router::add(http::verb method, const std::string& pattern, Handler handler, bool offload) {
+  routes_.push_back({method, pattern, split_path(pattern), std::move(handler), offload});
+}
+
+bool Router::offloaded(const Request& request) const {
+  auto target = parse_target(request.target());
+  if (!target) return false;
+  auto segments = split_path(target->path);
+  const bool head = request.method() == http::verb::head;
+  for (const auto& route : routes_) {
+    std::map<std::string, std::string> params;
+    if (route.offload && match(route.segments, segments, params) &&
+        (route.method == request.method() || (head && route.method == http::verb::get)))
+      return true;
+  }
+  return false;
 }
 
 void Router::on_storage_unavailable(int retry_after_s,

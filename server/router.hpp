@@ -14,7 +14,10 @@ using Handler = std::function<Response(RequestContext&)>;
 
 class Router {
 public:
-  void add(http::verb method, const std::string& pattern, Handler handler);
+  // offload: a handler that may take long (listings over many rows) runs on the offload
+  // pool, not on an I/O thread, so that health checks and status reads stay quick.
+  void add(http::verb method, const std::string& pattern, Handler handler, bool offload = false);
+  bool offloaded(const Request& request) const;
   // Runs the matching handler; errors it throws become a 500 problem (logged with context),
   // except storage that cannot take writes now (disk full...): 503 with Retry-After.
   Response dispatch(const Request& request) const;
@@ -26,6 +29,7 @@ public:
     std::string pattern;
     std::vector<std::string> segments;
     Handler handler;
+    bool offload = false;
   };
   const std::vector<Route>& routes() const { return routes_; }
 

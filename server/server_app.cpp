@@ -112,6 +112,8 @@ void ServerApp::start() {
   limits.max_body_bytes = config_.max_body_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
   limits.max_connections = connection_cap(config_.max_connections);
+  offload_pool_ = std::make_unique<net::thread_pool>(2);
+  limits.offload_pool = offload_pool_.get();
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);
@@ -167,6 +169,7 @@ void ServerApp::shutdown() {
   for (auto& t : io_threads_)
     if (t.joinable()) t.join();
   io_threads_.clear();
+  if (offload_pool_) offload_pool_->join(); // listings in flight finish; their answers are dropped
   pool_.reset();
   studies_.reset();
   supervisor_.reset();
