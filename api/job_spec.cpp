@@ -4,6 +4,7 @@
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
+#include "api/result_estimate.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
@@ -24,6 +25,8 @@ ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& li
 
   job.memory_estimate_bytes = estimated_memory_bytes(job.params);
   check_memory(job, limits, result.errors);
+  job.result_estimate_bytes = estimated_result_bytes(job.params);
+  check_result_size(job, limits, result.errors);
   if (!result.errors.empty()) return result;
 
   job.canonical = reader.canonical();

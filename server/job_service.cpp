@@ -62,6 +62,7 @@ api::ParseResult JobService::validate(nlohmann::json doc) const {
   if (doc.is_object() && !doc.contains("threads")) doc["threads"] = 1;
   api::ValidationLimits limits;
   limits.max_memory_bytes = options_.max_memory_bytes;
+  limits.max_result_bytes = options_.max_result_bytes;
   return api::parse_job(doc, limits);
 }
 

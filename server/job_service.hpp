@@ -45,6 +45,7 @@ struct CancelResult {
 
 struct ServiceOptions {
   double max_memory_bytes = 8.0e9;
+  double max_result_bytes = 20.0e9; // result-file estimate above which a job is refused
   std::string code_version;
   bool auth_enabled = false;
   // Result paths are relative to it; "" = the working directory. A cached result whose file

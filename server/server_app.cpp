@@ -76,6 +76,7 @@ void ServerApp::start() {
 
   ServiceOptions so;
   so.max_memory_bytes = config_.max_memory_bytes;
+  so.max_result_bytes = config_.max_result_bytes;
   so.code_version = code_version_;
   so.auth_enabled = tokens_.has_value();
   so.data_dir = config_.data_dir;

@@ -17,7 +17,7 @@ std::string usage_text() {
          "         [--workers N] [--queue-limit N] [--max-memory-bytes X]\n"
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
-         "         [--min-free-bytes X] [--max-connections N]\n"
+         "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
          "see docs/server.md\n";
 }
 
@@ -56,6 +56,11 @@ const std::map<std::string, Setter>& setters() {
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.max_memory_bytes = parse_number<double>(f, v);
          if (!(c.max_memory_bytes >= 0)) throw UsageError(f + ": must be >= 0");
+       }},
+      {"max-result-bytes",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.max_result_bytes = parse_number<double>(f, v);
+         if (!(c.max_result_bytes > 0)) throw UsageError(f + ": must be > 0");
        }},
       {"max-body-bytes",
        [](ServerConfig& c, const std::string& f, const std::string& v) {

@@ -11,9 +11,10 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   int port = 8080; // 0 = an ephemeral port
   std::string data_dir = "slipfront-data";
-  int workers = 0;                // 0 = one per hardware thread
-  std::size_t queue_limit = 1000; // queued jobs above which POST /jobs answers 503
-  double max_memory_bytes = 0.0;  // 0 = 3/4 of physical memory shared by the workers
+  int workers = 0;                  // 0 = one per hardware thread
+  std::size_t queue_limit = 1000;   // queued jobs above which POST /jobs answers 503
+  double max_memory_bytes = 0.0;    // 0 = 3/4 of physical memory shared by the workers
+  double max_result_bytes = 20.0e9; // a job whose result-file estimate is above is refused
   std::uint64_t max_body_bytes = 1 << 20;
   std::string token_file;     // "" = no authentication
   int io_threads = 2;         // threads answering HTTP

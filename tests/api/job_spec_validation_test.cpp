@@ -342,3 +342,20 @@ TEST(JobValidation, DeepNestingIsRefusedWhileParsing) {
   ASSERT_EQ(syntax.errors.size(), 1u);
   EXPECT_EQ(syntax.errors[0].reason.find("json.exception"), std::string::npos);
 }
+
+// Issue 10, defect 4: the result file's size is estimated at validation and limited.
+TEST(JobValidation, ResultSizeLimit) {
+  const json tiny_interval = {{"output", {{"interval", 1e-6}}}, {"time", {{"duration", 3000.0}}}};
+  EXPECT_TRUE(parse_job(tiny_interval).ok()) << "no limit by default (the CLI)";
+  slipfront::api::ValidationLimits limits;
+  limits.max_result_bytes = 20e9;
+  const ParseResult refused = parse_job(tiny_interval, limits);
+  ASSERT_EQ(refused.errors.size(), 1u);
+  EXPECT_EQ(refused.errors[0].pointer, "/output/interval");
+  EXPECT_NE(refused.errors[0].reason.find("result file would hold about"), std::string::npos);
+  // The paper's job is far below the limit; its estimate bounds the real file (tens of MB).
+  const ParseResult paper = parse_job(json::object(), limits);
+  ASSERT_TRUE(paper.ok());
+  EXPECT_GT(paper.spec->result_estimate_bytes, 1e6);
+  EXPECT_LT(paper.spec->result_estimate_bytes, 1e9);
+}

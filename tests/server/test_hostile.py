@@ -141,6 +141,14 @@ class HostileInput(unittest.TestCase):
                     self.assertRejected(self.server.get(JOBS, params={key: value}), 400,
                                         "/query/" + key)
 
+    # --- defect 4: a result file of hundreds of GB is refused at validation -------------
+    def test_result_size_limit_names_the_interval(self):
+        body = {"output": {"interval": 1e-6}, "time": {"duration": 3000.0}}  # ~55 GB
+        b = self.assertRejected(self.server.submit(body), 422, "/output/interval")
+        self.assertIn("result file would hold about", json.dumps(b))
+        study = {"grid": {"L": [5e-5], "n_d": [40]}, "base": body}
+        self.assertRejected(self.server.post(STUDIES, json=study), 422, "/base/output/interval")
+
     # --- defect 8: a result file deleted behind the server's back -------------------------
     def test_deleted_result_file_is_410_and_never_reused(self):
         self.before = None
