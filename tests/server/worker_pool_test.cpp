@@ -136,7 +136,10 @@ namespace {
 // Another connection holding the database's write lock: every write of the store fails
 // with SQLITE_BUSY (after its 5 s busy timeout), as writes fail on a full disk.
 struct WriteLock {
-  explicit WriteLock(const std::string& path) : db(path) { db.exec("BEGIN IMMEDIATE"); }
+  explicit WriteLock(const std::string& path) : db(path) {
+    db.exec("PRAGMA busy_timeout = 5000"); // the worker may be writing progress right now
+    db.exec("BEGIN IMMEDIATE");
+  }
   void release() {
     if (held) db.exec("COMMIT");
     held = false;
