@@ -69,8 +69,8 @@ struct Fixture {
     return job.id;
   }
 
-  Job wait_for(const std::string& id, bool (*done)(JobStatus)) {
-    for (int i = 0; i < 500; ++i) {
+  Job wait_for(const std::string& id, bool (*done)(JobStatus), int seconds = 5) {
+    for (int i = 0; i < seconds * 100; ++i) {
       auto job = store.get(id);
       if (job && done(job->status)) return *job;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -149,14 +149,6 @@ struct WriteLock {
   bool held = true;
 };
 
-Job wait_final(Fixture& f, const std::string& id, int seconds) {
-  for (int i = 0; i < seconds * 20; ++i) {
-    auto job = f.store.get(id);
-    if (job && is_final(job->status)) return *job;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return *f.store.get(id);
-}
 } // namespace
 
 // Issue 10, defect 3: a queued job whose start hit a storage error left the in-memory queue
@@ -170,7 +162,7 @@ TEST(WorkerPool, JobWhoseStartHitAStorageErrorStaysRunnable) {
   EXPECT_EQ(f.store.get(ok)->status, JobStatus::queued);
   EXPECT_TRUE(f.stats.last_storage_error().has_value());
   lock.release();
-  Job done = wait_final(f, ok, 20);
+  Job done = f.wait_for(ok, final_status, 20);
   EXPECT_EQ(done.status, JobStatus::succeeded);
   f.pool.drain();
 }
@@ -186,7 +178,7 @@ TEST(WorkerPool, EndThatCannotBeStoredIsRetried) {
   std::this_thread::sleep_for(std::chrono::seconds(7));
   EXPECT_EQ(f.store.get(slow)->status, JobStatus::running);
   lock.release();
-  Job done = wait_final(f, slow, 20);
+  Job done = f.wait_for(slow, final_status, 20);
   EXPECT_EQ(done.status, JobStatus::cancelled);
   f.pool.drain();
 }
