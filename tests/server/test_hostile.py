@@ -8,6 +8,7 @@ the server still answers /healthz afterwards.
 import argparse
 import json
 import os
+import re
 import sys
 import unittest
 
@@ -43,9 +44,19 @@ class HostileInput(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
+        # Over the whole suite: how many answers were 4xx, and not one 5xx.
+        codes = {}
+        for line in cls.server.get("/metrics").text.splitlines():
+            m = re.match(r'slipfront_http_requests_total\{code="(\d+)"\} (\d+)', line)
+            if m:
+                codes[int(m.group(1))] = int(m.group(2))
+        client = sum(n for c, n in codes.items() if 400 <= c < 500)
+        server = sum(n for c, n in codes.items() if c >= 500)
+        print(f"hostile suite: {client} answers 4xx, {server} answers 5xx", file=sys.stderr)
         code = cls.server.terminate()
         cls.server.cleanup()
         assert code == 0, f"server exit code {code}"
+        assert server == 0, f"{server} answers were 5xx: {codes}"
 
     def counts(self):
         jobs = self.server.get(JOBS, params={"limit": 1000, "fields": "id"}).json()["count"]
@@ -195,6 +206,133 @@ class HostileInput(unittest.TestCase):
         for line in log.splitlines():
             self.assertFalse(line.startswith("2026-01-01T00:00:00Z error FORGED"), line)
             self.assertNotIn("\x1b", line)
+
+
+    # --- breadth: every endpoint, bad fields, ids, queries, headers, methods -------------
+    def assertClientError(self, r, pointer=None):
+        """Any 4xx in problem+json form (naming `pointer` if given), never a 5xx."""
+        self.assertGreaterEqual(r.status_code, 400, r.text)
+        self.assertLess(r.status_code, 500, r.text)
+        return self.assertRejected(r, r.status_code, pointer)
+
+    def test_bad_job_fields_are_422_by_pointer(self):
+        cases = [
+            ({"name": 5}, "/name"), ({"name": "x" * 1000}, "/name"), ({"tags": "a"}, "/tags"),
+            ({"tags": [1]}, "/tags/0"), ({"tags": ["a"] * 100}, "/tags"),
+            ({"priority": 101}, "/priority"), ({"priority": "high"}, "/priority"),
+            ({"priority": 1.5}, "/priority"), ({"fresh": "yes"}, "/fresh"),
+            ({"threads": 100000}, "/threads"), ({"threads": -1}, "/threads"),
+            ({"frobnicate": 1}, "/frobnicate"), ({"material": 5}, "/material"),
+            ({"material": {"density": -1}}, "/material/density"),
+            ({"material": {"density": "1"}}, "/material/density"),
+            ({"material": {"poisson_ratio": 0.5}}, "/material/poisson_ratio"),
+            ({"geometry": {"nodes_per_meter": 0}}, "/geometry/nodes_per_meter"),
+            ({"geometry": {"nodes_per_meter": 1e12}}, "/geometry/width"),
+            ({"geometry": {"height": "tall"}}, "/geometry/height"),
+            ({"geometry": {"width": 1e300}}, "/geometry/width"),
+            ({"geometry": {"top_boundary": "open"}}, "/geometry/top_boundary"),
+            ({"friction": {"law": "magic"}}, "/friction/law"),
+            ({"friction": {"L": 0}}, "/friction/L"), ({"friction": {"mu": -0.1}}, "/friction/mu"),
+            ({"time": {"duration": 0}}, "/time/duration"),
+            ({"time": {"duration": 1e300}}, "/geometry/nodes_per_meter"),
+            ({"time": {"safety_factor": 3}}, "/time/safety_factor"),
+            ({"output": {"interval": -1}}, "/output/interval"),
+            ({"output": {"space_stride": 0}}, "/output/space_stride"),
+            ({"probe": {"arrival_x1": 1e6}}, "/probe/arrival_x1"),
+            ({"loading": {"shear_stress": 1.0}}, "/loading/shear_stress"),
+            ({"nucleation": {"alpha": 2}}, "/nucleation/alpha"),
+        ]
+        for body, pointer in cases:
+            with self.subTest(body=body):
+                self.assertRejected(self.server.submit(body), 422, pointer)
+        for text in ("[]", '"job"', "null", "3", "true"):
+            with self.subTest(text=text):
+                self.assertRejected(self.post_raw(JOBS, text), 422, "")
+
+    def test_bad_study_fields_are_422_by_pointer(self):
+        cases = [
+            ({}, ""), ({"grid": {"L": [1e-5], "n_d": [10]}, "preset": "failure_regimes"}, ""),
+            ({"grid": 5}, "/grid"), ({"grid": {"L": [], "n_d": [10]}}, "/grid/L"),
+            ({"grid": {"L": [-1], "n_d": [10]}}, "/grid/L/0"),
+            ({"grid": {"L": [1e-5, 1e-5], "n_d": [10]}}, "/grid/L/1"),
+            ({"grid": {"L": ["a"], "n_d": [10]}}, "/grid/L/0"),
+            ({"grid": {"L": [1e-5], "n_d": [10], "x": 1}}, "/grid/x"),
+            ({"grid": {"L": [1e-5] * 1000, "n_d": [10]}}, "/grid/L"),
+            ({"convergence": {"L": [1e-5], "n_d": [20, 10]}}, "/convergence/n_d"),
+            ({"convergence": {"L": [1e-5], "n_d_max": -1}}, "/convergence/n_d_max"),
+            ({"preset": "chaos"}, "/preset"), ({"preset": 5}, "/preset"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "base": 5}, "/base"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "base": {"friction": {"L": 1}}},
+             "/base/friction/L"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "base": {"material": {"density": -1}}},
+             "/base/material/density"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "name": 5}, "/name"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "tags": [1]}, "/tags/0"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "priority": 1000}, "/priority"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "fresh": 1}, "/fresh"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "unknown": 1}, "/unknown"),
+        ]
+        for body, pointer in cases:
+            with self.subTest(body=body):
+                self.assertRejected(self.server.post(STUDIES, json=body), 422, pointer)
+
+    def test_bad_ids_are_404_everywhere(self):
+        bad = ["0" * 31, "0" * 33, "G" * 32, "A" * 32, "..%2F..%2Fetc%2Fpasswd", "%00" * 8,
+               "0" * 32]  # the last is well-formed but unknown
+        for ident in bad:
+            for path in [f"{JOBS}/{ident}", f"{JOBS}/{ident}/result.h5", f"{JOBS}/{ident}/metrics",
+                         f"{JOBS}/{ident}/front", f"{STUDIES}/{ident}",
+                         f"{STUDIES}/{ident}/speed-accuracy"]:
+                with self.subTest(path=path):
+                    self.assertRejected(self.server.get(path), 404)
+            for path in [f"{JOBS}/{ident}/cancel", f"{STUDIES}/{ident}/cancel"]:
+                with self.subTest(path=path):
+                    self.assertRejected(self.server.post(path), 404)
+
+    def test_bad_queries_are_400_by_parameter(self):
+        cases = [
+            (JOBS, {"limit": "0"}, "/query/limit"), (JOBS, {"limit": "1001"}, "/query/limit"),
+            (JOBS, {"limit": "abc"}, "/query/limit"), (JOBS, {"limit": "1e3"}, "/query/limit"),
+            (JOBS, {"cursor": "-5"}, "/query/cursor"), (JOBS, {"cursor": "x"}, "/query/cursor"),
+            (JOBS, {"status": "bogus"}, "/query/status"), (JOBS, {"sort": "id"}, "/query/sort"),
+            (JOBS, {"L_min": "1,2"}, "/query/L_min"), (JOBS, {"n_d_max": ""}, "/query/n_d_max"),
+            (STUDIES, {"limit": "0"}, "/query/limit"), (STUDIES, {"cursor": "-1"}, "/query/cursor"),
+            (STUDIES, {"x": "1"}, "/query/x"),
+            (f"{JOBS}/{'0' * 32}", {"fields": "id"}, None),  # unknown job: 404
+        ]
+        for path, params, pointer in cases:
+            with self.subTest(path=path, params=params):
+                self.assertClientError(self.server.get(path, params=params), pointer)
+        for params in ({}, {"scene": "xyz"}, {"study": "nothex"},
+                       {"scene": "0" * 64, "study": "0" * 32}):
+            with self.subTest(convergence_map=params):
+                self.assertClientError(self.server.get("/api/v1/convergence-map", params=params))
+
+    def test_bad_submission_options_and_headers(self):
+        cases = [
+            ({"params": {"fresh": "maybe"}}, "/query/fresh"),
+            ({"params": {"priority": "999"}}, "/query/priority"),
+            ({"params": {"priority": "-1e9"}}, "/query/priority"),
+            ({"headers": {"Idempotency-Key": "k" * 201}}, "/headers/Idempotency-Key"),
+        ]
+        for kw, pointer in cases:
+            with self.subTest(kw=kw):
+                self.assertRejected(self.server.submit(dict(TINY), **kw), 400, pointer)
+
+    def test_methods_bodies_and_encodings(self):
+        for method, path in [("DELETE", JOBS), ("PUT", f"{JOBS}/{'0' * 32}"), ("PATCH", STUDIES),
+                             ("DELETE", "/healthz"), ("POST", "/metrics")]:
+            with self.subTest(method=method, path=path):
+                r = self.server.session.request(method, self.server.url(path), timeout=10)
+                self.assertRejected(r, 405)
+                self.assertIn("Allow", r.headers)
+        for data in (b'{"name": "\xff"}', b'{"name": "a\nb"}', b'{"name": "\\ud800"}'):
+            with self.subTest(data=data):
+                # raw invalid UTF-8, a raw newline inside a string, a lone surrogate escape
+                r = self.server.post(JOBS, data=data, timeout=10)
+                self.assertRejected(r, 400)
+        r = self.server.post(JOBS, data=b"{" + b" " * (2 << 20) + b"}", timeout=30)
+        self.assertRejected(r, 413)
 
 
 if __name__ == "__main__":
