@@ -54,7 +54,9 @@ class JobStore {
 public:
   static constexpr int schema_version = 4;
 
-  explicit JobStore(const std::string& path);
+  // Refuses (throws) a zero-length database file and, unless `integrity_check` is false, a
+  // database that fails PRAGMA quick_check: the server must not start on a damaged file.
+  explicit JobStore(const std::string& path, bool integrity_check = true);
   ~JobStore();
 
   // Inserts a new job (status queued, or succeeded with cached_from set: then the metrics

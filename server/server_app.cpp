@@ -60,7 +60,7 @@ void ServerApp::start() {
   data_dir_lock_ = std::make_unique<DataDirLock>(config_.data_dir);
   if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
 
-  store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db");
+  store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db", config_.integrity_check);
   queue_ = std::make_unique<JobQueue>(config_.queue_limit);
   int recovered = store_->requeue_all_running();
   if (recovered > 0)

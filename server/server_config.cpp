@@ -18,6 +18,7 @@ std::string usage_text() {
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
          "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
+         "         [--integrity-check on|off]\n"
          "see docs/server.md\n";
 }
 
@@ -93,6 +94,15 @@ const std::map<std::string, Setter>& setters() {
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.max_connections = parse_number<int>(f, v);
          if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
+       }},
+      {"integrity-check",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         if (v == "on" || v == "true")
+           c.integrity_check = true;
+         else if (v == "off" || v == "false")
+           c.integrity_check = false;
+         else
+           throw UsageError(f + ": must be on or off");
        }},
   };
   return table;

@@ -22,6 +22,7 @@ struct ServerConfig {
   int retry_after_s = 30;     // Retry-After of 503 answers
   double db_progress_interval_s = 3.0;
   double min_free_bytes = 64.0 * 1024 * 1024; // /healthz is degraded below this free space
+  bool integrity_check = true;                // PRAGMA quick_check of the database at start
   int max_connections = 256; // open connections; more are answered 503 and closed at once
 };
 

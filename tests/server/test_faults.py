@@ -255,6 +255,50 @@ class HeavyListings(unittest.TestCase):
             server.cleanup()
 
 
+class DamagedDatabase(unittest.TestCase):
+    """Defect 10: a corrupted page was not noticed at start (every submit then 500s), and a
+    zero-length database file was taken as a new database."""
+
+    def test_empty_database_file_is_refused(self):
+        data = tempfile.mkdtemp(prefix="slipfront-emptydb-")
+        try:
+            open(os.path.join(data, "slipfront.db"), "wb").close()
+            server = Server(BINARY, data_dir=data)
+            with self.assertRaises(RuntimeError) as caught:
+                server.start()
+            self.assertIn("is an empty file", str(caught.exception))
+            self.assertEqual(server.proc.returncode, 1)
+            server.cleanup()
+        finally:
+            shutil.rmtree(data, ignore_errors=True)
+
+    def test_corrupted_page_is_refused_at_start(self):
+        server = Server(BINARY, args=["--workers", "1"]).start()
+        try:
+            r = server.submit(dict(TINY, name="seed"))
+            server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+            with requests.Session() as s:  # cache hits: rows, hence pages, at no cost
+                for i in range(300):
+                    s.post(server.url(JOBS), data=json.dumps(dict(TINY, name=f"c{i}")),
+                           timeout=10)
+            self.assertEqual(server.terminate(), 0)
+            path = os.path.join(server.data_dir, "slipfront.db")
+            size = os.path.getsize(path)
+            self.assertGreater(size, 40 * 4096)
+            with open(path, "r+b") as f:  # pages in the middle of the file
+                f.seek((size // 4096 // 2) * 4096)
+                f.write(b"\xa5" * (4 * 4096))
+            damaged = Server(BINARY, data_dir=server.data_dir)
+            with self.assertRaises(RuntimeError) as caught:
+                damaged.start()
+            self.assertIn("is damaged (PRAGMA quick_check", str(caught.exception))
+            self.assertEqual(damaged.proc.returncode, 1)
+            damaged.cleanup()
+        finally:
+            server.own_dir = True
+            server.cleanup()
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
     parser.add_argument("--binary", required=True)
