@@ -141,6 +141,20 @@ void ServerApp::start() {
            (tokens_ ? ", " + std::to_string(tokens_->size()) + " token(s)" : ", no auth"));
 }
 
+void ServerApp::reload_tokens() {
+  if (!tokens_) {
+    log_info("SIGHUP: no --token-file, no tokens to reload");
+    return;
+  }
+  try {
+    tokens_->reload(config_.token_file);
+    log_info("SIGHUP: " + std::to_string(tokens_->size()) + " token(s) reloaded from " +
+             config_.token_file);
+  } catch (const std::exception& e) {
+    log_error(std::string("SIGHUP: tokens not reloaded, the previous ones stay: ") + e.what());
+  }
+}
+
 void ServerApp::request_stop() {
   {
     std::lock_guard lock(stop_mutex_);

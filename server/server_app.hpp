@@ -51,6 +51,8 @@ public:
   void run_until_stopped();
   void request_stop();
   void shutdown();
+  // SIGHUP: reads --token-file again; on an error the tokens in use stay (logged).
+  void reload_tokens();
 
 private:
   ServerConfig config_;

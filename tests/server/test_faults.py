@@ -10,6 +10,7 @@ import json
 import os
 import resource
 import shutil
+import signal
 import socket
 import sqlite3
 import subprocess
@@ -297,6 +298,49 @@ class DamagedDatabase(unittest.TestCase):
         finally:
             server.own_dir = True
             server.cleanup()
+
+
+class TokenReload(unittest.TestCase):
+    """Defect 11: tokens could only change with a restart."""
+
+    def test_sighup_reloads_the_token_file(self):
+        tokens = tempfile.NamedTemporaryFile("w", suffix=".tokens", delete=False)
+        tokens.write("alice:alice-old-token\n")
+        tokens.close()
+        server = Server(BINARY, args=["--workers", "1", "--token-file", tokens.name]).start()
+
+        def status(token):
+            return server.post(f"{JOBS}/{'0' * 32}/cancel",
+                               headers={"Authorization": f"Bearer {token}"}).status_code
+
+        def wait_for(token, code):
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline and status(token) != code:
+                time.sleep(0.05)
+            return status(token)
+
+        try:
+            self.assertEqual(status("alice-old-token"), 404)  # authenticated: no such job
+            self.assertEqual(status("bob-new-token"), 401)
+            with open(tokens.name, "w") as f:
+                f.write("alice:alice-new-token\nbob:bob-new-token\n")
+            server.proc.send_signal(signal.SIGHUP)
+            self.assertEqual(wait_for("bob-new-token", 404), 404)
+            self.assertEqual(status("alice-new-token"), 404)
+            self.assertEqual(status("alice-old-token"), 401)
+            # A broken file is refused; the tokens in use stay.
+            with open(tokens.name, "w") as f:
+                f.write("no colon here\n")
+            server.proc.send_signal(signal.SIGHUP)
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline and "tokens not reloaded" not in server.read_log():
+                time.sleep(0.05)
+            self.assertIn("tokens not reloaded", server.read_log())
+            self.assertEqual(status("bob-new-token"), 404)
+            self.assertEqual(server.terminate(), 0)
+        finally:
+            server.cleanup()
+            os.remove(tokens.name)
 
 
 if __name__ == "__main__":
