@@ -34,6 +34,25 @@ def integrity(data_dir):
         return db.execute("PRAGMA integrity_check").fetchone()[0]
 
 
+def refused_start(test, data_dir, message):
+    """A server on `data_dir` must exit 1 at start with `message` in its log."""
+    server = Server(BINARY, data_dir=data_dir)
+    with test.assertRaises(RuntimeError) as caught:
+        server.start()
+    test.assertIn(message, str(caught.exception))
+    test.assertEqual(server.proc.returncode, 1)
+    server.cleanup()
+    return str(caught.exception)
+
+
+def add_cache_hits(server, count):
+    """`count` more succeeded jobs at no cost: copies of a TINY job that already ran."""
+    with requests.Session() as s:
+        for i in range(count):
+            r = s.post(server.url(JOBS), data=json.dumps(dict(TINY, name=f"hit{i}")), timeout=10)
+            assert r.status_code == 201, r.text
+
+
 class SecondServerOnTheSameDir(unittest.TestCase):
     """Defect 2: the second server's start-up recovery re-queued the first one's running
     job and deleted its temporary file."""
@@ -43,13 +62,8 @@ class SecondServerOnTheSameDir(unittest.TestCase):
         try:
             job = first.submit(long_job("owned")).json()
             first.wait_status(job["id"], {"running"}, timeout=30)
-            second = Server(BINARY, data_dir=first.data_dir, args=["--workers", "1"])
-            with self.assertRaises(RuntimeError) as caught:
-                second.start()
-            self.assertIn("in use by another slipfront server", str(caught.exception))
-            self.assertIn(str(first.proc.pid), str(caught.exception))
-            self.assertEqual(second.proc.returncode, 1)
-            second.cleanup()
+            log = refused_start(self, first.data_dir, "in use by another slipfront server")
+            self.assertIn(str(first.proc.pid), log)
             # The first server's job was not touched.
             now = first.get(f"{JOBS}/{job['id']}").json()
             self.assertEqual(now["status"], "running")
@@ -214,12 +228,7 @@ class HeavyListings(unittest.TestCase):
         try:
             r = server.submit(dict(TINY, name="listing-seed"))
             server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
-            # 1000 more jobs, cheaply: identical specs are cache hits (no run).
-            with requests.Session() as s:
-                for i in range(1000):
-                    r = s.post(server.url(JOBS), data=json.dumps(dict(TINY, name=f"l{i}")),
-                               timeout=10)
-                    self.assertEqual(r.status_code, 201)
+            add_cache_hits(server, 1000)
             stop = threading.Event()
 
             def lister():
@@ -264,12 +273,7 @@ class DamagedDatabase(unittest.TestCase):
         data = tempfile.mkdtemp(prefix="slipfront-emptydb-")
         try:
             open(os.path.join(data, "slipfront.db"), "wb").close()
-            server = Server(BINARY, data_dir=data)
-            with self.assertRaises(RuntimeError) as caught:
-                server.start()
-            self.assertIn("is an empty file", str(caught.exception))
-            self.assertEqual(server.proc.returncode, 1)
-            server.cleanup()
+            refused_start(self, data, "is an empty file")
         finally:
             shutil.rmtree(data, ignore_errors=True)
 
@@ -278,10 +282,7 @@ class DamagedDatabase(unittest.TestCase):
         try:
             r = server.submit(dict(TINY, name="seed"))
             server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
-            with requests.Session() as s:  # cache hits: rows, hence pages, at no cost
-                for i in range(300):
-                    s.post(server.url(JOBS), data=json.dumps(dict(TINY, name=f"c{i}")),
-                           timeout=10)
+            add_cache_hits(server, 300)  # rows, hence pages
             self.assertEqual(server.terminate(), 0)
             path = os.path.join(server.data_dir, "slipfront.db")
             size = os.path.getsize(path)
@@ -289,12 +290,7 @@ class DamagedDatabase(unittest.TestCase):
             with open(path, "r+b") as f:  # pages in the middle of the file
                 f.seek((size // 4096 // 2) * 4096)
                 f.write(b"\xa5" * (4 * 4096))
-            damaged = Server(BINARY, data_dir=server.data_dir)
-            with self.assertRaises(RuntimeError) as caught:
-                damaged.start()
-            self.assertIn("is damaged (PRAGMA quick_check", str(caught.exception))
-            self.assertEqual(damaged.proc.returncode, 1)
-            damaged.cleanup()
+            refused_start(self, server.data_dir, "is damaged (PRAGMA quick_check")
         finally:
             server.own_dir = True
             server.cleanup()
