@@ -3,6 +3,8 @@
 #include "api/job_checks.hpp"
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
+#include "api/json_parse.hpp"
+#include "api/result_estimate.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
@@ -23,6 +25,8 @@ ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& li
 
   job.memory_estimate_bytes = estimated_memory_bytes(job.params);
   check_memory(job, limits, result.errors);
+  job.result_estimate_bytes = estimated_result_bytes(job.params);
+  check_result_size(job, limits, result.errors);
   if (!result.errors.empty()) return result;
 
   job.canonical = reader.canonical();
@@ -32,15 +36,13 @@ ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& li
 }
 
 ParseResult parse_job_text(const std::string& text, const ValidationLimits& limits) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) { // syntax errors, number overflow
+  auto document = parse_bounded_json(text);
+  if (!document.ok()) {
     ParseResult result;
-    result.errors.push_back({"", std::string("not valid JSON: ") + e.what()});
+    result.errors.push_back(document.error);
     return result;
   }
-  return parse_job(document, limits);
+  return parse_job(document.value, limits);
 }
 
 std::string canonical_text(const nlohmann::json& canonical) {

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,8 @@ struct FieldError {
 
 struct ValidationLimits {
   double max_memory_bytes = 8.0e9; // a job whose memory estimate exceeds this is refused
+  // A job whose result-file estimate exceeds this is refused (api/result_estimate.hpp).
+  double max_result_bytes = std::numeric_limits<double>::infinity();
 };
 
 struct JobSpec {
@@ -31,6 +34,7 @@ struct JobSpec {
   nlohmann::json canonical;      // every field present (defaults filled); keys sorted on dump
   std::string sha256;            // SHA-256 (hex) of the canonical physics: see spec_hash()
   double memory_estimate_bytes = 0.0;
+  double result_estimate_bytes = 0.0; // upper bound, uncompressed
 };
 
 struct ParseResult {

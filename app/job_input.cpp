@@ -1,5 +1,7 @@
 #include "app/job_input.hpp"
 
+#include "api/json_parse.hpp"
+
 #include <cmath>
 
 #include <fstream>
@@ -57,13 +59,12 @@ std::optional<api::JobSpec> load_job(const std::string& path, std::optional<int>
     return std::nullopt;
   }
 
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) { // syntax errors, number overflow
-    print_errors(std::cerr, {{"", std::string("not valid JSON: ") + e.what()}});
+  auto parsed_json = api::parse_bounded_json(text);
+  if (!parsed_json.ok()) {
+    print_errors(std::cerr, {parsed_json.error});
     return std::nullopt;
   }
+  nlohmann::json& document = parsed_json.value;
   if (threads && document.is_object()) document["threads"] = *threads;
 
   api::ParseResult parsed = api::parse_job(document, limits);

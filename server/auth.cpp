@@ -1,5 +1,7 @@
 #include "server/auth.hpp"
 
+#include "api/job_spec.hpp"
+
 #include <fstream>
 #include <stdexcept>
 
@@ -17,7 +19,7 @@ std::string trim(const std::string& s) {
 TokenTable TokenTable::load(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read token file " + path);
-  TokenTable table;
+  std::map<std::string, std::string> users_by_token;
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -30,12 +32,32 @@ TokenTable TokenTable::load(const std::string& path) {
       throw std::runtime_error(where + ": expected \"user:token\"");
     std::string user = trim(line.substr(0, colon)), token = trim(line.substr(colon + 1));
     if (token.size() < 8) throw std::runtime_error(where + ": token shorter than 8 characters");
-    if (!table.users_by_token_.emplace(token, user).second)
+    if (!users_by_token.emplace(token, user).second)
       throw std::runtime_error(where + ": token already given to another user");
   }
-  if (table.users_by_token_.empty())
-    throw std::runtime_error("token file " + path + " has no tokens");
+  if (users_by_token.empty()) throw std::runtime_error("token file " + path + " has no tokens");
+  auto digests = std::make_shared<Digests>();
+  for (const auto& [token, user] : users_by_token)
+    digests->emplace_back(api::sha256_hex(token), user);
+  TokenTable table;
+  table.digests_ = std::move(digests);
   return table;
+}
+
+void TokenTable::reload(const std::string& path) {
+  TokenTable fresh = load(path);
+  std::lock_guard lock(mutex_);
+  digests_ = std::move(fresh.digests_);
+}
+
+std::shared_ptr<const TokenTable::Digests> TokenTable::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return digests_;
+}
+
+std::size_t TokenTable::size() const {
+  auto digests = snapshot();
+  return digests ? digests->size() : 0;
 }
 
 std::optional<std::string> TokenTable::user_for_header(std::string_view authorization) const {
@@ -48,9 +70,20 @@ std::optional<std::string> TokenTable::user_for_header(std::string_view authoriz
   auto token = authorization.substr(scheme.size());
   while (!token.empty() && token.front() == ' ')
     token.remove_prefix(1);
-  auto it = users_by_token_.find(token);
-  if (it == users_by_token_.end()) return std::nullopt;
-  return it->second;
+  // Compared in constant time: the digests of every token, each byte, whatever matches, so
+  // that the answer's timing tells nothing of how much of a guess was right.
+  const std::string digest = api::sha256_hex(std::string(token));
+  const std::string* found = nullptr;
+  const auto digests = snapshot();
+  if (!digests) return std::nullopt;
+  for (const auto& [stored, user] : *digests) {
+    unsigned char diff = 0;
+    for (std::size_t i = 0; i < digest.size(); ++i)
+      diff |= static_cast<unsigned char>(stored[i] ^ digest[i]);
+    if (diff == 0) found = &user;
+  }
+  if (!found) return std::nullopt;
+  return *found;
 }
 
 } // namespace slipfront::server

@@ -4,15 +4,22 @@
 #include "server/responses.hpp"
 
 #include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
 
 namespace slipfront::server {
 
 namespace net = boost::asio;
 
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, ServerStats& stats,
-                         SessionLimits limits)
+                         SessionLimits limits, std::shared_ptr<std::atomic<int>> open_count)
     : stream_(std::move(socket)), read_deadline_(stream_.get_executor()), router_(router),
-      stats_(stats), limits_(limits) {}
+      stats_(stats), limits_(limits), open_count_(std::move(open_count)) {
+  if (open_count_) ++*open_count_;
+}
+
+HttpSession::~HttpSession() {
+  if (open_count_) --*open_count_;
+}
 
 void HttpSession::run() {
   net::dispatch(stream_.get_executor(),
@@ -97,6 +104,15 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
     return close();
   if (ec) return reject(http::status::bad_request, "malformed request: " + ec.message());
   Request req = parser_->release();
+  if (limits_.offload_pool && router_.offloaded(req)) {
+    // A long handler: the I/O thread goes back to other connections meanwhile.
+    net::post(*limits_.offload_pool, [self = shared_from_this(), req = std::move(req)] {
+      auto response = std::make_shared<Response>(self->router_.dispatch(req));
+      net::post(self->stream_.get_executor(),
+                [self, response] { self->send(std::move(*response), false); });
+    });
+    return;
+  }
   Response response = router_.dispatch(req);
   send(std::move(response), false);
 }

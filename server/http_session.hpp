@@ -9,7 +9,9 @@
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <boost/asio/thread_pool.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -20,12 +22,19 @@ struct SessionLimits {
   std::uint64_t max_body_bytes = 1 << 20;
   std::chrono::seconds request_timeout{30}; // to receive a whole request (and idle keep-alive)
   std::chrono::seconds write_timeout{600};  // to send a whole response (large result files)
+  int max_connections = 256; // open at once; more are answered 503 and closed at once
+  // Where offloaded routes (Router::offloaded) run; null = on the I/O thread.
+  boost::asio::thread_pool* offload_pool = nullptr;
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
 public:
+  // `open_count` (may be null) counts the sessions alive: +1 here, -1 when destroyed.
   HttpSession(boost::asio::ip::tcp::socket&& socket, const Router& router, ServerStats& stats,
-              SessionLimits limits);
+              SessionLimits limits, std::shared_ptr<std::atomic<int>> open_count = nullptr);
+  ~HttpSession();
+  HttpSession(const HttpSession&) = delete;
+  HttpSession& operator=(const HttpSession&) = delete;
   void run();
 
 private:
@@ -53,6 +62,7 @@ private:
   std::chrono::steady_clock::time_point started_;
   std::array<char, 8192> discard_{};
   std::size_t discarded_ = 0;
+  std::shared_ptr<std::atomic<int>> open_count_;
 };
 
 } // namespace slipfront::server

@@ -19,13 +19,19 @@ class Response {
 public:
   template <class Body, class Fields>
   Response(http::response<Body, Fields>&& res) // NOLINT: implicit on purpose
-      : status_(res.result_int()), message_(std::move(res)) {}
+      : status_(res.result_int()), header_(res.base()), message_(std::move(res)) {}
   unsigned status() const { return status_; }
   bool keep_alive() const { return message_.keep_alive(); }
   http::message_generator take() { return std::move(message_); }
+  // The answer to HEAD: the same header (Content-Length included), no body.
+  void drop_body() {
+    http::response<http::empty_body> head(header_);
+    message_ = http::message_generator(std::move(head));
+  }
 
 private:
   unsigned status_;
+  http::response_header<> header_;
   http::message_generator message_;
 };
 

@@ -5,6 +5,7 @@
 #include "server/responses.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <set>
 #include <sstream>
 
@@ -41,10 +42,11 @@ std::optional<bool> parse_bool(const std::string& s) {
   return std::nullopt;
 }
 
+// A finite number: from_chars also reads "nan" and "inf", which no filter can mean.
 std::optional<double> parse_double(const std::string& s) {
   double v = 0;
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 
@@ -174,7 +176,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   auto number = [&](const char* key, std::optional<double>& out) {
     if (auto it = q.find(key); it != q.end()) {
       out = parse_double(it->second);
-      if (!out) errors.push_back({std::string("/query/") + key, "must be a number"});
+      if (!out) errors.push_back({std::string("/query/") + key, "must be a finite number"});
     }
   };
   number("L_min", f.L_min);
@@ -254,8 +256,9 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
 void add_job_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::post, prefix + "/jobs",
              [&ctx](RequestContext& rc) { return submit(ctx, rc); });
-  router.add(http::verb::get, prefix + "/jobs",
-             [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs", [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); },
+      true);
   router.add(http::verb::get, prefix + "/jobs/{id}",
              [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
   router.add(http::verb::post, prefix + "/jobs/{id}/cancel",

@@ -1,29 +1,30 @@
 #include "server/job_id.hpp"
 
-#include <cstdint>
-#include <mutex>
-#include <random>
+#include <sys/random.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
 
 namespace slipfront::server {
 
+// 128 bits from the kernel's CSPRNG (getrandom(2)): ids cannot be predicted from ids seen.
 std::string new_job_id() {
-  static std::mutex mutex;
-  static std::mt19937_64 engine{[] {
-    std::random_device device;
-    std::seed_seq seq{device(), device(), device(), device(), device(), device()};
-    return std::mt19937_64(seq);
-  }()};
-  std::uint64_t a, b;
-  {
-    std::lock_guard lock(mutex);
-    a = engine();
-    b = engine();
+  unsigned char bytes[16];
+  std::size_t got = 0;
+  while (got < sizeof bytes) {
+    ssize_t n = ::getrandom(bytes + got, sizeof bytes - got, 0);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("getrandom: ") + std::strerror(errno));
+    }
+    got += static_cast<std::size_t>(n);
   }
   static const char* hex = "0123456789abcdef";
   std::string id(32, '0');
-  for (int i = 0; i < 16; ++i) {
-    id[i] = hex[(a >> (4 * i)) & 0xf];
-    id[16 + i] = hex[(b >> (4 * i)) & 0xf];
+  for (std::size_t i = 0; i < sizeof bytes; ++i) {
+    id[2 * i] = hex[bytes[i] >> 4];
+    id[2 * i + 1] = hex[bytes[i] & 0xf];
   }
   return id;
 }

@@ -2,8 +2,12 @@
 
 #include "server/clock.hpp"
 #include "server/job_id.hpp"
+#include "server/log.hpp"
 
+#include "api/json_parse.hpp"
 #include "api/study_analysis.hpp"
+
+#include <filesystem>
 
 namespace slipfront::server {
 
@@ -46,22 +50,28 @@ std::vector<api::FieldError> take_server_fields(nlohmann::json& doc, SubmitOptio
 
 } // namespace
 
+bool JobService::result_file_exists(const Job& job) const {
+  std::error_code ec;
+  const auto path =
+      std::filesystem::path(options_.data_dir.empty() ? "." : options_.data_dir) / job.result.path;
+  return std::filesystem::is_regular_file(path, ec);
+}
+
 api::ParseResult JobService::validate(nlohmann::json doc) const {
   // One solver thread per job unless the spec asks: N workers use N cores.
   if (doc.is_object() && !doc.contains("threads")) doc["threads"] = 1;
   api::ValidationLimits limits;
   limits.max_memory_bytes = options_.max_memory_bytes;
+  limits.max_result_bytes = options_.max_result_bytes;
   return api::parse_job(doc, limits);
 }
 
 SubmitResult JobService::submit(const std::string& body, const SubmitOptions& options) {
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(body);
-  } catch (const nlohmann::json::parse_error& e) {
-    return failure(Kind::bad_json, {{"", std::string("not valid JSON: ") + e.what()}});
-  }
-  return submit_document(std::move(doc), options);
+  auto parsed = api::parse_bounded_json(body);
+  if (parsed.status == api::JsonParse::Status::syntax)
+    return failure(Kind::bad_json, {parsed.error});
+  if (!parsed.ok()) return failure(Kind::invalid, {parsed.error});
+  return submit_document(std::move(parsed.value), options);
 }
 
 SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions& given) {
@@ -106,7 +116,14 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
   job.study_id = options.study_id;
 
   if (!job.fresh) {
-    if (auto earlier = store_.find_reusable(spec.sha256, options_.code_version)) {
+    auto earlier = store_.find_reusable(spec.sha256, options_.code_version);
+    if (earlier && !result_file_exists(*earlier)) {
+      // Deleted by hand (or lost): never point a new job at it; run the job again.
+      log_error("job " + earlier->id + ": result file " + earlier->result.path +
+                " is missing; identical jobs are run again instead of reusing it");
+      earlier.reset();
+    }
+    if (earlier) {
       job.status = JobStatus::succeeded;
       job.started_at = job.created_at;
       job.finished_at = job.created_at;

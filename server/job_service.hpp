@@ -45,8 +45,12 @@ struct CancelResult {
 
 struct ServiceOptions {
   double max_memory_bytes = 8.0e9;
+  double max_result_bytes = 20.0e9; // result-file estimate above which a job is refused
   std::string code_version;
   bool auth_enabled = false;
+  // Result paths are relative to it; "" = the working directory. A cached result whose file
+  // is gone is not reused.
+  std::string data_dir;
 };
 
 class JobService {
@@ -69,6 +73,8 @@ public:
   const ServiceOptions& options() const { return options_; }
 
 private:
+  bool result_file_exists(const Job& job) const;
+
   ServiceOptions options_;
   JobStore& store_;
   JobQueue& queue_;

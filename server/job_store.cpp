@@ -3,6 +3,7 @@
 #include "api/study_analysis.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 namespace slipfront::server {
@@ -252,12 +253,47 @@ void fill_scene_hashes(Database& db) {
   }
 }
 
-JobStore::JobStore(const std::string& path) : db_(path) {
+namespace {
+// Before SQLite opens it: an empty file would be taken as a new, empty database.
+const std::string& refuse_empty_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec)
+    throw std::runtime_error("database " + path +
+                             " is an empty file (truncated?): refusing to start on it as on a "
+                             "new database. Restore it from a backup (docs/server.md, Backups), "
+                             "or delete it to start with an empty database");
+  return path;
+}
+
+void check_integrity(Database& db) {
+  std::string report;
+  try {
+    auto s = db.prepare("PRAGMA quick_check");
+    while (s.step()) {
+      if (!report.empty()) report += "; ";
+      report += s.text(0);
+      if (report.size() > 400) break;
+    }
+  } catch (const SqliteError& e) {
+    report = e.what();
+  }
+  if (report != "ok")
+    throw std::runtime_error("database " + db.path() +
+                             " is damaged (PRAGMA quick_check: " + report +
+                             "): refusing to start on it. Restore it from a backup "
+                             "(docs/server.md, Backups); --integrity-check off starts anyway");
+}
+} // namespace
+
+JobStore::JobStore(const std::string& path, bool integrity_check) : db_(refuse_empty_file(path)) {
+  if (integrity_check) check_integrity(db_);
   db_.exec("PRAGMA busy_timeout = 5000");
   db_.exec("PRAGMA journal_mode = WAL");
   db_.exec("PRAGMA synchronous = FULL");
   migrate(); // with foreign keys off: a migration may rebuild a referenced table
   db_.exec("PRAGMA foreign_keys = ON");
+  probe_db_.emplace(path);
+  probe_db_->exec("PRAGMA busy_timeout = 1000");
 }
 
 JobStore::~JobStore() {
@@ -269,8 +305,8 @@ JobStore::~JobStore() {
 }
 
 std::int64_t JobStore::user_version() {
-  std::lock_guard lock(mutex_);
-  return db_.user_version();
+  std::lock_guard lock(probe_mutex_);
+  return probe_db_->user_version();
 }
 
 void JobStore::migrate() {

@@ -54,7 +54,9 @@ class JobStore {
 public:
   static constexpr int schema_version = 4;
 
-  explicit JobStore(const std::string& path);
+  // Refuses (throws) a zero-length database file and, unless `integrity_check` is false, a
+  // database that fails PRAGMA quick_check: the server must not start on a damaged file.
+  explicit JobStore(const std::string& path, bool integrity_check = true);
   ~JobStore();
 
   // Inserts a new job (status queued, or succeeded with cached_from set: then the metrics
@@ -93,6 +95,8 @@ public:
     std::lock_guard lock(mutex_);
     return f(db_);
   }
+  // On a connection of its own (the health check's): never waits behind a long listing
+  // holding the store's lock.
   std::int64_t user_version();
 
 private:
@@ -101,6 +105,8 @@ private:
 
   std::mutex mutex_;
   Database db_;
+  std::mutex probe_mutex_;
+  std::optional<Database> probe_db_; // opened after the migrations
 };
 
 // The schema migrations: entry i takes user_version i to i + 1.

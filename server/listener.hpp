@@ -5,6 +5,10 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include <atomic>
+#include <chrono>
 
 #include <memory>
 
@@ -19,15 +23,21 @@ public:
   void stop(); // stop accepting; open connections finish their current request
   boost::asio::ip::tcp::endpoint local_endpoint() const { return acceptor_.local_endpoint(); }
 
+  int open_connections() const { return *open_; }
+
 private:
   void accept();
   void on_accept(beast::error_code ec, boost::asio::ip::tcp::socket socket);
+  // Out of file descriptors (EMFILE...): accepting again at once would spin; wait a little.
+  void accept_later(std::chrono::milliseconds delay);
 
   boost::asio::io_context& ioc_;
   boost::asio::ip::tcp::acceptor acceptor_;
   const Router& router_;
   ServerStats& stats_;
   SessionLimits limits_;
+  std::shared_ptr<std::atomic<int>> open_ = std::make_shared<std::atomic<int>>(0);
+  boost::asio::steady_timer retry_timer_;
 };
 
 } // namespace slipfront::server

@@ -2,11 +2,39 @@
 #include "server/handlers.hpp"
 #include "server/responses.hpp"
 
+#include <sys/statvfs.h>
+
 #include <sstream>
 
 namespace slipfront::server {
 
 namespace {
+
+// A storage error this recent still makes /healthz degraded.
+constexpr double storage_error_window_s = 60.0;
+
+// Free space of the data dir's file system, the last storage error; degraded when the free
+// space is below the threshold or the storage refused a write in the last minute.
+nlohmann::json storage_health(ServerContext& ctx, bool& degraded) {
+  nlohmann::json out;
+  struct statvfs fs {};
+  if (statvfs(ctx.data_dir.c_str(), &fs) == 0) {
+    const double free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+    out["free_bytes"] = free_bytes;
+    if (free_bytes < ctx.min_free_bytes) degraded = true;
+  } else {
+    out["free_bytes"] = nullptr;
+  }
+  out["min_free_bytes"] = ctx.min_free_bytes;
+  out["last_error"] = nullptr;
+  out["last_error_at"] = nullptr;
+  if (auto e = ctx.stats.last_storage_error()) {
+    out["last_error"] = e->message;
+    out["last_error_at"] = e->at;
+    if (e->age_s < storage_error_window_s) degraded = true;
+  }
+  return out;
+}
 
 Response healthz(ServerContext& ctx, RequestContext& rc) {
   nlohmann::json body = {{"status", ctx.draining ? "draining" : "ok"},
@@ -23,6 +51,9 @@ Response healthz(ServerContext& ctx, RequestContext& rc) {
     body["status"] = "error";
     body["database"] = e.what();
   }
+  bool degraded = false;
+  body["storage"] = storage_health(ctx, degraded);
+  if (degraded && body["status"] == "ok") body["status"] = "degraded";
   bool ok = body["status"] == "ok";
   return json_response(rc.request, ok ? http::status::ok : http::status::service_unavailable, body);
 }

@@ -74,6 +74,11 @@ Response download(ServerContext& ctx, RequestContext& rc) {
   beast::error_code ec;
   RangeFile file;
   file.open(path.c_str(), beast::file_mode::scan, ec);
+  if (ec == beast::errc::no_such_file_or_directory)
+    return problem_response(req, http::status::gone,
+                            "the result file of job " + job.id +
+                                " is no longer on the server (deleted from its data dir); "
+                                "submit the job again with fresh=true to recompute it");
   if (ec)
     return problem_response(req, http::status::internal_server_error,
                             "result file of job " + job.id + " cannot be opened: " + ec.message());

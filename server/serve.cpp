@@ -23,12 +23,13 @@ int serve_main(int argc, char** argv) {
     std::cerr << "slipfront serve: " << e.what() << "\n" << usage_text();
     return 2;
   }
-  // SIGTERM and SIGINT are taken by a dedicated thread (sigwait), blocked everywhere else:
-  // the threads started below inherit the mask.
+  // SIGTERM, SIGINT (stop) and SIGHUP (reload the tokens) are taken by a dedicated thread
+  // (sigwait), blocked everywhere else: the threads started below inherit the mask.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   std::signal(SIGPIPE, SIG_IGN);
   try {
@@ -41,7 +42,8 @@ int serve_main(int argc, char** argv) {
     std::fflush(stdout);
     std::thread waiter([&] {
       int sig = 0;
-      sigwait(&signals, &sig);
+      while (sigwait(&signals, &sig) == 0 && sig == SIGHUP)
+        app.reload_tokens();
       log_info(std::string("received ") + (sig == SIGTERM ? "SIGTERM" : "SIGINT"));
       app.request_stop();
     });

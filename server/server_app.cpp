@@ -6,11 +6,34 @@
 
 #include <boost/asio/ip/address.hpp>
 
+#include <sys/resource.h>
+
 #include <filesystem>
 
 namespace slipfront::server {
 
 namespace net = boost::asio;
+
+namespace {
+// The descriptors a process may open: the soft limit raised to the hard one. Connections
+// are capped below it, leaving room for the database, result files and the listener itself.
+int connection_cap(int wanted) {
+  constexpr rlim_t reserve = 64;
+  struct rlimit lim {};
+  if (getrlimit(RLIMIT_NOFILE, &lim) != 0) return wanted;
+  if (lim.rlim_cur < lim.rlim_max) {
+    lim.rlim_cur = lim.rlim_max;
+    setrlimit(RLIMIT_NOFILE, &lim);
+    getrlimit(RLIMIT_NOFILE, &lim);
+  }
+  if (lim.rlim_cur == RLIM_INFINITY) return wanted;
+  const rlim_t room = lim.rlim_cur > 2 * reserve ? lim.rlim_cur - reserve : lim.rlim_cur / 2;
+  if (static_cast<rlim_t>(wanted) <= room) return wanted;
+  log_info("--max-connections " + std::to_string(wanted) + " lowered to " + std::to_string(room) +
+           ": the process may open " + std::to_string(lim.rlim_cur) + " file descriptors");
+  return static_cast<int>(room);
+}
+} // namespace
 
 ServerApp::ServerApp(ServerConfig config, std::unique_ptr<JobRunner> runner,
                      std::string code_version)
@@ -33,9 +56,11 @@ void ServerApp::start() {
     throw std::runtime_error("cannot create data dir " + config_.data_dir +
                              "/results: " + ec.message());
   config_.data_dir = fs::canonical(config_.data_dir).string();
+  // Before anything reads or recovers the directory's jobs.
+  data_dir_lock_ = std::make_unique<DataDirLock>(config_.data_dir);
   if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
 
-  store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db");
+  store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db", config_.integrity_check);
   queue_ = std::make_unique<JobQueue>(config_.queue_limit);
   int recovered = store_->requeue_all_running();
   if (recovered > 0)
@@ -51,8 +76,10 @@ void ServerApp::start() {
 
   ServiceOptions so;
   so.max_memory_bytes = config_.max_memory_bytes;
+  so.max_result_bytes = config_.max_result_bytes;
   so.code_version = code_version_;
   so.auth_enabled = tokens_.has_value();
+  so.data_dir = config_.data_dir;
   service_ = std::make_unique<JobService>(so, *store_, *queue_, running_);
 
   WorkerOptions wo;
@@ -70,7 +97,10 @@ void ServerApp::start() {
 
   context_.reset(new ServerContext{*service_, *store_, *queue_, running_, stats_, tokens_,
                                    config_.data_dir, config_.workers, config_.retry_after_s,
-                                   draining_, *studies_});
+                                   draining_, *studies_, config_.min_free_bytes});
+  router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
+    stats_.record_storage_error(what);
+  });
   add_job_routes(router_, *context_);
   add_result_routes(router_, *context_);
   add_ops_routes(router_, *context_);
@@ -82,6 +112,9 @@ void ServerApp::start() {
   SessionLimits limits;
   limits.max_body_bytes = config_.max_body_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
+  limits.max_connections = connection_cap(config_.max_connections);
+  offload_pool_ = std::make_unique<net::thread_pool>(2);
+  limits.offload_pool = offload_pool_.get();
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);
@@ -106,6 +139,20 @@ void ServerApp::start() {
            " job(s) queued, memory limit per job " +
            std::to_string(static_cast<long long>(config_.max_memory_bytes)) + " bytes" +
            (tokens_ ? ", " + std::to_string(tokens_->size()) + " token(s)" : ", no auth"));
+}
+
+void ServerApp::reload_tokens() {
+  if (!tokens_) {
+    log_info("SIGHUP: no --token-file, no tokens to reload");
+    return;
+  }
+  try {
+    tokens_->reload(config_.token_file);
+    log_info("SIGHUP: " + std::to_string(tokens_->size()) + " token(s) reloaded from " +
+             config_.token_file);
+  } catch (const std::exception& e) {
+    log_error(std::string("SIGHUP: tokens not reloaded, the previous ones stay: ") + e.what());
+  }
 }
 
 void ServerApp::request_stop() {
@@ -137,6 +184,7 @@ void ServerApp::shutdown() {
   for (auto& t : io_threads_)
     if (t.joinable()) t.join();
   io_threads_.clear();
+  if (offload_pool_) offload_pool_->join(); // listings in flight finish; their answers are dropped
   pool_.reset();
   studies_.reset();
   supervisor_.reset();

@@ -1,12 +1,14 @@
 // The whole server: store, queue, workers, HTTP. serve_main() builds one from the flags;
 // tests may build one with another JobRunner.
 //
-// start(): open (and migrate) the database, re-queue jobs a crash left running, queue every
-// queued job, start the workers, bind the listener. shutdown(): stop accepting, stop the
-// running jobs at their next step and put them back to queued, close the database.
+// start(): lock the data dir (DataDirLock: one server per directory), open (and migrate) the
+// database, re-queue jobs a crash left running, queue every queued job, start the workers, bind the
+// listener. shutdown(): stop accepting, stop the running jobs at their next step and put them back
+// to queued, close the database.
 #pragma once
 
 #include "server/auth.hpp"
+#include "server/data_dir_lock.hpp"
 #include "server/handlers.hpp"
 #include "server/job_queue.hpp"
 #include "server/job_runner.hpp"
@@ -24,6 +26,7 @@
 
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/thread_pool.hpp>
 
 #include <atomic>
 #include <condition_variable>
@@ -48,12 +51,15 @@ public:
   void run_until_stopped();
   void request_stop();
   void shutdown();
+  // SIGHUP: reads --token-file again; on an error the tokens in use stay (logged).
+  void reload_tokens();
 
 private:
   ServerConfig config_;
   std::string code_version_;
   std::unique_ptr<JobRunner> runner_;
   std::optional<TokenTable> tokens_;
+  std::unique_ptr<DataDirLock> data_dir_lock_; // released last, after the store is closed
   std::unique_ptr<JobStore> store_;
   std::unique_ptr<JobQueue> queue_;
   RunningJobs running_;
@@ -70,6 +76,7 @@ private:
   std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> work_;
   std::shared_ptr<Listener> listener_;
   std::vector<std::thread> io_threads_;
+  std::unique_ptr<boost::asio::thread_pool> offload_pool_; // listings (Router::offloaded)
   std::mutex stop_mutex_;
   std::condition_variable stop_cv_;
   bool stop_requested_ = false;

@@ -17,6 +17,8 @@ std::string usage_text() {
          "         [--workers N] [--queue-limit N] [--max-memory-bytes X]\n"
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
+         "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
+         "         [--integrity-check on|off]\n"
          "see docs/server.md\n";
 }
 
@@ -56,6 +58,11 @@ const std::map<std::string, Setter>& setters() {
          c.max_memory_bytes = parse_number<double>(f, v);
          if (!(c.max_memory_bytes >= 0)) throw UsageError(f + ": must be >= 0");
        }},
+      {"max-result-bytes",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.max_result_bytes = parse_number<double>(f, v);
+         if (!(c.max_result_bytes > 0)) throw UsageError(f + ": must be > 0");
+       }},
       {"max-body-bytes",
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.max_body_bytes = parse_number<std::uint64_t>(f, v);
@@ -77,6 +84,25 @@ const std::map<std::string, Setter>& setters() {
       {"db-progress-interval-s",
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.db_progress_interval_s = parse_number<double>(f, v);
+       }},
+      {"min-free-bytes",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.min_free_bytes = parse_number<double>(f, v);
+         if (!(c.min_free_bytes >= 0)) throw UsageError(f + ": must be >= 0");
+       }},
+      {"max-connections",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.max_connections = parse_number<int>(f, v);
+         if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
+       }},
+      {"integrity-check",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         if (v == "on" || v == "true")
+           c.integrity_check = true;
+         else if (v == "off" || v == "false")
+           c.integrity_check = false;
+         else
+           throw UsageError(f + ": must be on or off");
        }},
   };
   return table;

@@ -11,15 +11,19 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   int port = 8080; // 0 = an ephemeral port
   std::string data_dir = "slipfront-data";
-  int workers = 0;                // 0 = one per hardware thread
-  std::size_t queue_limit = 1000; // queued jobs above which POST /jobs answers 503
-  double max_memory_bytes = 0.0;  // 0 = 3/4 of physical memory shared by the workers
+  int workers = 0;                  // 0 = one per hardware thread
+  std::size_t queue_limit = 1000;   // queued jobs above which POST /jobs answers 503
+  double max_memory_bytes = 0.0;    // 0 = 3/4 of physical memory shared by the workers
+  double max_result_bytes = 20.0e9; // a job whose result-file estimate is above is refused
   std::uint64_t max_body_bytes = 1 << 20;
   std::string token_file;     // "" = no authentication
   int io_threads = 2;         // threads answering HTTP
   int request_timeout_s = 30; // to receive a request; idle keep-alive connections
   int retry_after_s = 30;     // Retry-After of 503 answers
   double db_progress_interval_s = 3.0;
+  double min_free_bytes = 64.0 * 1024 * 1024; // /healthz is degraded below this free space
+  bool integrity_check = true;                // PRAGMA quick_check of the database at start
+  int max_connections = 256; // open connections; more are answered 503 and closed at once
 };
 
 class UsageError : public std::runtime_error {

@@ -1,5 +1,7 @@
 #include "server/server_stats.hpp"
 
+#include "server/clock.hpp"
+
 #include <sstream>
 
 namespace slipfront::server {
@@ -17,6 +19,22 @@ void ServerStats::record_request(unsigned status_code, double seconds) {
   std::lock_guard lock(mutex_);
   ++requests_[status_code];
   request_seconds_ += seconds;
+}
+
+void ServerStats::record_storage_error(const std::string& message) {
+  std::lock_guard lock(mutex_);
+  storage_error_ = StorageError{message, now_iso8601(), 0.0};
+  storage_error_time_ = std::chrono::steady_clock::now();
+  ++storage_errors_;
+}
+
+std::optional<ServerStats::StorageError> ServerStats::last_storage_error() const {
+  std::lock_guard lock(mutex_);
+  if (!storage_error_) return std::nullopt;
+  StorageError e = *storage_error_;
+  e.age_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - storage_error_time_).count();
+  return e;
 }
 
 std::string ServerStats::prometheus_text() const {
@@ -43,7 +61,10 @@ std::string ServerStats::prometheus_text() const {
     out << "slipfront_http_requests_total{code=\"" << code << "\"} " << n << "\n";
   out << "# HELP slipfront_http_request_seconds_total Time spent handling HTTP requests.\n"
       << "# TYPE slipfront_http_request_seconds_total counter\n"
-      << "slipfront_http_request_seconds_total " << request_seconds_ << "\n";
+      << "slipfront_http_request_seconds_total " << request_seconds_ << "\n"
+      << "# HELP slipfront_storage_errors_total Writes the storage refused (disk full, I/O).\n"
+      << "# TYPE slipfront_storage_errors_total counter\n"
+      << "slipfront_storage_errors_total " << storage_errors_ << "\n";
   return out.str();
 }
 

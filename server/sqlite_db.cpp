@@ -15,9 +15,25 @@ std::string message(sqlite3* db, int rc, const std::string& what) {
 }
 } // namespace
 
+bool SqliteError::unavailable() const {
+  switch (code_ & 0xff) { // the primary code of an extended one
+  case SQLITE_FULL:
+  case SQLITE_IOERR:
+  case SQLITE_BUSY:
+  case SQLITE_LOCKED:
+  case SQLITE_READONLY:
+  case SQLITE_CANTOPEN:
+  case SQLITE_NOMEM:
+  case SQLITE_PROTOCOL:
+    return true;
+  default:
+    return false;
+  }
+}
+
 Statement::Statement(sqlite3* db, const std::string& sql) : db_(db), sql_(sql) {
   int rc = sqlite3_prepare_v2(db_, sql.c_str(), static_cast<int>(sql.size()), &stmt_, nullptr);
-  if (rc != SQLITE_OK) throw SqliteError(message(db_, rc, "preparing SQL `" + sql + "`"));
+  if (rc != SQLITE_OK) throw SqliteError(message(db_, rc, "preparing SQL `" + sql + "`"), rc);
 }
 
 Statement::~Statement() {
@@ -30,7 +46,8 @@ Statement::Statement(Statement&& other) noexcept
 }
 
 void Statement::check(int rc, const char* what) const {
-  if (rc != SQLITE_OK) throw SqliteError(message(db_, rc, std::string(what) + " `" + sql_ + "`"));
+  if (rc != SQLITE_OK)
+    throw SqliteError(message(db_, rc, std::string(what) + " `" + sql_ + "`"), rc);
 }
 
 Statement& Statement::bind(int index, const std::string& value) {
@@ -68,7 +85,7 @@ bool Statement::step() {
   int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;
   if (rc == SQLITE_DONE) return false;
-  throw SqliteError(message(db_, rc, "running `" + sql_ + "`"));
+  throw SqliteError(message(db_, rc, "running `" + sql_ + "`"), rc);
 }
 
 void Statement::run() {
@@ -118,7 +135,7 @@ Database::Database(const std::string& path) : path_(path) {
     std::string text = message(db_, rc, "opening database " + path);
     sqlite3_close(db_);
     db_ = nullptr;
-    throw SqliteError(text);
+    throw SqliteError(text, rc);
   }
   sqlite3_extended_result_codes(db_, 1);
 }
@@ -133,7 +150,7 @@ void Database::exec(const std::string& sql) {
   if (rc != SQLITE_OK) {
     std::string text = "running `" + sql + "`: " + (error ? error : sqlite3_errstr(rc));
     sqlite3_free(error);
-    throw SqliteError(text);
+    throw SqliteError(text, rc);
   }
 }
 

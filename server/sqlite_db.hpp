@@ -16,7 +16,15 @@ namespace slipfront::server {
 
 class SqliteError : public std::runtime_error {
 public:
-  using std::runtime_error::runtime_error;
+  explicit SqliteError(const std::string& what, int code = 0)
+      : std::runtime_error(what), code_(code) {}
+  int code() const { return code_; } // SQLite's (extended) result code; 0 if unknown
+  // The storage cannot take writes now (disk full, I/O error, read-only, busy): worth a
+  // retry later (HTTP 503), unlike an error in the SQL or a broken constraint.
+  bool unavailable() const;
+
+private:
+  int code_;
 };
 
 class Statement {

@@ -315,16 +315,19 @@ Response convergence_map(ServerContext& ctx, RequestContext& rc) {
 void add_study_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::post, prefix + "/studies",
              [&ctx](RequestContext& rc) { return create_study(ctx, rc); });
-  router.add(http::verb::get, prefix + "/studies",
-             [&ctx](RequestContext& rc) { return list_studies(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/studies",
+      [&ctx](RequestContext& rc) { return list_studies(ctx, rc); }, true);
   router.add(http::verb::get, prefix + "/studies/{id}",
              [&ctx](RequestContext& rc) { return get_study(ctx, rc); });
   router.add(http::verb::post, prefix + "/studies/{id}/cancel",
              [&ctx](RequestContext& rc) { return cancel_study(ctx, rc); });
-  router.add(http::verb::get, prefix + "/studies/{id}/speed-accuracy",
-             [&ctx](RequestContext& rc) { return speed_accuracy(ctx, rc); });
-  router.add(http::verb::get, prefix + "/convergence-map",
-             [&ctx](RequestContext& rc) { return convergence_map(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/studies/{id}/speed-accuracy",
+      [&ctx](RequestContext& rc) { return speed_accuracy(ctx, rc); }, true);
+  router.add(
+      http::verb::get, prefix + "/convergence-map",
+      [&ctx](RequestContext& rc) { return convergence_map(ctx, rc); }, true);
 }
 
 } // namespace slipfront::server

@@ -7,6 +7,7 @@
 #include "server/log.hpp"
 #include "server/study_progress.hpp"
 
+#include "api/json_parse.hpp"
 #include "api/study_analysis.hpp"
 
 #include <cmath>
@@ -85,15 +86,13 @@ void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
 
 StudyCreateResult StudyService::create(const std::string& body, const std::string& user) {
   StudyCreateResult out;
-  json doc;
-  try {
-    doc = json::parse(body);
-  } catch (const json::parse_error& e) {
-    out.kind = Kind::bad_json;
-    out.errors.push_back({"", std::string("not valid JSON: ") + e.what()});
+  auto body_json = api::parse_bounded_json(body);
+  if (!body_json.ok()) {
+    out.kind = body_json.status == api::JsonParse::Status::syntax ? Kind::bad_json : Kind::invalid;
+    out.errors.push_back(body_json.error);
     return out;
   }
-  auto parsed = parse_study_request(doc);
+  auto parsed = parse_study_request(body_json.value);
   if (!parsed.request) {
     out.kind = Kind::invalid;
     out.errors = std::move(parsed.errors);

@@ -3,6 +3,7 @@
 #include "server/clock.hpp"
 #include "server/log.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -24,7 +25,11 @@ void WorkerPool::start() {
 }
 
 void WorkerPool::drain() {
-  draining_ = true;
+  {
+    std::lock_guard lock(backoff_mutex_);
+    draining_ = true;
+  }
+  backoff_cv_.notify_all();
   queue_.close();
   running_.cancel_all_for_drain();
   for (auto& t : threads_)
@@ -32,14 +37,66 @@ void WorkerPool::drain() {
   threads_.clear();
 }
 
+namespace {
+bool storage_unavailable(const std::exception& e) {
+  auto* sql = dynamic_cast<const SqliteError*>(&e);
+  return sql && sql->unavailable();
+}
+} // namespace
+
 void WorkerPool::work() {
+  int failures = 0; // consecutive runs that threw: back off, not spin, on a full disk
   while (auto id = queue_.pop()) {
     try {
       run_one(*id);
+      failures = 0;
     } catch (const std::exception& e) {
-      // The job stays `running` in the database; the next start-up re-queues it.
       log_error("worker: job " + *id + ": " + e.what());
+      if (storage_unavailable(e)) stats_.record_storage_error(e.what());
       running_.remove(*id);
+      keep_runnable(*id);
+      back_off(failures++);
+    }
+  }
+}
+
+bool WorkerPool::back_off(int attempt) {
+  const double seconds = std::min(5.0, 0.5 * std::pow(2.0, std::min(attempt, 10)));
+  std::unique_lock lock(backoff_mutex_);
+  backoff_cv_.wait_for(lock, std::chrono::duration<double>(seconds),
+                       [this] { return draining_.load(); });
+  return !draining_;
+}
+
+void WorkerPool::keep_runnable(const std::string& id) {
+  for (int attempt = 0;; ++attempt) {
+    try {
+      auto job = store_.get(id);
+      if (!job) return;
+      if (job->status == JobStatus::running && store_.requeue(id)) job = store_.get(id);
+      if (job && job->status == JobStatus::queued) queue_.push_unbounded(id, job->priority);
+      return;
+    } catch (const std::exception& e) {
+      if (attempt == 0) log_error("job " + id + ": putting it back in the queue: " + e.what());
+      if (storage_unavailable(e)) stats_.record_storage_error(e.what());
+      // Draining: the database has it queued or running; the next start-up queues it.
+      if (!back_off(attempt)) return;
+    }
+  }
+}
+
+bool WorkerPool::store_final(const std::string& id, const RunRecord& record, bool& was_running) {
+  for (int attempt = 0;; ++attempt) {
+    try {
+      was_running = store_.finish(id, record);
+      return true;
+    } catch (const std::exception& e) {
+      if (!storage_unavailable(e)) throw;
+      if (attempt == 0)
+        log_error("job " + id +
+                  ": storing its end (retrying until the storage answers): " + e.what());
+      stats_.record_storage_error(e.what());
+      if (!back_off(attempt)) return false;
     }
   }
 }
@@ -81,6 +138,7 @@ void WorkerPool::run_one(const std::string& id) {
         store_.update_progress(id, jp);
       } catch (const std::exception& e) { // progress in memory stays fresh; the run goes on
         log_error("job " + id + ": writing progress: " + e.what());
+        if (storage_unavailable(e)) stats_.record_storage_error(e.what());
       }
     }
   };
@@ -126,8 +184,15 @@ void WorkerPool::run_one(const std::string& id) {
                          record.wall_time_s,
                          record.finished_at};
     }
-    if (!store_.finish(id, record))
-      log_error("job " + id + ": was no longer running when it finished");
+    bool was_running = false;
+    if (!store_final(id, record, was_running)) {
+      running_.remove(id);
+      log_error("job " + id +
+                ": its end could not be stored before the drain; it stays running "
+                "in the database and the next start-up queues it again");
+      return;
+    }
+    if (!was_running) log_error("job " + id + ": was no longer running when it finished");
     outcome = to_string(record.status);
   }
   running_.remove(id);

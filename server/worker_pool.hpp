@@ -13,7 +13,9 @@
 #include "server/server_stats.hpp"
 
 #include <atomic>
+#include <condition_variable>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -50,6 +52,16 @@ public:
 private:
   void work();
   void run_one(const std::string& id);
+  // After run_one() threw: the job must not be lost between the queue and the database.
+  // A job the database still has queued (or running, put back to queued) goes back into
+  // the queue; storage errors are retried until the storage answers or the pool drains.
+  void keep_runnable(const std::string& id);
+  // Waits before retry `attempt` (0.5 s doubling, at most 5 s); false once draining.
+  bool back_off(int attempt);
+  // Stores the final record, retrying while the storage cannot take writes (disk full);
+  // false if the pool drained first (the job stays running in the database: the next
+  // start-up re-queues it).
+  bool store_final(const std::string& id, const RunRecord& record, bool& was_running);
 
   WorkerOptions options_;
   JobStore& store_;
@@ -58,6 +70,8 @@ private:
   RunningJobs& running_;
   ServerStats& stats_;
   std::atomic<bool> draining_{false};
+  std::mutex backoff_mutex_;
+  std::condition_variable backoff_cv_;
   std::vector<std::thread> threads_;
 };
 

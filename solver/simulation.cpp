@@ -24,14 +24,19 @@ double estimated_memory_bytes(const SimulationParams& params) {
   const double nodes = double(m.nx + 2) * m.ny;
   const double fields = 4.0 * 8.0 * nodes;    // u and v, two components each
   const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
-  // Probe records (4 doubles a step) for the longest possible run; the stable step of a
-  // regular Q4 mesh is above 0.5 dx / c_p.
-  const double steps = params.time.duration /
-                       (params.time.safety_factor * 0.5 * m.dx / params.material.p_wave_speed());
-  const double records = 4.0 * 8.0 * steps;
+  // Probe records (4 doubles a step) for the longest possible run.
+  const double records = 4.0 * 8.0 * step_count_bound(params);
   const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                       // code, libraries, HDF5 caches
   return fields + interface + records + sample_buffer + baseline;
+}
+
+double step_count_bound(const SimulationParams& params) {
+  if (params.method == Method::spectral_bi)
+    return double(spectral::SpectralModel::max_steps(params));
+  const double dx = mesh_size(params).dx;
+  return params.time.duration /
+         (params.time.safety_factor * 0.5 * dx / params.material.p_wave_speed());
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {

@@ -87,6 +87,10 @@ double resolved_height(const SimulationParams& params);
 // validation to refuse jobs above a limit before they start.
 double estimated_memory_bytes(const SimulationParams& params);
 
+// An upper bound of the steps of a run that goes to `duration`: FE's stable step is above
+// 0.5 dx / c_p, BI's step is time_step_factor dx / c_s.
+double step_count_bound(const SimulationParams& params);
+
 // The version string compiled into this build (project version + git describe).
 const char* code_version();
 

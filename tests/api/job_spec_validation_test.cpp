@@ -190,10 +190,10 @@ TEST(JobValidation, NonFiniteNumbersAreRefused) {
   expect_single_error({{"geometry", {{"x_min", infinity}}}}, "/geometry/x_min",
                       "must be a finite number, got a non-finite number");
   expect_single_error({{"friction", {{"L", std::nan("")}}}}, "/friction/L", "non-finite");
-  // In JSON text, 1e999 overflows in the parser: one error for the whole document.
+  // In JSON text, 1e999 overflows in the parser: one error, naming the member (issue 10).
   const ParseResult result = parse_job_text(R"({"geometry": {"x_min": 1e999}})");
   ASSERT_EQ(result.errors.size(), 1u);
-  EXPECT_EQ(result.errors[0].pointer, "");
+  EXPECT_EQ(result.errors[0].pointer, "/geometry/x_min");
   EXPECT_NE(result.errors[0].reason.find("overflow"), std::string::npos) << result.errors[0].reason;
 }
 
@@ -382,4 +382,34 @@ TEST(JobValidationMethod, SpectralMemoryEstimateIsChecked) {
   const ParseResult small = parse_job({{"method", "spectral_bi"}}, limits);
   ASSERT_TRUE(small.ok());
   EXPECT_LT(small.spec->memory_estimate_bytes, 2e8);
+}
+
+// Issue 10, defect 1: nesting is bounded while parsing, before any recursive walk.
+TEST(JobValidation, DeepNestingIsRefusedWhileParsing) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const ParseResult result = parse_job_text(R"({"tags": )" + deep + "}");
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].pointer.rfind("/tags/0/0", 0), 0u) << result.errors[0].pointer;
+  EXPECT_NE(result.errors[0].reason.find("nests deeper than"), std::string::npos);
+  // Syntax errors are told by position, not in the JSON library's words.
+  const ParseResult syntax = parse_job_text("{\"a\": tru}");
+  ASSERT_EQ(syntax.errors.size(), 1u);
+  EXPECT_EQ(syntax.errors[0].reason.find("json.exception"), std::string::npos);
+}
+
+// Issue 10, defect 4: the result file's size is estimated at validation and limited.
+TEST(JobValidation, ResultSizeLimit) {
+  const json tiny_interval = {{"output", {{"interval", 1e-6}}}, {"time", {{"duration", 3000.0}}}};
+  EXPECT_TRUE(parse_job(tiny_interval).ok()) << "no limit by default (the CLI)";
+  slipfront::api::ValidationLimits limits;
+  limits.max_result_bytes = 20e9;
+  const ParseResult refused = parse_job(tiny_interval, limits);
+  ASSERT_EQ(refused.errors.size(), 1u);
+  EXPECT_EQ(refused.errors[0].pointer, "/output/interval");
+  EXPECT_NE(refused.errors[0].reason.find("result file would hold about"), std::string::npos);
+  // The paper's job is far below the limit; its estimate bounds the real file (tens of MB).
+  const ParseResult paper = parse_job(json::object(), limits);
+  ASSERT_TRUE(paper.ok());
+  EXPECT_GT(paper.spec->result_estimate_bytes, 1e6);
+  EXPECT_LT(paper.spec->result_estimate_bytes, 1e9);
 }

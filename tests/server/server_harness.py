@@ -29,12 +29,13 @@ def long_job(name="long"):
 
 
 class Server:
-    def __init__(self, binary, data_dir=None, args=(), startup_timeout=20.0):
+    def __init__(self, binary, data_dir=None, args=(), startup_timeout=20.0, preexec_fn=None):
         self.binary = binary
         self.own_dir = data_dir is None
         self.data_dir = data_dir or tempfile.mkdtemp(prefix="slipfront-test-")
         self.args = list(args)
         self.startup_timeout = startup_timeout
+        self.preexec_fn = preexec_fn  # e.g. lower resource limits in the server's process
         self.proc = None
         self.base = None
         self.log_path = os.path.join(self.data_dir, "server.log")
@@ -44,7 +45,8 @@ class Server:
         cmd = [self.binary, "serve", "--host", "127.0.0.1", "--port", "0",
                "--data-dir", self.data_dir] + self.args
         self.log = open(self.log_path, "ab")
-        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=self.log)
+        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=self.log,
+                                     preexec_fn=self.preexec_fn)
         deadline = time.monotonic() + self.startup_timeout
         line = b""
         while time.monotonic() < deadline:

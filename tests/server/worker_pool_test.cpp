@@ -69,8 +69,8 @@ struct Fixture {
     return job.id;
   }
 
-  Job wait_for(const std::string& id, bool (*done)(JobStatus)) {
-    for (int i = 0; i < 500; ++i) {
+  Job wait_for(const std::string& id, bool (*done)(JobStatus), int seconds = 5) {
+    for (int i = 0; i < seconds * 100; ++i) {
       auto job = store.get(id);
       if (job && done(job->status)) return *job;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -130,4 +130,55 @@ TEST(WorkerPool, DrainRequeuesRunningJobs) {
   EXPECT_EQ(job->status, JobStatus::queued) << "drained jobs go back to queued";
   EXPECT_EQ(job->attempts, 1);
   EXPECT_EQ(f.running.size(), 0u);
+}
+
+namespace {
+// Another connection holding the database's write lock: every write of the store fails
+// with SQLITE_BUSY (after its 5 s busy timeout), as writes fail on a full disk.
+struct WriteLock {
+  explicit WriteLock(const std::string& path) : db(path) {
+    db.exec("PRAGMA busy_timeout = 5000"); // the worker may be writing progress right now
+    db.exec("BEGIN IMMEDIATE");
+  }
+  void release() {
+    if (held) db.exec("COMMIT");
+    held = false;
+  }
+  ~WriteLock() { release(); }
+  Database db;
+  bool held = true;
+};
+
+} // namespace
+
+// Issue 10, defect 3: a queued job whose start hit a storage error left the in-memory queue
+// and never ran until a restart.
+TEST(WorkerPool, JobWhoseStartHitAStorageErrorStaysRunnable) {
+  Fixture f;
+  auto ok = f.submit("ok");
+  WriteLock lock(f.dir.str() + "/db.sqlite");
+  f.pool.start();                                       // mark_running fails after 5 s
+  std::this_thread::sleep_for(std::chrono::seconds(6)); // the first start has failed
+  EXPECT_EQ(f.store.get(ok)->status, JobStatus::queued);
+  EXPECT_TRUE(f.stats.last_storage_error().has_value());
+  lock.release();
+  Job done = f.wait_for(ok, final_status, 20);
+  EXPECT_EQ(done.status, JobStatus::succeeded);
+  f.pool.drain();
+}
+
+// ... and a running job whose end could not be stored stayed `running` forever.
+TEST(WorkerPool, EndThatCannotBeStoredIsRetried) {
+  Fixture f;
+  f.pool.start();
+  auto slow = f.submit("wait");
+  f.wait_for(slow, running_status);
+  WriteLock lock(f.dir.str() + "/db.sqlite");
+  EXPECT_TRUE(f.running.request_cancel(slow, "alice")); // finish() now fails
+  std::this_thread::sleep_for(std::chrono::seconds(7));
+  EXPECT_EQ(f.store.get(slow)->status, JobStatus::running);
+  lock.release();
+  Job done = f.wait_for(slow, final_status, 20);
+  EXPECT_EQ(done.status, JobStatus::cancelled);
+  f.pool.drain();
 }

@@ -1,0 +1,343 @@
+"""Hostile input against a live server over loopback (issue 10): every bad request gets its
+4xx naming the field, never a 5xx or the JSON library's own messages, changes nothing, and
+the server still answers /healthz afterwards.
+
+    /usr/bin/python3 tests/server/test_hostile.py --binary build/slipfront
+"""
+
+import argparse
+import json
+import os
+import re
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from server_harness import TINY, Server  # noqa: E402
+
+BINARY = None
+JOBS = "/api/v1/jobs"
+STUDIES = "/api/v1/studies"
+LIBRARY_WORDS = ("json.exception", "parse_error", "out_of_range", "type_error", "[json")
+
+
+def nested(levels, inner="1"):
+    return "[" * levels + inner + "]" * levels
+
+
+def nested_objects(levels):
+    return '{"a":' * levels + "1" + "}" * levels
+
+
+class HostileInput(unittest.TestCase):
+    """One open server (no auth); each case checks the answer, then that nothing changed
+    and the server is alive."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.server = Server(BINARY, args=["--workers", "1", "--queue-limit", "20",
+                                          "--request-timeout-s", "5"]).start()
+        # One real job so that listings and result paths have something to walk.
+        r = cls.server.submit(dict(TINY, name="hostile-seed"))
+        assert r.status_code == 201, r.text
+        cls.seed = cls.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+
+    @classmethod
+    def tearDownClass(cls):
+        # Over the whole suite: how many answers were 4xx, and not one 5xx.
+        codes = {}
+        for line in cls.server.get("/metrics").text.splitlines():
+            m = re.match(r'slipfront_http_requests_total\{code="(\d+)"\} (\d+)', line)
+            if m:
+                codes[int(m.group(1))] = int(m.group(2))
+        client = sum(n for c, n in codes.items() if 400 <= c < 500)
+        server = sum(n for c, n in codes.items() if c >= 500)
+        print(f"hostile suite: {client} answers 4xx, {server} answers 5xx", file=sys.stderr)
+        code = cls.server.terminate()
+        cls.server.cleanup()
+        assert code == 0, f"server exit code {code}"
+        assert server == 0, f"{server} answers were 5xx: {codes}"
+
+    def counts(self):
+        jobs = self.server.get(JOBS, params={"limit": 1000, "fields": "id"}).json()["count"]
+        studies = len(self.server.get(STUDIES).json()["studies"])
+        return jobs, studies
+
+    def setUp(self):
+        self.before = self.counts()
+
+    def tearDown(self):
+        r = self.server.get("/healthz")
+        self.assertEqual(r.status_code, 200, r.text)
+        if self.before is not None:  # None: a test that creates jobs on purpose
+            self.assertEqual(self.counts(), self.before, "a rejected request changed the state")
+
+    def assertRejected(self, r, status, pointer=None):
+        self.assertEqual(r.status_code, status, r.text)
+        self.assertTrue(r.headers["Content-Type"].startswith("application/problem+json"))
+        for word in LIBRARY_WORDS:
+            self.assertNotIn(word, r.text)
+        body = r.json()
+        if pointer is not None:
+            pointers = [e["pointer"] for e in body.get("errors", [])]
+            self.assertIn(pointer, pointers, body)
+        return body
+
+    def post_raw(self, path, text):
+        return self.server.post(path, data=text.encode(),
+                                headers={"Content-Type": "application/json"}, timeout=30)
+
+    # --- defect 1: nesting depth, shared by every endpoint that parses a body ----------
+    def test_deep_array_to_studies_is_422_not_a_crash(self):
+        self.assertRejected(self.post_raw(STUDIES, nested(60000)), 422)
+        self.assertRejected(self.post_raw(STUDIES, '{"tags": ' + nested(60000) + "}"), 422)
+
+    def test_deep_array_to_jobs_is_422(self):
+        self.assertRejected(self.post_raw(JOBS, nested(60000)), 422)
+
+    def test_deep_objects_to_studies_and_jobs(self):
+        for path in (STUDIES, JOBS):
+            self.assertRejected(self.post_raw(path, nested_objects(60000)), 422)
+
+    def test_deep_value_inside_a_field_is_named(self):
+        body = '{"name": "x", "base": {"name": ' + nested(100) + "}}"
+        b = self.assertRejected(self.post_raw(STUDIES, body), 422)
+        self.assertTrue(b["errors"][0]["pointer"].startswith("/base/name/0/0"), b)
+        body = '{"tags": ' + nested(100) + "}"
+        b = self.assertRejected(self.post_raw(JOBS, body), 422)
+        self.assertTrue(b["errors"][0]["pointer"].startswith("/tags/0/0"), b)
+
+    def test_deep_but_allowed_nesting_gets_the_ordinary_answer(self):
+        # 20 levels is within the bound: the validator answers for the field.
+        b = self.assertRejected(self.post_raw(JOBS, '{"tags": ' + nested(20) + "}"), 422)
+        self.assertIn("/tags/0", [e["pointer"] for e in b["errors"]])
+
+    # --- defect 9: numbers beyond a double, non-finite filters, library messages -------
+    def test_number_overflow_in_job_names_the_field(self):
+        cases = [
+            ('{"time": {"duration": 1e999}}', "/time/duration"),
+            ('{"material": {"density": -1e999}}', "/material/density"),
+            ('{"geometry": {"nodes_per_meter": 5, "height": 1E+400}}', "/geometry/height"),
+            ('{"tags": ["a", 1e999]}', "/tags/1"),
+            ('{"unknown": {"x/y": [0, 1e999]}}', "/unknown/x~1y/1"),
+            ("1e999", ""),
+            ('{"priority": 1e999}', "/priority"),
+        ]
+        for text, pointer in cases:
+            with self.subTest(text=text):
+                self.assertRejected(self.post_raw(JOBS, text), 422, pointer)
+
+    def test_number_overflow_in_study_names_the_field(self):
+        cases = [
+            ('{"grid": {"L": [1e-5, 1e999], "n_d": [10]}}', "/grid/L/1"),
+            ('{"grid": {"L": [1e-5], "n_d": [10]}, "base": {"time": {"duration": 1e999}}}',
+             "/base/time/duration"),
+            ('{"convergence": {"L": [1e-5], "n_d_max": 1e999}}', "/convergence/n_d_max"),
+        ]
+        for text, pointer in cases:
+            with self.subTest(text=text):
+                self.assertRejected(self.post_raw(STUDIES, text), 422, pointer)
+
+    def test_syntax_errors_are_400_in_our_words(self):
+        for path in (JOBS, STUDIES):
+            for text in ("{", "[1,]", '{"a" 1}', "nul", '"\\uZZZZ"', "\xff", ""):
+                with self.subTest(path=path, text=text):
+                    b = self.assertRejected(self.post_raw(path, text), 400)
+                    self.assertIn("not valid JSON", json.dumps(b))
+
+    def test_non_finite_query_filters_are_rejected(self):
+        for key in ("L_min", "L_max", "n_d_min", "n_d_max"):
+            for value in ("nan", "NaN", "inf", "-inf", "infinity", "1e999"):
+                with self.subTest(key=key, value=value):
+                    self.assertRejected(self.server.get(JOBS, params={key: value}), 400,
+                                        "/query/" + key)
+
+    # --- defect 4: a result file of hundreds of GB is refused at validation -------------
+    def test_result_size_limit_names_the_interval(self):
+        body = {"output": {"interval": 1e-6}, "time": {"duration": 3000.0}}  # ~55 GB
+        b = self.assertRejected(self.server.submit(body), 422, "/output/interval")
+        self.assertIn("result file would hold about", json.dumps(b))
+        study = {"grid": {"L": [5e-5], "n_d": [40]}, "base": body}
+        self.assertRejected(self.server.post(STUDIES, json=study), 422, "/base/output/interval")
+
+    # --- defect 8: a result file deleted behind the server's back -------------------------
+    def test_deleted_result_file_is_410_and_never_reused(self):
+        self.before = None
+        spec = dict(TINY, name="to-delete", loading={"shear_stress": 0.01041})
+        r = self.server.submit(spec)
+        self.assertEqual(r.status_code, 201, r.text)
+        first = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+        os.remove(os.path.join(self.server.data_dir, "results", first["id"] + ".h5"))
+        b = self.assertRejected(self.server.get(first["result"]["url"]), 410)
+        self.assertIn("no longer on the server", b["detail"])
+        # An identical job is not pointed at the missing file: it runs again.
+        r = self.server.submit(dict(spec, name="to-delete-again"))
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertNotEqual(r.json()["cache"], "hit", r.json())
+        again = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+        self.assertEqual(self.server.get(again["result"]["url"]).status_code, 200)
+
+    # --- defect 11: HEAD, log lines -------------------------------------------------------
+    def test_head_answers_like_get_without_the_body(self):
+        seed = self.seed["id"]
+        for path in ["/healthz", "/metrics", "/api/v1/openapi.json", JOBS, f"{JOBS}/{seed}",
+                     f"{JOBS}/{seed}/result.h5", f"{JOBS}/{seed}/metrics", f"{JOBS}/{seed}/front",
+                     STUDIES, f"{JOBS}/{'0' * 32}", "/nowhere"]:
+            with self.subTest(path=path):
+                get = self.server.get(path)
+                head = self.server.session.head(self.server.url(path), timeout=10)
+                self.assertEqual(head.status_code, get.status_code)
+                self.assertEqual(head.content, b"")
+                self.assertEqual(head.headers.get("Content-Type"), get.headers.get("Content-Type"))
+                if path.endswith("result.h5"):
+                    self.assertEqual(int(head.headers["Content-Length"]), len(get.content))
+                    self.assertEqual(head.headers["ETag"], get.headers["ETag"])
+        # The connection is still in step after HEAD answers (keep-alive).
+        self.assertEqual(self.server.get("/healthz").status_code, 200)
+
+    def test_control_characters_in_names_cannot_forge_log_lines(self):
+        self.before = None
+        r = self.server.submit(dict(TINY, name="x\n2026-01-01T00:00:00Z error FORGED\r\x1b[2J"),
+                               params={"fresh": "true"})  # run, so that its name is logged
+        self.assertEqual(r.status_code, 201, r.text)
+        self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
+        log = self.server.read_log()
+        self.assertIn("\\x0a2026-01-01T00:00:00Z error FORGED", log)
+        for line in log.splitlines():
+            self.assertFalse(line.startswith("2026-01-01T00:00:00Z error FORGED"), line)
+            self.assertNotIn("\x1b", line)
+
+
+    # --- breadth: every endpoint, bad fields, ids, queries, headers, methods -------------
+    def assertClientError(self, r, pointer=None):
+        """Any 4xx in problem+json form (naming `pointer` if given), never a 5xx."""
+        self.assertGreaterEqual(r.status_code, 400, r.text)
+        self.assertLess(r.status_code, 500, r.text)
+        return self.assertRejected(r, r.status_code, pointer)
+
+    def test_bad_job_fields_are_422_by_pointer(self):
+        cases = [
+            ({"name": 5}, "/name"), ({"name": "x" * 1000}, "/name"), ({"tags": "a"}, "/tags"),
+            ({"tags": [1]}, "/tags/0"), ({"tags": ["a"] * 100}, "/tags"),
+            ({"priority": 101}, "/priority"), ({"priority": "high"}, "/priority"),
+            ({"priority": 1.5}, "/priority"), ({"fresh": "yes"}, "/fresh"),
+            ({"threads": 100000}, "/threads"), ({"threads": -1}, "/threads"),
+            ({"frobnicate": 1}, "/frobnicate"), ({"material": 5}, "/material"),
+            ({"material": {"density": -1}}, "/material/density"),
+            ({"material": {"density": "1"}}, "/material/density"),
+            ({"material": {"poisson_ratio": 0.5}}, "/material/poisson_ratio"),
+            ({"geometry": {"nodes_per_meter": 0}}, "/geometry/nodes_per_meter"),
+            ({"geometry": {"nodes_per_meter": 1e12}}, "/geometry/width"),
+            ({"geometry": {"height": "tall"}}, "/geometry/height"),
+            ({"geometry": {"width": 1e300}}, "/geometry/width"),
+            ({"geometry": {"top_boundary": "open"}}, "/geometry/top_boundary"),
+            ({"friction": {"law": "magic"}}, "/friction/law"),
+            ({"friction": {"L": 0}}, "/friction/L"), ({"friction": {"mu": -0.1}}, "/friction/mu"),
+            ({"time": {"duration": 0}}, "/time/duration"),
+            ({"time": {"duration": 1e300}}, "/geometry/nodes_per_meter"),
+            ({"time": {"safety_factor": 3}}, "/time/safety_factor"),
+            ({"output": {"interval": -1}}, "/output/interval"),
+            ({"output": {"space_stride": 0}}, "/output/space_stride"),
+            ({"probe": {"arrival_x1": 1e6}}, "/probe/arrival_x1"),
+            ({"loading": {"shear_stress": 1.0}}, "/loading/shear_stress"),
+            ({"nucleation": {"alpha": 2}}, "/nucleation/alpha"),
+        ]
+        for body, pointer in cases:
+            with self.subTest(body=body):
+                self.assertRejected(self.server.submit(body), 422, pointer)
+        for text in ("[]", '"job"', "null", "3", "true"):
+            with self.subTest(text=text):
+                self.assertRejected(self.post_raw(JOBS, text), 422, "")
+
+    def test_bad_study_fields_are_422_by_pointer(self):
+        cases = [
+            ({}, ""), ({"grid": {"L": [1e-5], "n_d": [10]}, "preset": "failure_regimes"}, ""),
+            ({"grid": 5}, "/grid"), ({"grid": {"L": [], "n_d": [10]}}, "/grid/L"),
+            ({"grid": {"L": [-1], "n_d": [10]}}, "/grid/L/0"),
+            ({"grid": {"L": [1e-5, 1e-5], "n_d": [10]}}, "/grid/L/1"),
+            ({"grid": {"L": ["a"], "n_d": [10]}}, "/grid/L/0"),
+            ({"grid": {"L": [1e-5], "n_d": [10], "x": 1}}, "/grid/x"),
+            ({"grid": {"L": [1e-5] * 1000, "n_d": [10]}}, "/grid/L"),
+            ({"convergence": {"L": [1e-5], "n_d": [20, 10]}}, "/convergence/n_d"),
+            ({"convergence": {"L": [1e-5], "n_d_max": -1}}, "/convergence/n_d_max"),
+            ({"preset": "chaos"}, "/preset"), ({"preset": 5}, "/preset"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "base": 5}, "/base"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "base": {"friction": {"L": 1}}},
+             "/base/friction/L"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "base": {"material": {"density": -1}}},
+             "/base/material/density"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "name": 5}, "/name"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "tags": [1]}, "/tags/0"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "priority": 1000}, "/priority"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "fresh": 1}, "/fresh"),
+            ({"grid": {"L": [1e-5], "n_d": [10]}, "unknown": 1}, "/unknown"),
+        ]
+        for body, pointer in cases:
+            with self.subTest(body=body):
+                self.assertRejected(self.server.post(STUDIES, json=body), 422, pointer)
+
+    def test_bad_ids_are_404_everywhere(self):
+        bad = ["0" * 31, "0" * 33, "G" * 32, "A" * 32, "..%2F..%2Fetc%2Fpasswd", "%00" * 8,
+               "0" * 32]  # the last is well-formed but unknown
+        for ident in bad:
+            for path in [f"{JOBS}/{ident}", f"{JOBS}/{ident}/result.h5", f"{JOBS}/{ident}/metrics",
+                         f"{JOBS}/{ident}/front", f"{STUDIES}/{ident}",
+                         f"{STUDIES}/{ident}/speed-accuracy"]:
+                with self.subTest(path=path):
+                    self.assertRejected(self.server.get(path), 404)
+            for path in [f"{JOBS}/{ident}/cancel", f"{STUDIES}/{ident}/cancel"]:
+                with self.subTest(path=path):
+                    self.assertRejected(self.server.post(path), 404)
+
+    def test_bad_queries_are_400_by_parameter(self):
+        cases = [
+            (JOBS, {"limit": "0"}, "/query/limit"), (JOBS, {"limit": "1001"}, "/query/limit"),
+            (JOBS, {"limit": "abc"}, "/query/limit"), (JOBS, {"limit": "1e3"}, "/query/limit"),
+            (JOBS, {"cursor": "-5"}, "/query/cursor"), (JOBS, {"cursor": "x"}, "/query/cursor"),
+            (JOBS, {"status": "bogus"}, "/query/status"), (JOBS, {"sort": "id"}, "/query/sort"),
+            (JOBS, {"L_min": "1,2"}, "/query/L_min"), (JOBS, {"n_d_max": ""}, "/query/n_d_max"),
+            (STUDIES, {"limit": "0"}, "/query/limit"), (STUDIES, {"cursor": "-1"}, "/query/cursor"),
+            (STUDIES, {"x": "1"}, "/query/x"),
+            (f"{JOBS}/{'0' * 32}", {"fields": "id"}, None),  # unknown job: 404
+        ]
+        for path, params, pointer in cases:
+            with self.subTest(path=path, params=params):
+                self.assertClientError(self.server.get(path, params=params), pointer)
+        for params in ({}, {"scene": "xyz"}, {"study": "nothex"},
+                       {"scene": "0" * 64, "study": "0" * 32}):
+            with self.subTest(convergence_map=params):
+                self.assertClientError(self.server.get("/api/v1/convergence-map", params=params))
+
+    def test_bad_submission_options_and_headers(self):
+        cases = [
+            ({"params": {"fresh": "maybe"}}, "/query/fresh"),
+            ({"params": {"priority": "999"}}, "/query/priority"),
+            ({"params": {"priority": "-1e9"}}, "/query/priority"),
+            ({"headers": {"Idempotency-Key": "k" * 201}}, "/headers/Idempotency-Key"),
+        ]
+        for kw, pointer in cases:
+            with self.subTest(kw=kw):
+                self.assertRejected(self.server.submit(dict(TINY), **kw), 400, pointer)
+
+    def test_methods_bodies_and_encodings(self):
+        for method, path in [("DELETE", JOBS), ("PUT", f"{JOBS}/{'0' * 32}"), ("PATCH", STUDIES),
+                             ("DELETE", "/healthz"), ("POST", "/metrics")]:
+            with self.subTest(method=method, path=path):
+                r = self.server.session.request(method, self.server.url(path), timeout=10)
+                self.assertRejected(r, 405)
+                self.assertIn("Allow", r.headers)
+        for data in (b'{"name": "\xff"}', b'{"name": "a\nb"}', b'{"name": "\\ud800"}'):
+            with self.subTest(data=data):
+                # raw invalid UTF-8, a raw newline inside a string, a lone surrogate escape
+                r = self.server.post(JOBS, data=data, timeout=10)
+                self.assertRejected(r, 400)
+        r = self.server.post(JOBS, data=b"{" + b" " * (2 << 20) + b"}", timeout=30)
+        self.assertRejected(r, 413)
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--binary", required=True)
+    args, rest = parser.parse_known_args()
+    BINARY = os.path.abspath(args.binary)
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
