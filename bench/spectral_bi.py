@@ -59,8 +59,10 @@ class Runner:
         os.makedirs(work, exist_ok=True)
 
     @staticmethod
-    def name(method, L, nd, law="prakash_clifton", beta=None, q=None):
+    def name(method, L, nd, law="prakash_clifton", beta=None, q=None, probe=None):
         parts = [method, "coulomb" if law == "coulomb" else f"L{L:g}", f"nd{nd:g}"]
+        if probe is not None:
+            parts.append(f"probe{probe:g}")
         if beta is not None:
             parts.append(f"beta{beta:g}")
         if q is not None:
@@ -68,9 +70,11 @@ class Runner:
         return "_".join(parts)
 
     @staticmethod
-    def spec(method, L, nd, law="prakash_clifton", beta=None, q=None):
+    def spec(method, L, nd, law="prakash_clifton", beta=None, q=None, probe=None):
         friction = {"law": "coulomb"} if law == "coulomb" else {"L": L}
         spec = {"geometry": {"nodes_per_meter": nd}, "friction": friction}
+        if probe is not None:
+            spec["probe"] = {"arrival_x1": probe}
         if method == "spectral_bi":
             spec["method"] = "spectral_bi"
             options = {}
@@ -82,14 +86,14 @@ class Runner:
                 spec["spectral_bi"] = options
         return spec
 
-    def run(self, method, L, nd, law="prakash_clifton", beta=None, q=None, output=False):
+    def run(self, method, L, nd, law="prakash_clifton", beta=None, q=None, output=False, probe=None):
         """One run (or its record from --work). output: also write the HDF5 result and read
         the peak |V| at the spectrum probe from /probes (Coulomb runs have no
         spectral_velocity metric)."""
-        name = self.name(method, L, nd, law, beta, q)
+        name = self.name(method, L, nd, law, beta, q, probe)
         if name in self.records:
             return self.records[name]
-        spec = dict(self.spec(method, L, nd, law, beta, q), name=f"bench/spectral_bi.py {name}")
+        spec = dict(self.spec(method, L, nd, law, beta, q, probe), name=f"bench/spectral_bi.py {name}")
         job = os.path.join(self.work, name + ".job.json")
         record_path = os.path.join(self.work, name + ".record.json")
         if not self.fresh and os.path.exists(record_path):
@@ -106,7 +110,7 @@ class Runner:
         estimate = None
         for line in validate.stdout.splitlines():
             if line.startswith("memory_estimate_bytes:"):
-                estimate = float(line.split(":")[1])
+                estimate = float(line.split(":")[1].split()[0])
         load = loadavg()
         print(f"running {name} (load {load[0]:.2f}) ...", file=sys.stderr, flush=True)
         t0 = time.time()
@@ -129,7 +133,7 @@ class Runner:
         record = {"name": name, "method": method, "L": L, "n_d": nd, "law": law,
                   "beta": beta, "q": q, "job": spec, "command": " ".join(command),
                   "loadavg_before": load, "loadavg_after": loadavg(),
-                  "process_wall_s": wall_outer, "peak_rss_mb": rss_kb / 1024 if rss_kb else None,
+                  "process_wall_s": wall_outer, "cpu_s": usage.ru_utime + usage.ru_stime, "peak_rss_mb": rss_kb / 1024 if rss_kb else None,
                   "memory_estimate_bytes": estimate, "metrics": metrics,
                   "date_utc": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime())}
         if output:
@@ -153,7 +157,7 @@ def m(record, key):
         value = record["metrics"].get("spectral_velocity")
         if value is None or (isinstance(value, float) and math.isnan(value)):
             value = record.get("probe_peak_velocity")
-        return value
+        return float("nan") if value is None else value
     if key == "wall_time_s":
         return record["metrics"]["wall_time_s"]
     value = record["metrics"].get(key)
@@ -236,13 +240,13 @@ def section_a(runner, args, out):
             f"a. BI, L = {L:g} m: refinement of n_d (beta 0.5, q 8)", rs, "n_d", "n_d",
             dx_of=lambda r: 1.0 / r["n_d"])
         rs = []
-        for beta in (1.0, 0.5, 0.25, 0.125):
+        for beta in (1.0, 0.5, 0.25, 0.125) + ((0.0625,) if args.fine_beta else ()):
             r = runner.run("spectral_bi", L, 40, beta=None if beta == 0.5 else beta)
             r = dict(r, beta=beta)
             rs.append(r)
         out["a"][f"L{L:g}_beta"] = convergence_table(
             f"a. BI, L = {L:g} m: refinement of dt = beta dx / c_s (n_d = 40, q 8)", rs, "beta",
-            "beta")
+            "beta", dx_of=lambda r: 1.0 / r["n_d"])
         out["a"][f"L{L:g}_beta"]["beta1_outcome"] = rs[0]["metrics"]["outcome"]
         out["a"][f"L{L:g}_beta"]["beta1_energy_error"] = rs[0]["metrics"]["energy_error"]
         rs = []
@@ -253,7 +257,7 @@ def section_a(runner, args, out):
         rows = [dict(r, inv_q=1.0 / r["q"]) for r in rs]
         out["a"][f"L{L:g}_q"] = convergence_table(
             f"a. BI, L = {L:g} m: memory truncation after q mode periods (n_d = 40, beta 0.5)",
-            rows, "q", "q")
+            rows, "q", "q", dx_of=lambda r: 1.0 / r["n_d"])
 
 
 def section_b(runner, args, out):
@@ -300,14 +304,16 @@ def converged_pair(a, b):
     return abs(dd) < TOL_DISTANCE and abs(da) < TOL_ARRIVAL, dd, da
 
 
-def ladder(runner, args, L, law="prakash_clifton", method="spectral_bi", output=False):
+def ladder(runner, args, L, law="prakash_clifton", method="spectral_bi", output=False, probe=None):
     """Runs the n_d ladder until n_d and 2 n_d meet SPEC §2; returns (runs, converged n_d)."""
     nds = list(ND_LADDER) + ([320] if args.with_320 else [])
     runs, found = [], None
     for nd in nds:
         if nd > args.max_nd and not (nd == 320 and args.with_320):
             break
-        runs.append(runner.run(method, L, nd, law=law, output=output))
+        runs.append(runner.run(method, L, nd, law=law, output=output, probe=probe))
+        if len(runs) >= 2 and all(math.isnan(m(r, "arrival_time_at_probe")) for r in runs[-2:]):
+            break  # the front does not reach the probe: the arrival rule cannot be met
         if len(runs) >= 2 and converged_pair(runs[-2], runs[-1])[0]:
             found = runs[-2]["n_d"]
             break
@@ -320,10 +326,14 @@ def section_c(runner, args, out):
           "| Δ to next n_d | peak V at 6 m [mm/s] | wall [s] | load |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     out["c"] = []
-    cases = [(L, "prakash_clifton") for L in SMALL_L] + [(None, "coulomb")]
-    for L, law in cases:
-        runs, found = ladder(runner, args, L, law, output=(law == "coulomb"))
-        label = "Coulomb" if law == "coulomb" else f"L = {L:g}"
+    # The last two rows: where the front arrests at or before the probe (x1 = 11 m), its
+    # arrival there is undefined or the time the front creeps onto its last node; the same
+    # ladders with the probe at x1 = 10 m, inside the ruptured stretch.
+    cases = [(L, "prakash_clifton", None) for L in SMALL_L] + [(None, "coulomb", None)]
+    cases += [(1e-6, "prakash_clifton", 10.0), (None, "coulomb", 10.0)]
+    for L, law, probe in cases:
+        runs, found = ladder(runner, args, L, law, output=(law == "coulomb"), probe=probe)
+        label = ("Coulomb" if law == "coulomb" else f"L = {L:g}") + (f", probe at {probe:g} m" if probe else "")
         for i, r in enumerate(runs):
             if i + 1 < len(runs):
                 _, dd, da = converged_pair(r, runs[i + 1])
@@ -332,10 +342,11 @@ def section_c(runner, args, out):
             print(f"| {label} | {r['n_d']} | {r['metrics']['outcome']} | {f(m(r, 'arrest_position'), '.4f')} "
                   f"| {f(m(r, 'propagation_distance'), '.4f')} | {pct(dd)} "
                   f"| {f(m(r, 'arrival_time_at_probe'), '.5f')} | {pct(da, 4)} "
-                  f"| {f(1e3 * m(r, 'peak_v6'), '.4f') if m(r, 'peak_v6') is not None else '—'} "
+                  f"| {f(1e3 * m(r, 'peak_v6'), '.4f')} "
                   f"| {m(r, 'wall_time_s'):.2f} | {load_text(r)} |")
         print(f"| {label} | **converged from n_d = {found if found else 'none within the ladder'}** | | | | | | | | | |")
-        out["c"].append({"L": L, "law": law, "runs": [r["name"] for r in runs], "converged_nd": found})
+        out["c"].append({"L": L, "law": law, "probe": probe, "runs": [r["name"] for r in runs],
+                         "converged_nd": found})
 
 
 def section_d(runner, args, out):
@@ -375,6 +386,17 @@ def section_d(runner, args, out):
     keys = ("propagation_distance", "arrival_time_at_probe", "arrest_position", "peak_v6")
     fe_err = {k: abs(rel(m(fe40, k), m(fe80, k))) for k in keys}
     bi_ref = runner.run("spectral_bi", 5e-5, max(nd for nd in ND_LADDER if nd <= args.max_nd))
+    # Both methods' arrival times converge at first order: their Richardson limits
+    # (2 f(dx/2) - f(dx)) from the two finest runs of each method.
+    bi_half = runner.run("spectral_bi", 5e-5, bi_ref["n_d"] / 2)
+    lim_fe = 2 * m(fe80, "arrival_time_at_probe") - m(fe40, "arrival_time_at_probe")
+    lim_bi = 2 * m(bi_ref, "arrival_time_at_probe") - m(bi_half, "arrival_time_at_probe")
+    d["arrival_limits"] = {"fe_40_80": lim_fe, "bi_" + f"{bi_half['n_d']:g}_{bi_ref['n_d']:g}": lim_bi,
+                           "fe40_error_vs_fe_limit": rel(m(fe40, "arrival_time_at_probe"), lim_fe),
+                           "fe40_error_vs_bi_limit": rel(m(fe40, "arrival_time_at_probe"), lim_bi)}
+    print(f"- arrival at 11 m, first-order Richardson limits: FE (n_d 40, 80) {lim_fe:.5f} s, BI (n_d "
+          f"{bi_half['n_d']:g}, {bi_ref['n_d']:g}) {lim_bi:.5f} s (differ by {pct(rel(lim_fe, lim_bi), 4)}); "
+          f"FE n_d = 40 is {pct(rel(m(fe40, 'arrival_time_at_probe'), lim_fe), 4)} from its own limit")
     print(f"- L = 5e-5 m: FE n_d = 40 against FE n_d = 80: "
           + ", ".join(f"{k} {pct(v)}" for k, v in fe_err.items())
           + f". BI candidates against BI n_d = {bi_ref['n_d']} (and against FE n_d = 80):\n")
@@ -382,10 +404,12 @@ def section_d(runner, args, out):
           "| vs FE 80: propagation | arrival | no larger than FE 40's (propagation, arrival) |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     cands = []
-    for nd in (10, 15, 20, 30, 40):
-        for beta in (1.0, 0.75, 0.5):
+    for nd in (10, 15, 20, 30, 40, 80):
+        for beta in (1.0, 0.75, 0.5, 0.25, 0.125):
             for q in (2, 4, 8):
-                if nd > 20 and (beta, q) != (0.5, 8) and (beta, q) != (1.0, 4):
+                if nd > 20 and (beta, q) not in ((0.5, 8), (1.0, 4), (0.25, 8), (0.125, 8)):
+                    continue
+                if beta < 0.5 and q != 8 or nd == 80 and beta != 0.5:
                     continue
                 r = runner.run("spectral_bi", 5e-5, nd, beta=None if beta == 0.5 else beta, q=None if q == 8 else q)
                 err = {k: abs(rel(m(r, k), m(bi_ref, k))) for k in keys}
@@ -490,6 +514,7 @@ def main():
     ap.add_argument("--only", nargs="+", default=["a", "b", "c", "d", "e"])
     ap.add_argument("--max-nd", type=float, default=160)
     ap.add_argument("--with-320", action="store_true", help="n_d = 320 in the ladders and the cost table")
+    ap.add_argument("--fine-beta", action="store_true", help="add beta = 0.0625 to the dt ladder of a")
     ap.add_argument("--fresh", action="store_true", help="repeat runs already in --work")
     ap.add_argument("--quick", action="store_true", help="the short CTest check (see above)")
     args = ap.parse_args()
