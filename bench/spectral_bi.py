@@ -312,8 +312,8 @@ def ladder(runner, args, L, law="prakash_clifton", method="spectral_bi", output=
         if nd > args.max_nd and not (nd == 320 and args.with_320):
             break
         runs.append(runner.run(method, L, nd, law=law, output=output, probe=probe))
-        if len(runs) >= 2 and all(math.isnan(m(r, "arrival_time_at_probe")) for r in runs[-2:]):
-            break  # the front does not reach the probe: the arrival rule cannot be met
+        if nd >= 160 and all(math.isnan(m(r, "arrival_time_at_probe")) for r in runs):
+            break  # the front never reaches the probe: the arrival rule cannot be met
         if len(runs) >= 2 and converged_pair(runs[-2], runs[-1])[0]:
             found = runs[-2]["n_d"]
             break
