@@ -19,6 +19,8 @@ Sections (all by default; --only picks some):
   d  the targets of issue 9 item 6 (L = 5e-6 m converged < 60 s, the five-L ladder < 2 min,
      L = 5e-5 m at FE n_d = 40 accuracy < 1 s)
   e  BI cost against n_d (growth exponent), FE against BI at the same accuracy
+  t  (only when named) re-times the runs d and e quote: --repeats fresh runs each (one for
+     FE n_d = 80 and BI n_d >= 160), median wall time, CPU time and the load of each
 
 --quick (the CTest check, about 20-40 s on 2 cores): BI at L = 5e-5 m, n_d = 10, 20, 40 and
 FE at n_d = 40; exits non-zero unless BI n_d = 20 -> 40 meets SPEC §2 (propagation distance
@@ -476,6 +478,38 @@ def section_e(runner, args, out):
     out["e"] = {"cost": rows, "fit_exponent_nd_ge_40": fit, "same_accuracy": same}
 
 
+def section_t(runner, args, out):
+    """Re-times the runs the targets and the cost table quote: each run repeated (--repeats)
+    in a fresh work dir, the median wall time reported with the load of each repeat."""
+    print(f"\n#### t. Timings ({args.repeats} repeats, median; fresh runs)\n")
+    print("| run | wall median [s] | walls [s] | CPU median [s] | load (1 min) at each |")
+    print("| --- | --- | --- | --- | --- |")
+    cases = [("spectral_bi", L, nd, None) for L in SMALL_L for nd in (10, 20, 40)]
+    cases += [("spectral_bi", 1e-6, 80, None), ("spectral_bi", 1e-6, 160, None),
+              ("spectral_bi", 5e-5, 80, None), ("spectral_bi", 5e-5, 160, None),
+              ("spectral_bi", 5e-5, 20, 0.125), ("spectral_bi", 5e-5, 40, 0.25),
+              ("spectral_bi", 5e-5, 15, 0.125), ("fe", 5e-5, 20, None), ("fe", 5e-5, 40, None),
+              ("fe", 5e-5, 80, None)]
+    if args.with_320:
+        cases.append(("spectral_bi", 5e-5, 320, None))
+    rows = {}
+    for method, L, nd, beta in cases:
+        repeats = 1 if (nd >= 160 or (method == "fe" and nd >= 80)) else args.repeats
+        recs = []
+        for i in range(repeats):
+            rr = Runner(runner.binary, os.path.join(runner.work, "timing", f"rep{i}"), True)
+            recs.append(rr.run(method, L, nd, beta=beta))
+        walls = sorted(m(r, "wall_time_s") for r in recs)
+        cpus = sorted(r["cpu_s"] for r in recs)
+        name = recs[0]["name"]
+        rows[name] = {"walls": walls, "median": walls[len(walls) // 2], "cpu_median": cpus[len(cpus) // 2],
+                      "loads": [r["loadavg_before"][0] for r in recs],
+                      "commands": [r["command"] for r in recs]}
+        print(f"| {name} | {rows[name]['median']:.3f} | {', '.join(f'{w:.3f}' for w in walls)} "
+              f"| {rows[name]['cpu_median']:.3f} | {', '.join(f'{x:.2f}' for x in rows[name]['loads'])} |")
+    out["t"] = rows
+
+
 # ------------------------------------------------------------------------------------------
 def quick(runner):
     """The CTest check: BI convergence at L = 5e-5 m and agreement with FE at n_d = 40."""
@@ -511,7 +545,9 @@ def main():
     ap.add_argument("--binary", default="build/slipfront")
     ap.add_argument("--work", default="/tmp/slipfront-bi-bench")
     ap.add_argument("--json", default=None, help="default: WORK/spectral_bi.json")
-    ap.add_argument("--only", nargs="+", default=["a", "b", "c", "d", "e"])
+    ap.add_argument("--only", nargs="+", default=["a", "b", "c", "d", "e"],
+                    help="sections; t (re-timing, not in the default) repeats the quoted runs fresh")
+    ap.add_argument("--repeats", type=int, default=3, help="repeats per run in section t")
     ap.add_argument("--max-nd", type=float, default=160)
     ap.add_argument("--with-320", action="store_true", help="n_d = 320 in the ladders and the cost table")
     ap.add_argument("--fine-beta", action="store_true", help="add beta = 0.0625 to the dt ladder of a")
@@ -526,7 +562,7 @@ def main():
         out["quick"] = quick(runner)
     else:
         for section, fn in (("a", section_a), ("b", section_b), ("c", section_c), ("d", section_d),
-                            ("e", section_e)):
+                            ("e", section_e), ("t", section_t)):
             if section in args.only:
                 fn(runner, args, out)
     out["runs"] = runner.records
