@@ -34,12 +34,18 @@ int validate_command(const std::vector<std::string>& args) {
   if (!job) return exit_code::bad_input;
 
   const Geometry& g = job->params.geometry;
-  const double height = resolved_height(job->params);
-  char mesh[160];
-  std::snprintf(mesh, sizeof mesh, "%ld x %ld nodes, dx = %g m, height = %g m%s",
-                std::lround(g.width * g.nodes_per_meter),
-                std::lround(height * g.nodes_per_meter) + 1, 1.0 / g.nodes_per_meter, height,
-                g.auto_height ? " (auto)" : "");
+  char mesh[200];
+  if (job->params.method == Method::spectral_bi) {
+    std::snprintf(mesh, sizeof mesh,
+                  "%ld interface nodes, dx = %g m, half-space (spectral boundary integral)",
+                  std::lround(g.width * g.nodes_per_meter), 1.0 / g.nodes_per_meter);
+  } else {
+    const double height = resolved_height(job->params);
+    std::snprintf(mesh, sizeof mesh, "%ld x %ld nodes, dx = %g m, height = %g m%s",
+                  std::lround(g.width * g.nodes_per_meter),
+                  std::lround(height * g.nodes_per_meter) + 1, 1.0 / g.nodes_per_meter, height,
+                  g.auto_height ? " (auto)" : "");
+  }
   std::cout << "ok\n"
             << "spec_sha256: " << job->sha256 << '\n'
             << "memory_estimate_bytes: " << std::llround(job->memory_estimate_bytes) << " ("

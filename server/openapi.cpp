@@ -35,7 +35,7 @@ const char* document = R"json({
           "method": {"type": "string", "enum": ["fe", "spectral_bi"], "default": "fe",
                      "description": "fe: explicit Q4 finite elements of the block (SPEC §1); spectral_bi: the elastic half-space by the spectral boundary-integral method (docs/spectral-bi.md). Fields the method does not use are errors."},
           "spectral_bi": {"type": "object", "description": "options of method spectral_bi only",
-            "properties": {"time_step_factor": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.5},
+            "properties": {"time_step_factor": {"type": "number", "exclusiveMinimum": 0, "maximum": 0.75, "default": 0.5},
                            "memory_periods": {"type": "number", "exclusiveMinimum": 0, "maximum": 256, "default": 8},
                            "corrector_passes": {"type": "integer", "minimum": 0, "maximum": 4, "default": 1}},
             "additionalProperties": false},
