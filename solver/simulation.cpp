@@ -5,6 +5,7 @@
 #include "solver/make_rupture_method.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/spectral/spectral_model.hpp"
+#include "solver/stable_time_step.hpp"
 #include "solver/thread_team.hpp"
 #include "solver/time_loop.hpp"
 
@@ -22,12 +23,17 @@ double estimated_memory_bytes(const SimulationParams& params) {
     return spectral::SpectralModel::estimated_memory_bytes(params);
   const MeshSize m = mesh_size(params);
   const double nodes = double(m.nx + 2) * m.ny;
-  const double fields = 4.0 * 8.0 * nodes;    // u and v, two components each
+  // u and v, two components each; with the mesh damping also w = u + a v.
+  const double fields = (params.fe.mesh_damping > 0 ? 6.0 : 4.0) * 8.0 * nodes;
   const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
   // Probe records (4 doubles a step) for the longest possible run; the stable step of a
-  // regular Q4 mesh is above 0.5 dx / c_p.
-  const double steps = params.time.duration /
-                       (params.time.safety_factor * 0.5 * m.dx / params.material.p_wave_speed());
+  // regular Q4 mesh is above 0.5 dx / c_p (the damped bound decreases with dt0, so that
+  // lower bound of dt0 gives a lower bound of the damped step too).
+  const double damping_a = params.fe.mesh_damping * m.dx / params.material.s_wave_speed();
+  const double steps =
+      params.time.duration /
+      (params.time.safety_factor *
+       damped_stable_time_step(0.5 * m.dx / params.material.p_wave_speed(), damping_a));
   const double records = 4.0 * 8.0 * steps;
   const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                       // code, libraries, HDF5 caches
