@@ -100,6 +100,11 @@ void read_spectral(ObjectReader& in, SpectralOptions& options) {
   in.integer("corrector_passes", options.corrector_passes, 0, 4);
 }
 
+// The options of the finite-element method: the mesh-scale damping (docs/physics.md).
+void read_fe(ObjectReader& in, FeOptions& options) {
+  in.number("mesh_damping", options.mesh_damping, closed_interval(0.0, 4.0));
+}
+
 void read_output(ObjectReader& in, OutputSampling& output) {
   in.number("interval", output.interval, positive());
   in.integer("space_stride", output.space_stride, 1, 1'000'000);
@@ -122,6 +127,11 @@ void read_job_fields(ObjectReader& in, JobSpec& job) {
     in.object("spectral_bi", [&](ObjectReader& b) { read_spectral(b, params.spectral); });
   } else if (in.raw("spectral_bi") != nullptr) {
     in.error("spectral_bi", "is used only with \"method\": \"spectral_bi\" (the method is \"fe\")");
+  }
+  if (params.method == Method::finite_element) {
+    in.object("fe", [&](ObjectReader& f) { read_fe(f, params.fe); });
+  } else if (in.raw("fe") != nullptr) {
+    in.error("fe", "is used only with \"method\": \"fe\" (the method is \"spectral_bi\")");
   }
   in.object("material", [&](ObjectReader& m) { read_material(m, params.material); });
   in.object("geometry", [&](ObjectReader& g) { read_geometry(g, params); });

@@ -56,6 +56,11 @@ nlohmann::json physics_canonical(const nlohmann::json& canonical) {
   // "method": "fe" is the method every record had before the field existed: leaving it out
   // keeps FE hashes (the result cache, the studies' scenes) those of the older records.
   if (physics.value("method", "fe") == "fe") physics.erase("method");
+  // "fe": {"mesh_damping": 0} is the undamped scheme of every record before the section
+  // existed: left out for the same reason.
+  if (const auto fe = physics.find("fe"); fe != physics.end() && fe->is_object() &&
+                                          fe->size() == 1 && fe->value("mesh_damping", -1.0) == 0.0)
+    physics.erase("fe");
   return physics;
 }
 

@@ -42,6 +42,13 @@ std::string method_description(const SimulationParams& params) {
     method = text;
   } else {
     method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
+    if (params.fe.mesh_damping > 0) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "; mesh-scale stiffness-proportional damping -a K v, a = %g dx / c_s",
+                    params.fe.mesh_damping);
+      method += text;
+    }
   }
   if (params.friction.law == FrictionLaw::coulomb) return method + "; friction: coulomb";
   return method + "; friction: prakash_clifton, " + to_string(params.friction.update) +

@@ -118,9 +118,17 @@ struct SpectralOptions {
   int corrector_passes = 1;      // passes of the local solve after the predictor (0 = none)
 };
 
+// Options of the finite-element method (docs/physics.md "Mesh-scale damping").
+struct FeOptions {
+  // zeta: a stiffness-proportional (Kelvin-Voigt) damping force -a K v with a = zeta dx / c_s,
+  // so it vanishes under refinement. 0 (the default) is the paper's undamped scheme.
+  double mesh_damping = 0.0;
+};
+
 struct SimulationParams {
   Method method = Method::finite_element;
   SpectralOptions spectral;
+  FeOptions fe;
   Material material;
   Geometry geometry;
   TopBoundary top = TopBoundary::traction;

@@ -6,11 +6,21 @@
 #include "solver/stable_time_step.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace slipfront {
 
-namespace {} // namespace
+namespace {
+
+// Rows j-1, j and j+1 of a field (x below, y below, x, y, x above, y above); a missing row
+// (below the interface, above the top) is the zero row.
+std::array<const double*, 6> neighbour_rows(const VectorField& f, int j, int ny, const double* z) {
+  return {j > 0 ? f.x.row(j - 1) : z,      j > 0 ? f.y.row(j - 1) : z,     f.x.row(j), f.y.row(j),
+          j < ny - 1 ? f.x.row(j + 1) : z, j < ny - 1 ? f.y.row(j + 1) : z};
+}
+
+} // namespace
 
 RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   const MeshSize m = mesh_size(params);
@@ -19,10 +29,17 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   dx_ = m.dx;
   height_ = m.height;
   stencils_ = build_stencils(q4_plane_strain_stiffness(params.material));
-  stable_dt_ = stable_time_step(stencils_, nx_, ny_, dx_, params.material.density);
+  damping_a_ = params.fe.mesh_damping * dx_ / params.material.s_wave_speed();
+  stable_dt_ = damped_stable_time_step(
+      stable_time_step(stencils_, nx_, ny_, dx_, params.material.density), damping_a_);
   dt_ = params.time.safety_factor * stable_dt_;
   u_ = VectorField(nx_, ny_);
   v_ = VectorField(nx_, ny_);
+  if (damping_a_ > 0) {
+    w_ = VectorField(nx_, ny_);
+    kdx_.assign(nx_, 0.0);
+    kdy_.assign(nx_, 0.0);
+  }
   zero_row_.assign(nx_ + 2, 0.0);
   load1_.assign(nx_, 0.0);
   load2_.assign(nx_, 0.0);
@@ -38,7 +55,71 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
 
 void RuptureModel::reserve_scratch(int members) {
   if (int(energy_scratch_.size()) < members)
-    energy_scratch_.resize(members, std::vector<double>(2 * nx_));
+    energy_scratch_.resize(members, std::vector<double>(3 * nx_));
+}
+
+void RuptureModel::activate_all_rows() {
+  active_rows_ = ny_;
+  if (damping_a_ > 0)
+    for (int j = 0; j < ny_; ++j)
+      update_damping_row(j);
+}
+
+void RuptureModel::update_damping_row(int j) {
+  double* __restrict wx = w_.x.row(j);
+  double* __restrict wy = w_.y.row(j);
+  const double* __restrict ux = u_.x.row(j);
+  const double* __restrict uy = u_.y.row(j);
+  const double* __restrict vx = v_.x.row(j);
+  const double* __restrict vy = v_.y.row(j);
+  for (int i = 0; i < nx_; ++i) {
+    wx[i] = ux[i] + damping_a_ * vx[i];
+    wy[i] = uy[i] + damping_a_ * vy[i];
+  }
+  w_.x.refresh_ghosts(j);
+  w_.y.refresh_ghosts(j);
+}
+
+void RuptureModel::damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const {
+  const double* z = zero_row_.data() + 1;
+  const auto w = neighbour_rows(w_, j, ny_, z);
+  const auto u = neighbour_rows(u_, j, ny_, z);
+  for_each_node_force(s, w[0], w[1], w[2], w[3], w[4], w[5], nx_, [&](int i, double kx, double ky) {
+    dx[i] = kx;
+    dy[i] = ky;
+  });
+  for_each_node_force(s, u[0], u[1], u[2], u[3], u[4], u[5], nx_, [&](int i, double kx, double ky) {
+    dx[i] -= kx;
+    dy[i] -= ky;
+  });
+}
+
+void RuptureModel::damped_interior_row(int j, const NodeStencil& s, bool compute_energy,
+                                       std::vector<double>& scratch) {
+  const double* z = zero_row_.data() + 1;
+  const auto u = neighbour_rows(u_, j, ny_, z);
+  const auto w = neighbour_rows(w_, j, ny_, z);
+  double* kin = compute_energy ? scratch.data() : nullptr;
+  double* str = compute_energy ? scratch.data() + nx_ : nullptr;
+  double* dis = scratch.data() + 2 * nx_;
+  stencil_damped_velocity_update(s, u[0], u[1], u[2], u[3], u[4], u[5], w[0], w[1], w[2], w[3],
+                                 w[4], w[5], v_.x.row(j), v_.y.row(j), nx_, dt_, node_mass(j), dis,
+                                 kin, str);
+  double dis_sum = 0;
+  for (int i = 0; i < nx_; ++i)
+    dis_sum += dis[i];
+  row_dissipated_[j] = dis_sum;
+  if (compute_energy) store_row_energy(j, kin, str);
+}
+
+void RuptureModel::store_row_energy(int j, const double* kin, const double* str) {
+  double kin_sum = 0, str_sum = 0;
+  for (int i = 0; i < nx_; ++i) {
+    kin_sum += kin[i];
+    str_sum += str[i];
+  }
+  row_kinetic_[j] = 0.5 * node_mass(j) * kin_sum;
+  row_strain_[j] = 0.5 * str_sum;
 }
 
 double RuptureModel::node_mass(int j) const {
@@ -112,9 +193,14 @@ void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<d
                             kx0_[i] = kx;
                             ky0_[i] = ky;
                           });
+      if (damping_a_ > 0) damping_force_row(stencils_.bottom, 0, kdx_.data(), kdy_.data());
       interface_row(compute_energy);
     } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
+      if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_.data(), kdy_.data());
       absorbing_top_row(uxm, uym, compute_energy);
+    } else if (damping_a_ > 0) {
+      damped_interior_row(j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, compute_energy,
+                          scratch);
     } else {
       const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
       if (!compute_energy) {
@@ -126,13 +212,7 @@ void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<d
         double* str = scratch.data() + nx_;
         stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
                                 node_mass(j), kin, str);
-        double kin_sum = 0, str_sum = 0;
-        for (int i = 0; i < nx_; ++i) {
-          kin_sum += kin[i];
-          str_sum += str[i];
-        }
-        row_kinetic_[j] = 0.5 * node_mass(j) * kin_sum;
-        row_strain_[j] = 0.5 * str_sum;
+        store_row_energy(j, kin, str);
       }
     }
     // Row j-1 is no longer read by this member: advance its displacement now, while it is
@@ -151,10 +231,15 @@ void RuptureModel::interface_row(bool compute_energy) {
   double* vy = v_.y.row(0);
   const double* ux = u_.x.row(0);
   const double* uy = u_.y.row(0);
+  const bool damped = damping_a_ > 0;
   double work = 0, dissipated = 0, kinetic = 0, strain = 0;
   for (int i = 0; i < nx_; ++i) {
-    const double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
-    const double f2 = -ky0_[i] + load2_[i] - c0_2;
+    double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
+    double f2 = -ky0_[i] + load2_[i] - c0_2;
+    if (damped) { // the damping force -a K v^{n-1/2}
+      f1 -= kdx_[i];
+      f2 -= kdy_[i];
+    }
     const double v1_old = vx[i], v2_old = vy[i];
     // The trial (free) velocities of the next half step; the slip speed over the last
     // interval is that of the last half step.
@@ -179,6 +264,7 @@ void RuptureModel::interface_row(bool compute_energy) {
     // Work over the step: F^n . (u^{n+1} - u^{n-1}) / 2 = F^n . dt (v^{n+1/2} + v^{n-1/2}) / 2.
     work += dt_ * ((load1_[i] - c0_1) * v1_mid + (load2_[i] - c0_2) * v2_mid);
     dissipated -= dt_ * (r.contact_force1 * v1_mid + r.contact_force2 * v2_mid);
+    if (damped) dissipated += dt_ * (kdx_[i] * v1_mid + kdy_[i] * v2_mid);
     if (compute_energy) {
       kinetic += v1_new * v1_new + v2_new * v2_new;
       strain += kx0_[i] * (ux[i] + dt_ * v1_new) + ky0_[i] * (uy[i] + dt_ * v2_new);
@@ -208,13 +294,16 @@ void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool 
   const double* ux0 = u_.x.row(j);
   const double* uy0 = u_.y.row(j);
   const double* z = zero_row_.data() + 1;
+  const bool damped = damping_a_ > 0; // then kdx_, kdy_ hold the row's damping force
   double dissipated = 0, kinetic = 0, strain = 0;
   for_each_node_force(
       stencils_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
-        const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * kx) / (1 + a_x);
-        const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * ky) / (1 + a_y);
+        const double fx = damped ? kx + kdx_[i] : kx, fy = damped ? ky + kdy_[i] : ky;
+        const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * fx) / (1 + a_x);
+        const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * fy) / (1 + a_y);
         const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
         dissipated += dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid);
+        if (damped) dissipated += dt_ * (kdx_[i] * vx_mid + kdy_[i] * vy_mid);
         vx[i] = vx_new;
         vy[i] = vy_new;
         if (compute_energy) {
@@ -234,9 +323,23 @@ void RuptureModel::update_displacement_row(int j) {
   double* __restrict uy = u_.y.row(j);
   const double* __restrict vx = v_.x.row(j);
   const double* __restrict vy = v_.y.row(j);
-  for (int i = 0; i < nx_; ++i) {
-    ux[i] += dt_ * vx[i];
-    uy[i] += dt_ * vy[i];
+  if (damping_a_ > 0) { // u and w = u + a v in one pass
+    double* __restrict wx = w_.x.row(j);
+    double* __restrict wy = w_.y.row(j);
+    const double a = damping_a_;
+    for (int i = 0; i < nx_; ++i) {
+      ux[i] += dt_ * vx[i];
+      uy[i] += dt_ * vy[i];
+      wx[i] = ux[i] + a * vx[i];
+      wy[i] = uy[i] + a * vy[i];
+    }
+    w_.x.refresh_ghosts(j);
+    w_.y.refresh_ghosts(j);
+  } else {
+    for (int i = 0; i < nx_; ++i) {
+      ux[i] += dt_ * vx[i];
+      uy[i] += dt_ * vy[i];
+    }
   }
   u_.x.refresh_ghosts(j);
   u_.y.refresh_ghosts(j);

@@ -10,6 +10,14 @@
 // Central differences (explicit Newmark beta = 0, gamma = 1/2) in leapfrog form:
 //   v^{n+1/2} = v^{n-1/2} + dt M^-1 (F^n - K u^n),   u^{n+1} = u^n + dt v^{n+1/2},
 // with M lumped. The stored velocity is that of the last half step.
+//
+// Optional mesh-scale damping (params.fe.mesh_damping = zeta > 0, docs/physics.md): a
+// stiffness-proportional (Kelvin-Voigt) force -a K v with a = zeta dx / c_s, taken at the
+// last half step's velocity v^{n-1/2} so that the step stays explicit:
+//   v^{n+1/2} = v^{n-1/2} + dt M^-1 (F^n - K (u^n + a v^{n-1/2})).
+// w = u + a v is kept beside u (advanced with it, row by row), so K w comes from the same
+// stencil pass as K u. The stable step shrinks to sqrt(a^2 + dt0^2) - a
+// (damped_stable_time_step); the damping's work goes into the dissipated energy.
 #pragma once
 
 #include "solver/interface_fields.hpp"
@@ -47,8 +55,10 @@ public:
   const VectorField& velocity() const { return v_; }
   VectorField& displacement() { return u_; } // for verification set-ups
   VectorField& velocity() { return v_; }
-  // Mark every row as possibly non-zero (after a test wrote initial fields by hand).
-  void activate_all_rows() { active_rows_ = ny_; }
+  // Mark every row as possibly non-zero (after a test wrote initial fields by hand); with
+  // the mesh damping on, also recomputes w = u + a v from them.
+  void activate_all_rows();
+  double damping_coefficient() const { return damping_a_; } // a [s]
 
   double node_mass(int j) const; // lumped mass of a node of row j [kg/m]
 
@@ -60,7 +70,14 @@ private:
   void reserve_scratch(int members);
   void interface_row(bool compute_energy);
   void absorbing_top_row(const double* uxm, const double* uym, bool compute_energy);
+  void damped_interior_row(int j, const NodeStencil& s, bool compute_energy,
+                           std::vector<double>& scratch);
+  // K w - K u (= a K v^{n-1/2}) of the row j into dx, dy, from the rows of u and w.
+  void damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const;
   void update_displacement_row(int j);
+  void update_damping_row(int j); // w = u + a v on row j, with its ghosts
+  // Row j's kinetic and strain energy from its per-node terms, summed in node order.
+  void store_row_energy(int j, const double* kin, const double* str);
   bool row_is_zero(int j) const;
 
   SimulationParams params_;
@@ -68,6 +85,9 @@ private:
   double dx_, height_, dt_, stable_dt_;
   MeshStencils stencils_;
   VectorField u_, v_;
+  double damping_a_ = 0;              // a = zeta dx / c_s [s]; 0: undamped, w_ unused
+  VectorField w_;                     // u + a v^{n-1/2}, with the damping on
+  std::vector<double> kdx_, kdy_;     // damping force row of the interface / absorbing top
   std::vector<double> zero_row_;      // nx + 2 zeros, a neighbour for boundary rows
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   std::vector<double> kx0_, ky0_;     // K u on the interface row

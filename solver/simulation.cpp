@@ -5,6 +5,7 @@
 #include "solver/make_rupture_method.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/spectral/spectral_model.hpp"
+#include "solver/stable_time_step.hpp"
 #include "solver/thread_team.hpp"
 #include "solver/time_loop.hpp"
 
@@ -22,7 +23,8 @@ double estimated_memory_bytes(const SimulationParams& params) {
     return spectral::SpectralModel::estimated_memory_bytes(params);
   const MeshSize m = mesh_size(params);
   const double nodes = double(m.nx + 2) * m.ny;
-  const double fields = 4.0 * 8.0 * nodes;    // u and v, two components each
+  // u and v, two components each; with the mesh damping also w = u + a v.
+  const double fields = (params.fe.mesh_damping > 0 ? 6.0 : 4.0) * 8.0 * nodes;
   const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
   // Probe records (4 doubles a step) for the longest possible run.
   const double records = 4.0 * 8.0 * step_count_bound(params);
@@ -34,9 +36,13 @@ double estimated_memory_bytes(const SimulationParams& params) {
 double step_count_bound(const SimulationParams& params) {
   if (params.method == Method::spectral_bi)
     return double(spectral::SpectralModel::max_steps(params));
+  // The stable step of a regular Q4 mesh is above 0.5 dx / c_p; the damped bound decreases
+  // with dt0, so that lower bound of dt0 gives a lower bound of the damped step too.
   const double dx = mesh_size(params).dx;
+  const double damping_a = params.fe.mesh_damping * dx / params.material.s_wave_speed();
   return params.time.duration /
-         (params.time.safety_factor * 0.5 * dx / params.material.p_wave_speed());
+         (params.time.safety_factor *
+          damped_stable_time_step(0.5 * dx / params.material.p_wave_speed(), damping_a));
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {

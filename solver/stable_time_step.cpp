@@ -79,4 +79,9 @@ double stable_time_step(const MeshStencils& stencils, int nx, int ny, double dx,
   return 2.0 / std::sqrt(est.lambda_max);
 }
 
+double damped_stable_time_step(double undamped_dt, double a) {
+  if (a == 0.0) return undamped_dt;
+  return std::sqrt(a * a + undamped_dt * undamped_dt) - a;
+}
+
 } // namespace slipfront

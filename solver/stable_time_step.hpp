@@ -28,4 +28,13 @@ EigenEstimate largest_eigenvalue(const MeshStencils& stencils, int nx, int ny, d
 // same boundaries (an even number of columns, which holds the shortest periodic wave).
 double stable_time_step(const MeshStencils& stencils, int nx, int ny, double dx, double density);
 
+// The stable step with a stiffness-proportional damping force -a K v taken at the last half
+// step's velocity v^{n-1/2} (solver/rupture_model.hpp). Mode by mode (C = a K shares the
+// modes of M^-1 K) the recursion u^{n+1} = (2 - a w^2 dt - w^2 dt^2) u^n - (1 - a w^2 dt)
+// u^{n-1} is stable iff w^2 (dt^2 + 2 a dt) < 4, i.e.
+//   dt < sqrt(a^2 + dt0^2) - a = dt0 (sqrt(1 + xi^2) - xi),  dt0 = 2 / w,  xi = a w / 2,
+// which decreases with w, so the highest mode (dt0 = the undamped stable step) rules.
+// a = 0 gives dt0 back exactly.
+double damped_stable_time_step(double undamped_dt, double a);
+
 } // namespace slipfront

@@ -60,7 +60,74 @@ void velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
   }
 }
 
+// (K u)_i of one node from the three rows, columns i-1, i, i+1.
+struct NodeForce {
+  double x, y;
+};
+inline NodeForce node_force(const StencilCoefficients& coef, const double* __restrict xm,
+                            const double* __restrict ym, const double* __restrict x0,
+                            const double* __restrict y0, const double* __restrict xp,
+                            const double* __restrict yp, int i) {
+  double kx = 0, ky = 0;
+  for (int c = 0; c < 3; ++c) {
+    const int k = i + c - 1;
+    kx += coef.xx[0][c] * xm[k] + coef.xy[0][c] * ym[k] + coef.xx[1][c] * x0[k] +
+          coef.xy[1][c] * y0[k] + coef.xx[2][c] * xp[k] + coef.xy[2][c] * yp[k];
+    ky += coef.yx[0][c] * xm[k] + coef.yy[0][c] * ym[k] + coef.yx[1][c] * x0[k] +
+          coef.yy[1][c] * y0[k] + coef.yx[2][c] * xp[k] + coef.yy[2][c] * yp[k];
+  }
+  return {kx, ky};
+}
+
+template <bool kEnergy>
+void damped_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
+                            const double* __restrict uym, const double* __restrict ux0,
+                            const double* __restrict uy0, const double* __restrict uxp,
+                            const double* __restrict uyp, const double* __restrict wxm,
+                            const double* __restrict wym, const double* __restrict wx0,
+                            const double* __restrict wy0, const double* __restrict wxp,
+                            const double* __restrict wyp, double* __restrict vx,
+                            double* __restrict vy, int nx, double dt, double mass,
+                            double* __restrict dissipated, double* __restrict kinetic,
+                            double* __restrict strain) {
+  const StencilCoefficients coef(stencil);
+  const double dt_over_m = dt / mass;
+  for (int i = 0; i < nx; ++i) {
+    const NodeForce ku = node_force(coef, uxm, uym, ux0, uy0, uxp, uyp, i);
+    const NodeForce kw = node_force(coef, wxm, wym, wx0, wy0, wxp, wyp, i);
+    const double vx_old = vx[i], vy_old = vy[i];
+    const double vx_new = vx_old - dt_over_m * kw.x;
+    const double vy_new = vy_old - dt_over_m * kw.y;
+    vx[i] = vx_new;
+    vy[i] = vy_new;
+    dissipated[i] =
+        0.5 * dt * ((vx_old + vx_new) * (kw.x - ku.x) + (vy_old + vy_new) * (kw.y - ku.y));
+    if constexpr (kEnergy) {
+      kinetic[i] = vx_new * vx_new + vy_new * vy_new;
+      strain[i] = ku.x * (ux0[i] + dt * vx_new) + ku.y * (uy0[i] + dt * vy_new);
+    }
+  }
+}
+
 } // namespace
+
+void stencil_damped_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
+                                    const double* __restrict uym, const double* __restrict ux0,
+                                    const double* __restrict uy0, const double* __restrict uxp,
+                                    const double* __restrict uyp, const double* __restrict wxm,
+                                    const double* __restrict wym, const double* __restrict wx0,
+                                    const double* __restrict wy0, const double* __restrict wxp,
+                                    const double* __restrict wyp, double* __restrict vx,
+                                    double* __restrict vy, int nx, double dt, double mass,
+                                    double* __restrict dissipated, double* __restrict kinetic,
+                                    double* __restrict strain) {
+  if (kinetic && strain)
+    damped_velocity_update<true>(stencil, uxm, uym, ux0, uy0, uxp, uyp, wxm, wym, wx0, wy0, wxp,
+                                 wyp, vx, vy, nx, dt, mass, dissipated, kinetic, strain);
+  else
+    damped_velocity_update<false>(stencil, uxm, uym, ux0, uy0, uxp, uyp, wxm, wym, wx0, wy0, wxp,
+                                  wyp, vx, vy, nx, dt, mass, dissipated, nullptr, nullptr);
+}
 
 void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
                              const double* __restrict uym, const double* __restrict ux0,

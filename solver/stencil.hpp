@@ -78,6 +78,19 @@ void stencil_velocity_update(const NodeStencil& stencil, const double* __restric
                              double* __restrict kinetic = nullptr,
                              double* __restrict strain = nullptr);
 
+// The same update with the mesh-scale damping force -a K v^{n-1/2} (docs/physics.md), from
+// w = u + a v^{n-1/2} kept beside u: v_i <- v_i - dt/m (K w)_i. Writes each node's damping
+// dissipation over the step, dt v_mid.(K w - K u)_i with v_mid = (v^{n-1/2} + v^{n+1/2})/2,
+// to `dissipated` (always); the energy terms as stencil_velocity_update, with K u.
+void stencil_damped_velocity_update(
+    const NodeStencil& stencil, const double* __restrict uxm, const double* __restrict uym,
+    const double* __restrict ux0, const double* __restrict uy0, const double* __restrict uxp,
+    const double* __restrict uyp, const double* __restrict wxm, const double* __restrict wym,
+    const double* __restrict wx0, const double* __restrict wy0, const double* __restrict wxp,
+    const double* __restrict wyp, double* __restrict vx, double* __restrict vy, int nx, double dt,
+    double mass, double* __restrict dissipated, double* __restrict kinetic = nullptr,
+    double* __restrict strain = nullptr);
+
 // K u over the whole mesh (not the fast path: used by the stable time step estimate and
 // by tests). u's ghosts must be current; result has the layout of u (ghosts not set).
 void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku);

@@ -27,6 +27,7 @@ std::string hash_of(const json& job) {
 TEST(JobCanonical, EveryFieldIsFilledWithItsDefault) {
   const json canonical = parsed(json::object()).canonical;
   const json expected = json::parse(R"({
+    "fe": {"mesh_damping": 0.0},
     "friction": {"L": 5e-05, "law": "prakash_clifton", "mu": 0.75,
                  "strength_update": "exponential_ramp", "v_star": 0.0001},
     "geometry": {"height": 20.0, "nodes_per_meter": 40.0, "top_boundary": "traction",
@@ -108,8 +109,9 @@ TEST(JobCanonical, CanonicalFormParsesToTheSameJob) {
 TEST(JobCanonical, SpecHashIsTheSha256OfThePhysicsText) {
   const auto spec = parsed(json::object());
   json physics = spec.canonical;
-  // "method": "fe" is left out: an FE spec hashes as it did before the field existed.
-  for (const char* key : {"name", "tags", "threads", "output", "method"})
+  // "method": "fe" and the undamped "fe" section are left out: an FE spec hashes as it did
+  // before those fields existed.
+  for (const char* key : {"name", "tags", "threads", "output", "method", "fe"})
     physics.erase(key);
   EXPECT_EQ(spec.sha256, slipfront::api::sha256_hex(physics.dump()));
   EXPECT_EQ(slipfront::api::spec_hash(spec.canonical), spec.sha256);
@@ -130,4 +132,19 @@ TEST(JobCanonical, SpectralBiCanonicalHasItsSectionAndNoBlockFields) {
   EXPECT_EQ(hash_of({{"method", "fe"}}), hash_of(json::object()));
   EXPECT_NE(hash_of({{"method", "spectral_bi"}, {"spectral_bi", {{"memory_periods", 16}}}}),
             hash_of({{"method", "spectral_bi"}}));
+}
+
+TEST(JobCanonical, FeMeshDampingIsInTheFeCanonicalAndHashOnlyWhenOn) {
+  const auto off = parsed(json::object());
+  EXPECT_EQ(off.canonical["fe"], json::parse(R"({"mesh_damping": 0.0})"));
+  // Zero damping is the scheme of every older record: the hash stays theirs.
+  EXPECT_EQ(hash_of({{"fe", {{"mesh_damping", 0}}}}), off.sha256);
+  EXPECT_EQ(hash_of({{"method", "fe"}, {"fe", json::object()}}), off.sha256);
+  const auto on = parsed({{"fe", {{"mesh_damping", 0.5}}}});
+  EXPECT_EQ(on.canonical["fe"]["mesh_damping"], 0.5);
+  EXPECT_NE(on.sha256, off.sha256);
+  EXPECT_NE(on.sha256, hash_of({{"fe", {{"mesh_damping", 0.25}}}}));
+  EXPECT_EQ(parsed(on.canonical).sha256, on.sha256);
+  // The BI canonical form has no "fe" section.
+  EXPECT_FALSE(parsed({{"method", "spectral_bi"}}).canonical.contains("fe"));
 }

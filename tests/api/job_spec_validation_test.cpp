@@ -353,6 +353,19 @@ TEST(JobValidationMethod, FieldsTheMethodDoesNotUseAreErrorsNamingTheField) {
                       "/time/safety_factor", "time_step_factor");
   expect_single_error({{"spectral_bi", {{"memory_periods", 8}}}}, "/spectral_bi",
                       "only with \"method\": \"spectral_bi\"");
+  expect_single_error({{"method", "spectral_bi"}, {"fe", {{"mesh_damping", 0.5}}}}, "/fe",
+                      "only with \"method\": \"fe\"");
+}
+
+TEST(JobValidationMethod, FeMeshDampingIsRangeChecked) {
+  const ParseResult ok = parse_job({{"fe", {{"mesh_damping", 0.5}}}});
+  ASSERT_TRUE(ok.ok());
+  EXPECT_EQ(ok.spec->params.fe.mesh_damping, 0.5);
+  EXPECT_EQ(parse_job(json::object()).spec->params.fe.mesh_damping, 0.0);
+  expect_single_error({{"fe", {{"mesh_damping", -0.1}}}}, "/fe/mesh_damping", "[0, 4]");
+  expect_single_error({{"fe", {{"mesh_damping", 5}}}}, "/fe/mesh_damping", "[0, 4]");
+  expect_single_error({{"fe", {{"mesh_damping", "x"}}}}, "/fe/mesh_damping", "");
+  expect_single_error({{"fe", {{"no_such_option", 1}}}}, "/fe/no_such_option", "");
 }
 
 TEST(JobValidationMethod, SpectralOptionsAreRangeChecked) {
