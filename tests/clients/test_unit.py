@@ -304,6 +304,28 @@ class SpeedAccuracyTest(unittest.TestCase):
         self.assertEqual((source, [r["method"] for r in rows]), ("runs", ["fe", "spectral_bi"]))
         self.assertEqual(len(analysis.merge_rows(rows, rows)), 2)
 
+    def test_plot_cost_study_rows(self):
+        from slipfront_client.commands_plot import study_cost_rows
+        fe = self.run_("fe", 5e-5, 20, 3.0, 9e7, 0.01)
+        bi = self.run_("spectral_bi", 5e-5, 40, 0.2, 2.8e7, 0.001)
+        strip = lambda r: {k: v for k, v in r.items() if k != "method"}  # noqa: E731
+
+        class FakeApi:
+            def __init__(self, docs):
+                self.docs = docs
+
+            def get_json(self, path):
+                return self.docs[path.split("/")[4]]
+
+            def study(self, sid):
+                return {"id": sid, "method": "spectral_bi" if sid == "B" else "fe"}
+
+        old = FakeApi({"F": {"runs": [strip(fe)]}, "B": {"runs": [strip(bi)]}})
+        self.assertEqual([r["method"] for r in study_cost_rows(old, ["F", "B"])],
+                         ["fe", "spectral_bi"])
+        new = FakeApi({"F": {"runs": [fe], "across_methods": {"runs": [fe, bi]}}})
+        self.assertEqual([r["method"] for r in study_cost_rows(new, ["F"])], ["fe", "spectral_bi"])
+
     def test_cost_chart_has_both_methods_and_a_memory_panel(self):
         rows = analysis.rows_from_speed_accuracy({"across_methods": {"runs": [
             self.run_("fe", 5e-5, 10, 0.8, 2.5e7, 0.03), self.run_("fe", 5e-5, 20, 3.0, 9e7, 0.01),
