@@ -30,10 +30,11 @@ def fmt(value, digits=3, unit=""):
 
 
 def percent(value, digits=2):
-    """0.0213 -> "2.1 %"; "—" when missing."""
+    """0.0213 -> "2.1 %", 1.0 -> "100 %"; "—" when missing."""
     if value is None or not isinstance(value, (int, float)) or not math.isfinite(value):
         return "—"
-    return f"{100 * value:.{digits}g} %"
+    p = 100 * value
+    return f"{p:.0f} %" if abs(p) >= 10 ** digits else f"{p:.{digits}g} %"
 
 
 def method_of(study):

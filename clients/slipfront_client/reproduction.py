@@ -352,6 +352,10 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
                                                                   key=lambda kv: -float(kv[0]))) + ".\n")
     if "convergence" in figures:
         add(f"![convergence map]({rel(figures['convergence'], out_dir)})\n")
+    if "convergence_bi" in figures:
+        add("The spectral BI study's map (same symbols; its runs are listed under "
+            "“Runs (spectral BI)”):\n")
+        add(f"![convergence map, spectral BI]({rel(figures['convergence_bi'], out_dir)})\n")
 
     # critical length
     cl = study.get("critical_length") or {}
@@ -374,7 +378,6 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
         "map": "|V| in the x1–t plane with the slip front (paper Fig. 2a).",
         "filter": "Friction filter A/A0 (eq. 6) for the study's L, with the meshes' highest "
                   "eigenfrequencies 1/(π dt_stable) from the runs' `stable_dt` (paper Fig. 5c).",
-        "convergence_bi": "Convergence map of the spectral BI study (same symbols as the FE map).",
         "cost": "Error against wall time (left) and against the memory estimate (right), both "
                 "methods (FE ● solid, BI ■ dashed, colour = L), labelled by n_d. Error: the larger "
                 "relative change of propagation distance and arrival time at the probe against "
@@ -384,7 +387,7 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
                    "`across_methods` yet)")
                 + "; a reference run (error 0) is not drawn.",
     }
-    for stem in ("velocity", "speed", "map", "filter", "convergence_bi", "cost"):
+    for stem in ("velocity", "speed", "map", "filter", "cost"):
         if stem in figures:
             add(f"{captions[stem]}\n\n![{stem}]({rel(figures[stem], out_dir)})\n")
     if "cost" not in figures:

@@ -7,6 +7,7 @@ without a positive error, such as a reference run, are left out; `method` defaul
 import math
 
 from matplotlib.lines import Line2D
+from matplotlib.ticker import FuncFormatter, LogLocator, MaxNLocator, NullFormatter
 
 from ..errors import UsageError
 from .common import colours, new_figure
@@ -37,6 +38,23 @@ def length_label(L):
         return f"{L:g} m"
     mantissa, exponent = f"{L:.3e}".split("e")
     return f"{float(mantissa):g}e{int(exponent)} m"
+
+
+def readable_log_axis(axis, values):
+    """Tick labels a reader can use on a log axis: plain numbers ("0.02", "1e-05"), ticks at
+    1, 2, 5 per decade over a few decades, at decades only over many, evenly spaced values
+    when the data span less than a decade (where log ticks would leave none or overlap)."""
+    values = [v for v in values if v > 0]
+    if not values:
+        return
+    span = math.log10(max(values) / min(values))
+    if span < 1:
+        axis.set_major_locator(MaxNLocator(nbins=4))
+    else:
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0) if span <= 2.5 else (1.0,)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.0f}" if 1 <= v < 1e6 and v == round(v)
+                                           else f"{v:.3g}"))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def method(row):
@@ -77,6 +95,9 @@ def plot_cost(rows, title=None):
                             color=colour_of[L])
         ax.set_xscale("log")
         ax.set_yscale("log")
+        drawn = [v for (m, L), d in data.items() if key in d for v in d[key]]
+        readable_log_axis(ax.xaxis, [v / scale for v in drawn])
+        readable_log_axis(ax.yaxis, [v for d in data.values() if key in d for v in d["error"]])
         ax.set_xlabel(xlabel)
         ax.set_ylabel("relative error (vs reference run of the L)")
         ax.grid(True, which="major", alpha=0.3)
