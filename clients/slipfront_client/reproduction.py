@@ -64,7 +64,9 @@ def study_body(args, method="fe"):
 def progress_line(study):
     p = study.get("progress") or {}
     states = ", ".join(f"L={L}: {r.get('state')}" for L, r in (study.get("refinement") or {}).items())
-    return f"study {study.get('status')}: {p.get('done')}/{p.get('total')} runs final  [{states}]"
+    method = report_mod.SHORT.get(report_mod.method_of(study), "")
+    return (f"{method} study {study.get('status')}: {p.get('done')}/{p.get('total')} runs final"
+            f"  [{states}]")
 
 
 def wait_study(api, study_id, timeout=None):
