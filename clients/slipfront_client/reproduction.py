@@ -359,19 +359,16 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
             "“Runs (spectral BI)”):\n")
         add(f"![convergence map, spectral BI]({rel(figures['convergence_bi'], out_dir)})\n")
 
-    # critical length
-    cl = study.get("critical_length") or {}
-    add("## Critical length\n")
-    add(f"- L_c (study, SPEC §2): **{fmt(study.get('L_c'))} m**"
-        + (f"; next larger L that breaks agreement: {fmt(cl.get('next_larger_L'))} m" if cl.get('next_larger_L') else "")
-        + ". Paper: L_c ≈ 1e-5 m.")
-    spectral = study.get("spectral_critical_length")
-    add(f"- Spectral estimate (docs/studies.md, docs/metrics.md): **{fmt(spectral)} m**"
-        + (f" (from the reference run of L = {fmt(cl.get('spectral_from_L'))} m, the smallest "
-           "mesh-converged L)." if spectral is not None else " (needs a mesh-converged L)."))
-    if cl.get("reason"):
-        add(f"- Server's reason: {cl['reason']}")
-    add("")
+    add("## Critical length beside the paper's\n")
+    add("| method | verdict (SPEC §2) | spectral estimate | from L | paper |")
+    add("| --- | --- | --- | --- | --- |")
+    for st in (study, bi_study):
+        if st:
+            cl = st.get("critical_length") or {}
+            add(f"| {report_mod.SHORT.get(report_mod.method_of(st), '?')} | "
+                f"{report_mod.verdict_text(st)} | {fmt(st.get('spectral_critical_length'), unit='m')} | "
+                f"{fmt(cl.get('spectral_from_L'), unit='m')} | L_c ≈ 1e-5 m |")
+    add("\nThe reasons, the change per step in L and the n_d per L: the verdicts at the top.\n")
 
     add("## Figures\n")
     captions = {
