@@ -29,8 +29,8 @@ def fmt(value, digits=3, unit=""):
     return text + (f" {unit}" if unit else "")
 
 
-def percent(value, digits=2):
-    """0.0213 -> "2.1 %", 1.0 -> "100 %"; "—" when missing."""
+def percent(value, digits=3):
+    """0.0213 -> "2.13 %", 1.0 -> "100 %"; "—" when missing."""
     if value is None or not isinstance(value, (int, float)) or not math.isfinite(value):
         return "—"
     p = 100 * value

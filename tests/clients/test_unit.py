@@ -241,8 +241,8 @@ class ReportTest(unittest.TestCase):
         text = "\n".join(lines)
         self.assertIn("Spectral estimate beside it: **1.7e-05 m** (from the reference run of "
                       "L = 5e-06 m", text)
-        self.assertIn("| 5e-06 → 1e-05 | 2.1 % | 0.31 % | no |", lines)
-        self.assertIn("| 1e-05 → 5e-05 | 1.9 % | — | no |", lines)
+        self.assertIn("| 5e-06 → 1e-05 | 2.13 % | 0.312 % | no |", lines)
+        self.assertIn("| 1e-05 → 5e-05 | 1.87 % | — | no |", lines)
         self.assertIn("| 0.0001 | 10 | 40 | converged |", lines)
         self.assertIn("| 1e-05 | none up to the cap | 40 | not_converged_at_cap |", lines)
         lc = report.verdict_lines(_study("fe", 1e-5, STEPS[:1], "L = 5e-05 ..."))
@@ -262,7 +262,7 @@ class ReportTest(unittest.TestCase):
                                  "spectral_velocity": None}}]
         lines = report.cross_method_lines(rows)
         self.assertTrue(lines[0].startswith("| L [m] | n_d FE / BI | propagation distance [m] |"))
-        self.assertEqual(lines[2], "| 5e-05 | 40 / 80 | 12.43 / 12.4 (0.24 %) | 4.512 / 4.512 (0 %) | "
+        self.assertEqual(lines[2], "| 5e-05 | 40 / 80 | 12.43 / 12.4 (0.242 %) | 4.512 / 4.512 (0 %) | "
                                    "12.5 / 12.5 (0 %) | 0.0081 / 0.0081 (0 %) | "
                                    "0.0031 / 0.0031 (—) | 12 / 0.4 | yes |")
         self.assertEqual(lines[3], "| 5e-06 | — / 80 | — / 12.4 | — / 4.512 | — / 12.5 | "

@@ -42,14 +42,16 @@ def length_label(L):
 
 def readable_log_axis(axis, values):
     """Tick labels a reader can use on a log axis: plain numbers ("0.02", "1e-05"), ticks at
-    1, 2, 5 per decade over a few decades, at decades only over many, evenly spaced values
-    when the data span less than a decade (where log ticks would leave none or overlap)."""
+    1, 2, 5 per decade over a few decades, at decades only over many, denser within a
+    decade, evenly spaced values over a narrow range (where log ticks would leave none)."""
     values = [v for v in values if v > 0]
     if not values:
         return
     span = math.log10(max(values) / min(values))
-    if span < 1:
+    if span < 0.3:
         axis.set_major_locator(MaxNLocator(nbins=4))
+    elif span < 1:
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0)))
     else:
         axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0) if span <= 2.5 else (1.0,)))
     axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.0f}" if 1 <= v < 1e6 and v == round(v)
