@@ -489,11 +489,28 @@ nlohmann::json critical_length(const std::vector<StudyRun>& runs,
   return result;
 }
 
+namespace {
+
+// The runs of one scene by both methods, with each method's reference run of an L.
+struct TwoMethods {
+  const std::vector<StudyRun>& fe_runs;
+  const std::vector<StudyRun>& bi_runs;
+  std::vector<RunConvergence> fe_statuses, bi_statuses;
+
+  TwoMethods(const std::vector<StudyRun>& fe, const std::vector<StudyRun>& bi,
+             const ConvergenceTolerances& tol)
+      : fe_runs(fe), bi_runs(bi), fe_statuses(convergence_statuses(fe, tol)),
+        bi_statuses(convergence_statuses(bi, tol)) {}
+  const StudyRun* fe_reference(double L) const { return reference_run(fe_runs, fe_statuses, L); }
+  const StudyRun* bi_reference(double L) const { return reference_run(bi_runs, bi_statuses, L); }
+};
+
+} // namespace
+
 nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
                                   const std::vector<StudyRun>& bi_runs,
                                   const ConvergenceTolerances& tol) {
-  const auto fe_statuses = convergence_statuses(fe_runs, tol);
-  const auto bi_statuses = convergence_statuses(bi_runs, tol);
+  const TwoMethods both(fe_runs, bi_runs, tol);
   std::vector<double> Ls = study_values(fe_runs, &StudyRun::L);
   for (double L : study_values(bi_runs, &StudyRun::L))
     Ls.push_back(L);
@@ -513,8 +530,8 @@ nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
   };
   json rows = json::array();
   for (double L : Ls) {
-    const StudyRun* fe = reference_run(fe_runs, fe_statuses, L);
-    const StudyRun* bi = reference_run(bi_runs, bi_statuses, L);
+    const StudyRun* fe = both.fe_reference(L);
+    const StudyRun* bi = both.bi_reference(L);
     json row = {{"L", L}, {"fe", side(fe)}, {"spectral_bi", side(bi)}};
     if (fe && bi) {
       json differences;
@@ -537,34 +554,63 @@ nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
 }
 
 // SPEC intro: "every result says how accurate it is and what it cost".
+namespace {
+
+// One speed-accuracy entry: the run's cost and its errors against `ref` (null: no reference).
+json speed_accuracy_entry(const StudyRun& run, const StudyRun* ref) {
+  const bool judged = ref && state_of(run) == RunState::measured;
+  // No rupture in either run: the outcome agrees and there is no rupture to measure
+  // (a nucleation patch's slip is not a propagation distance), as in compare().
+  const bool neither_ruptured =
+      judged && outcome_of(run) == "no_rupture" && outcome_of(*ref) == "no_rupture";
+  const double arrival_error =
+      judged ? relative_change(metric(run, arrival_key), metric(*ref, arrival_key)) : not_available;
+  const double distance_error =
+      neither_ruptured ? 0.0
+      : judged         ? relative_change(metric(run, distance_key), metric(*ref, distance_key))
+                       : not_available;
+  return {{"id", run.id},
+          {"L", run.L},
+          {"n_d", run.n_d},
+          {"outcome", outcome_of(run)},
+          {"wall_time_s", json_number(run.wall_time_s)},
+          {"memory_bytes", json_number(run.memory_bytes)},
+          {"reference_run_id", ref ? json(ref->id) : json(nullptr)},
+          {"errors", changes_json(distance_error, arrival_error)}};
+}
+
+} // namespace
+
 nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs, const ConvergenceTolerances& tol) {
   const auto statuses = convergence_statuses(runs, tol);
   json list = json::array();
-  for (const StudyRun& run : runs) {
-    const RunState state = state_of(run);
-    if (!has_result(state)) continue;
-    const StudyRun* ref = reference_run(runs, statuses, run.L);
-    const bool judged = ref && state == RunState::measured;
-    // No rupture in either run: the outcome agrees and there is no rupture to measure
-    // (a nucleation patch's slip is not a propagation distance), as in compare().
-    const bool neither_ruptured =
-        judged && outcome_of(run) == "no_rupture" && outcome_of(*ref) == "no_rupture";
-    const double arrival_error =
-        judged ? relative_change(metric(run, arrival_key), metric(*ref, arrival_key))
-               : not_available;
-    const double distance_error =
-        neither_ruptured ? 0.0
-        : judged         ? relative_change(metric(run, distance_key), metric(*ref, distance_key))
-                         : not_available;
-    list.push_back({{"id", run.id},
-                    {"L", run.L},
-                    {"n_d", run.n_d},
-                    {"outcome", outcome_of(run)},
-                    {"wall_time_s", json_number(run.wall_time_s)},
-                    {"memory_bytes", json_number(run.memory_bytes)},
-                    {"reference_run_id", ref ? json(ref->id) : json(nullptr)},
-                    {"errors", changes_json(distance_error, arrival_error)}});
-  }
+  for (const StudyRun& run : runs)
+    if (has_result(state_of(run)))
+      list.push_back(speed_accuracy_entry(run, reference_run(runs, statuses, run.L)));
+  return list;
+}
+
+nlohmann::json speed_accuracy_across_methods(const std::vector<StudyRun>& fe_runs,
+                                             const std::vector<StudyRun>& bi_runs,
+                                             const ConvergenceTolerances& tol) {
+  const TwoMethods both(fe_runs, bi_runs, tol);
+  // The reference of an L: the finer of the two methods' references (BI on a tie).
+  auto reference_of = [&](double L) -> std::pair<const StudyRun*, const char*> {
+    const StudyRun* fe = both.fe_reference(L);
+    const StudyRun* bi = both.bi_reference(L);
+    if (fe && (!bi || finer(fe->n_d, bi->n_d))) return {fe, "fe"};
+    return {bi, bi ? "spectral_bi" : nullptr};
+  };
+  json list = json::array();
+  for (const auto& [runs, method] : {std::pair{&fe_runs, "fe"}, std::pair{&bi_runs, "spectral_bi"}})
+    for (const StudyRun& run : *runs) {
+      if (!has_result(state_of(run))) continue;
+      const auto [ref, ref_method] = reference_of(run.L);
+      json entry = speed_accuracy_entry(run, ref);
+      entry["method"] = method;
+      entry["reference_method"] = ref_method ? json(ref_method) : json(nullptr);
+      list.push_back(std::move(entry));
+    }
   return list;
 }
 

@@ -86,6 +86,13 @@ nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
 nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs,
                               const ConvergenceTolerances& tol = {});
 
+// As speed_accuracy, over the runs of both methods of one scene: each entry names its
+// "method", and its errors are against the finest reference run of its L by either method
+// (spectral_bi on a tie), named by "reference_run_id" and "reference_method".
+nlohmann::json speed_accuracy_across_methods(const std::vector<StudyRun>& fe_runs,
+                                             const std::vector<StudyRun>& bi_runs,
+                                             const ConvergenceTolerances& tol = {});
+
 // ||v_a - v_ref|| / ||v_ref|| in L2 over time, on the samples of `a` that lie in the common
 // time range; the reference is interpolated linearly onto them (trapezoidal rule).
 // NaN when fewer than two samples of `a` lie in the common range or ||v_ref|| = 0.

@@ -196,43 +196,69 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
     record_errors[job_id] = why;
     return records.emplace(job_id, std::move(rec)).first->second;
   };
-  json list = json::array();
   double probe_x1 = api::not_available;
+  // The relative L2 error of the probe record against the reference run's, or why not.
+  auto add_l2 = [&](json& entry) {
+    const std::string run_id = entry["id"].get<std::string>();
+    entry["job_id"] = run_id;
+    json l2 = nullptr;
+    std::string why;
+    if (entry["reference_run_id"].is_string()) {
+      const std::string ref_id = entry["reference_run_id"].get<std::string>();
+      const auto& mine = record_of(run_id);
+      const auto& ref = record_of(ref_id);
+      if (mine && ref) {
+        try {
+          l2 = api::json_number(api::relative_l2_error(mine->time, mine->slip_velocity, ref->time,
+                                                       ref->slip_velocity));
+          probe_x1 = ref->x1;
+          if (l2.is_null())
+            why = "undefined: the reference record is zero over the common time range (no "
+                  "slip at the probe) or fewer than two samples overlap";
+        } catch (const std::exception& e) {
+          why = e.what();
+        }
+      } else {
+        why = !mine ? record_errors[run_id] : "reference: " + record_errors[ref_id];
+      }
+    } else {
+      why = "no reference run (this L has no mesh-converged run)";
+    }
+    entry["errors"]["slip_velocity_l2"] = l2;
+    if (l2.is_null()) entry["slip_velocity_l2_unavailable"] = why;
+  };
+  json list = json::array();
   for (const auto& [regime, members] : groups) {
     std::vector<api::StudyRun> runs;
     for (const auto* r : members)
       runs.push_back(to_study_run(*r));
     for (auto entry : api::speed_accuracy(runs)) {
       if (!regime.empty()) entry["regime"] = regime;
-      const std::string run_id = entry["id"].get<std::string>();
-      entry["job_id"] = run_id;
-      json l2 = nullptr;
-      std::string why;
-      if (entry["reference_run_id"].is_string()) {
-        const std::string ref_id = entry["reference_run_id"].get<std::string>();
-        const auto& mine = record_of(run_id);
-        const auto& ref = record_of(ref_id);
-        if (mine && ref) {
-          try {
-            l2 = api::json_number(api::relative_l2_error(mine->time, mine->slip_velocity, ref->time,
-                                                         ref->slip_velocity));
-            probe_x1 = ref->x1;
-            if (l2.is_null())
-              why = "undefined: the reference record is zero over the common time range (no "
-                    "slip at the probe) or fewer than two samples overlap";
-          } catch (const std::exception& e) {
-            why = e.what();
-          }
-        } else {
-          why = !mine ? record_errors[run_id] : "reference: " + record_errors[ref_id];
-        }
-      } else {
-        why = "no reference run (this L has no mesh-converged run)";
-      }
-      entry["errors"]["slip_velocity_l2"] = l2;
-      if (l2.is_null()) entry["slip_velocity_l2_unavailable"] = why;
+      add_l2(entry);
       list.push_back(std::move(entry));
     }
+  }
+  // Both methods on one chart: every run of the study's scene and of its counterpart.
+  json across = nullptr;
+  std::vector<StudyRunRow> scene_rows;
+  if (const auto scenes = ctx.studies.method_scenes(*study);
+      scenes && !scenes->other_scene.empty()) {
+    scene_rows = ctx.studies.store().scene_runs(scenes->scene);
+    const std::size_t own = scene_rows.size();
+    auto other_rows = ctx.studies.store().scene_runs(scenes->other_scene);
+    scene_rows.insert(scene_rows.end(), other_rows.begin(), other_rows.end());
+    std::vector<api::StudyRun> mine, theirs;
+    for (std::size_t k = 0; k < scene_rows.size(); ++k) {
+      by_id.emplace(scene_rows[k].job_id, &scene_rows[k]);
+      (k < own ? mine : theirs).push_back(to_study_run(scene_rows[k]));
+    }
+    json runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
+                              : api::speed_accuracy_across_methods(theirs, mine);
+    for (auto& entry : runs)
+      add_l2(entry);
+    across = {{"runs", runs},
+              {"reference", "the finest reference run of the same L by either method "
+                            "(spectral_bi on a tie), from every run of the two scenes"}};
   }
   json body = {{"study_id", id},
                {"runs", list},
@@ -242,7 +268,8 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
                  {"description", "relative L2 error over time of the slip velocity at the "
                                  "spectrum probe (probe.spectrum_x1, default 6 m)"}}},
                {"reference", "the finest non-diverged run of the same L, when that L has a "
-                             "mesh-converged run (docs/studies.md)"}};
+                             "mesh-converged run (docs/studies.md)"},
+               {"across_methods", across}};
   return json_response(rc.request, http::status::ok, body);
 }
 

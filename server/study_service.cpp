@@ -186,23 +186,28 @@ StudyCancelResult StudyService::cancel(const std::string& id, const std::string&
   return out;
 }
 
+std::optional<MethodScenes> StudyService::method_scenes(const StudyRecord& study) {
+  StudyRequest request;
+  request.base = study.base;
+  auto base = jobs_.validate(run_document(request, study.id, json::object(), "", 5e-5, 10));
+  if (!base.spec) return std::nullopt;
+  return MethodScenes{base.spec->params.method == Method::finite_element, study.scene_hash,
+                      api::counterpart_scene_hash(base.spec->canonical)};
+}
+
 std::optional<json> StudyService::view(const std::string& id) {
   auto study = studies_.get(id);
   if (!study) return std::nullopt;
   json j = study_to_json(*study, studies_.runs(id));
   // The same scene by the other method, from every run the group has made of it.
-  StudyRequest request;
-  request.base = study->base;
-  auto base = jobs_.validate(run_document(request, study->id, json::object(), "", 5e-5, 10));
-  if (base.spec) {
-    const std::string other = api::counterpart_scene_hash(base.spec->canonical);
-    const bool is_fe = base.spec->params.method == Method::finite_element;
-    j["method"] = is_fe ? "fe" : "spectral_bi";
-    j["counterpart_scene_hash"] = other.empty() ? json(nullptr) : json(other);
-    if (!other.empty()) {
-      const auto mine = studies_.scene_runs(study->scene_hash);
-      const auto theirs = studies_.scene_runs(other);
-      j["cross_method"] = is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
+  if (const auto scenes = method_scenes(*study)) {
+    j["method"] = scenes->is_fe ? "fe" : "spectral_bi";
+    j["counterpart_scene_hash"] =
+        scenes->other_scene.empty() ? json(nullptr) : json(scenes->other_scene);
+    if (!scenes->other_scene.empty()) {
+      const auto mine = studies_.scene_runs(scenes->scene);
+      const auto theirs = studies_.scene_runs(scenes->other_scene);
+      j["cross_method"] = scenes->is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
     }
   }
   return j;

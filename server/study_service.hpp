@@ -28,6 +28,13 @@ struct StudyCancelResult {
   std::vector<std::string> cancel_requested_jobs; // were running: they stop at their next step
 };
 
+// The study's scene and the same physics by the other method (docs/studies.md).
+struct MethodScenes {
+  bool is_fe = true;
+  std::string scene;       // the study's own scene hash
+  std::string other_scene; // "" when the swapped spec is not valid
+};
+
 class StudyService {
 public:
   StudyService(StudyStore& studies, JobService& jobs, JobQueue& queue, StudySupervisor& supervisor)
@@ -39,6 +46,8 @@ public:
   // study is cancelled. `user` must be the submitter when tokens are in use.
   StudyCancelResult cancel(const std::string& id, const std::string& user, bool auth_enabled);
   StudyStore& store() { return studies_; }
+  // The study's method and the counterpart scene; nullopt when its base is not valid.
+  std::optional<MethodScenes> method_scenes(const StudyRecord& study);
 
 private:
   StudyStore& studies_;

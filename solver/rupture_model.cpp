@@ -30,18 +30,7 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   ky0_.assign(nx_, 0.0);
   node_ = {node_mass(0), node_mass(0), dt_, dx_, params.friction};
 
-  const double p0 = std::abs(params.loading.normal_stress);
-  iface_.x1.resize(nx_);
-  for (int i = 0; i < nx_; ++i)
-    iface_.x1[i] = params.geometry.x_min + i * dx_;
-  iface_.velocity.assign(nx_, 0.0);
-  iface_.half_velocity.assign(nx_, 0.0);
-  iface_.slip.assign(nx_, 0.0);
-  iface_.opening.assign(nx_, 0.0);
-  iface_.shear_traction.assign(nx_, params.loading.shear_stress);
-  iface_.pressure.assign(nx_, p0);
-  iface_.strength.assign(nx_, params.friction.mu * p0); // tau_s(0) = mu p0
-  iface_.state.assign(nx_, std::int8_t(NodeState::stick));
+  iface_ = resting_interface(params, nx_, dx_);
   row_kinetic_.assign(ny_, 0.0);
   row_strain_.assign(ny_, 0.0);
   row_dissipated_.assign(ny_, 0.0);

@@ -91,18 +91,7 @@ SpectralModel::SpectralModel(const SimulationParams& params, int threads)
   solved_.resize(nx_);
   team_split_ = split_modes(*memory_, max_steps(params), team_.size());
 
-  const double p0 = std::abs(params.loading.normal_stress);
-  iface_.x1.resize(nx_);
-  for (int i = 0; i < nx_; ++i)
-    iface_.x1[i] = params.geometry.x_min + i * dx_;
-  iface_.velocity.assign(nx_, 0.0);
-  iface_.half_velocity.assign(nx_, 0.0);
-  iface_.slip.assign(nx_, 0.0);
-  iface_.opening.assign(nx_, 0.0);
-  iface_.shear_traction.assign(nx_, params.loading.shear_stress);
-  iface_.pressure.assign(nx_, p0);
-  iface_.strength.assign(nx_, params.friction.mu * p0);
-  iface_.state.assign(nx_, std::int8_t(NodeState::stick));
+  iface_ = resting_interface(params, nx_, dx_);
 }
 
 MeshInfo SpectralModel::mesh_info() const {

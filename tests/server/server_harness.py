@@ -121,3 +121,16 @@ class Server:
             self.log.close()
         if self.own_dir:
             shutil.rmtree(self.data_dir, ignore_errors=True)
+
+
+def wait_study(server, study_id, timeout=90.0):
+    """GET /api/v1/studies/{id} until it is finished (bounded by `timeout`)."""
+    deadline = time.monotonic() + timeout
+    study = None
+    while time.monotonic() < deadline:
+        study = server.get(f"/api/v1/studies/{study_id}").json()
+        if study["status"] == "finished":
+            return study
+        time.sleep(0.1)
+    raise AssertionError(f"study {study_id} not finished after {timeout} s: "
+                         f"{json.dumps(study)[:2000]}")

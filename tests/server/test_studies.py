@@ -16,6 +16,7 @@ import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from server_harness import Server, long_job  # noqa: E402
+from server_harness import wait_study as wait_finished  # noqa: E402
 
 BINARY = None
 STUDIES = "/api/v1/studies"
@@ -36,18 +37,6 @@ def base(**friction):
 def post_study(server, body, headers=None):
     return server.post(STUDIES, data=json.dumps(body),
                        headers={"Content-Type": "application/json", **(headers or {})})
-
-
-def wait_finished(server, study_id, timeout=90.0):
-    deadline = time.monotonic() + timeout
-    study = None
-    while time.monotonic() < deadline:
-        study = server.get(f"{STUDIES}/{study_id}").json()
-        if study["status"] == "finished":
-            return study
-        time.sleep(0.1)
-    raise AssertionError(f"study {study_id} not finished after {timeout} s: "
-                         f"{json.dumps(study)[:2000]}")
 
 
 class Studies(unittest.TestCase):

@@ -569,3 +569,24 @@ TEST(CrossMethod, CounterpartSceneSwapsTheMethodAndDropsItsOwnFields) {
             scene_hash(parse_job(json::object()).spec->canonical)); // FE at its defaults
   EXPECT_NE(scene_hash(fe.spec->canonical), scene_hash(bi.spec->canonical));
 }
+
+TEST(CrossMethod, SpeedAccuracyAcrossMethodsUsesTheFinerReferenceOfEitherMethod) {
+  // FE converged up to 40, BI up to 80: the BI n_d = 80 run is the reference of every run.
+  auto fe = joined({converged_pair("fe", 5e-5, 14.25, 9.0467)});
+  auto bi = joined({converged_pair("bi", 5e-5, 14.25, 9.0439)});
+  bi.push_back(finished("bi-80", 5e-5, 80, 14.25, 9.0440));
+  const json list = slipfront::api::speed_accuracy_across_methods(fe, bi);
+  ASSERT_EQ(list.size(), 5u);
+  for (const json& e : list) {
+    EXPECT_EQ(e["reference_run_id"], "bi-80") << e.dump();
+    EXPECT_EQ(e["reference_method"], "spectral_bi");
+  }
+  EXPECT_EQ(list[0]["method"], "fe");
+  EXPECT_EQ(list[4]["method"], "spectral_bi");
+  EXPECT_NEAR(list[1]["errors"]["arrival_time"].get<double>(), (9.0467 - 9.0440) / 9.0440, 1e-12);
+  // With FE finer than BI, FE's reference wins.
+  fe.push_back(finished("fe-160", 5e-5, 160, 14.25, 9.0445));
+  const json again = slipfront::api::speed_accuracy_across_methods(fe, bi);
+  EXPECT_EQ(again[0]["reference_run_id"], "fe-160");
+  EXPECT_EQ(again[0]["reference_method"], "fe");
+}
