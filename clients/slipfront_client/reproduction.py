@@ -674,6 +674,12 @@ def report(args, api, study, speed_acc, wall, server, bi=None):
             log(f"{report_mod.method_of(s)}: {report_mod.verdict_text(s)}")
     if args.quick:
         fails = check_shape(study, out, figures, bi.get("study"))
+        methods = {r["method"] for r in rows if r.get("error") is not None}
+        if bi["rows_source"] != "across_methods" or methods != {"fe", "spectral_bi"}:
+            fails.append(f"speed-accuracy: rows from {bi['rows_source']} with errors for "
+                         f"{sorted(methods)}, expected across_methods with both methods")
+        if "cost" not in figures:
+            fails.append("figure cost missing")
         if fails:
             for f in fails:
                 log("CHECK FAILED: " + f)
