@@ -89,16 +89,44 @@ def errors_against_finest(rows):
     return out
 
 
-def rows_from_speed_accuracy(doc):
-    """Cost-chart rows {L, n_d, wall_time_s, error} from the server's
+def rows_from_speed_accuracy(doc, method=None):
+    """Cost-chart rows {L, n_d, method, wall_time_s, memory_bytes, error} from the server's
     GET /studies/{id}/speed-accuracy: error = the larger of the propagation-distance and
-    arrival-time errors against the reference run of the same L (null: left out)."""
-    runs = doc.get("runs") if isinstance(doc, dict) else doc
+    arrival-time errors against the reference run of the same L (null: left out).
+
+    `across_methods.runs` (every run of both methods' scenes, each against the finest
+    converged run of its L by either method) is used when the server gives it; otherwise
+    `runs` (the study's own method: `method`, else the document's, else "fe")."""
+    across = doc.get("across_methods") if isinstance(doc, dict) else None
+    if isinstance(across, dict) and across.get("runs") is not None:
+        runs, default = across["runs"], method or "fe"
+    else:
+        runs = doc.get("runs") if isinstance(doc, dict) else doc
+        default = method or (doc.get("method") if isinstance(doc, dict) else None) or "fe"
     rows = []
     for r in runs or []:
         errors = r.get("errors") or {}
         values = [errors.get("propagation_distance"), errors.get("arrival_time")]
         values = [v for v in values if isinstance(v, (int, float)) and math.isfinite(v)]
         rows.append({"L": r.get("L"), "n_d": r.get("n_d"), "wall_time_s": r.get("wall_time_s"),
+                     "memory_bytes": r.get("memory_bytes"), "method": r.get("method") or default,
+                     "id": r.get("id") or r.get("job_id"),
                      "error": max(values) if values else None})
     return rows
+
+
+def has_across_methods(doc):
+    return isinstance(doc, dict) and isinstance(doc.get("across_methods"), dict)
+
+
+def merge_rows(*row_lists):
+    """Rows of several studies in one list, each run once (by id; rows without one kept)."""
+    out, seen = [], set()
+    for rows in row_lists:
+        for r in rows:
+            key = (r.get("id"), r.get("method"))
+            if r.get("id") is not None and key in seen:
+                continue
+            seen.add(key)
+            out.append(r)
+    return out

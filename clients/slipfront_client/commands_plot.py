@@ -84,12 +84,16 @@ def add_parsers(sub, common_parent):
                    help="|V| in eq. 6 [m/s] (default 3e-3, the paper's peak at x1 = 6 m)")
     f.set_defaults(func=cmd_filter)
 
-    k = psub.add_parser("cost", parents=parents, help="(f) wall time against error, per L")
+    k = psub.add_parser("cost", parents=parents,
+                        help="(f) error against wall time and memory, per L and method")
     k.add_argument("sources", nargs="*", help="HDF5 files or job ids (error vs finest n_d per L)")
     k.add_argument("--data", help="JSON list of {L, n_d, wall_time_s, error}")
     k.add_argument("--tag", help="the server's jobs with this tag (error vs finest n_d per L)")
-    k.add_argument("--study", help="a study's GET /studies/{id}/speed-accuracy (error: the larger "
-                                   "of the distance and arrival-time errors vs its L's reference)")
+    k.add_argument("--study", action="append", default=[], metavar="ID",
+                   help="a study's GET /studies/{id}/speed-accuracy (error: the larger of the "
+                        "distance and arrival-time errors vs its L's reference): both methods "
+                        "from its across_methods when the server gives it, else the study's own "
+                        "runs; repeat (--study FE_ID --study BI_ID) to draw several studies")
     k.set_defaults(func=cmd_cost)
 
 
@@ -203,13 +207,27 @@ def cmd_filter(args, ctx):
     return 0
 
 
+def study_cost_rows(api, study_ids):
+    """Cost rows of the studies: `across_methods` of the first study whose speed-accuracy
+    has it (every run of both methods' scenes), else the runs of every study given, each
+    with its study's method (GET /studies/{id})."""
+    docs = [api.get_json(f"/api/v1/studies/{sid}/speed-accuracy") for sid in study_ids]
+    for doc in docs:
+        if analysis.has_across_methods(doc):
+            return analysis.rows_from_speed_accuracy(doc)
+    lists = []
+    for sid, doc in zip(study_ids, docs):
+        method = (doc.get("method") if isinstance(doc, dict) else None) or api.study(sid).get("method")
+        lists.append(analysis.rows_from_speed_accuracy(doc, method))
+    return analysis.merge_rows(*lists)
+
+
 def cmd_cost(args, ctx):
     inputs = sum(bool(x) for x in (args.sources, args.data, args.tag, args.study))
     if inputs != 1:
         raise UsageError("plot cost: give exactly one of SOURCES, --data, --tag, --study")
     if args.study:
-        doc = ctx.api().get_json(f"/api/v1/studies/{args.study}/speed-accuracy")
-        rows = analysis.rows_from_speed_accuracy(doc)
+        rows = study_cost_rows(ctx.api(), args.study)
     elif args.data:
         rows = _load_json(args.data)
         if isinstance(rows, dict):

@@ -11,6 +11,7 @@ server's table. A server without the API is reported as "server has no studies A
 
 import time
 
+from . import report
 from .errors import ServerError
 from .waiting import Backoff
 
@@ -130,6 +131,8 @@ def summary_lines(study):
     progress = study.get("progress") or {}
     if progress:
         lines[0] += f"  ({progress.get('done')}/{progress.get('total')} runs final)"
+    if study.get("method"):
+        lines[0] += f"  method {study['method']}"
     lines.append(f"{'L [m]':>10} {'n_d':>6} {'status':>10} {'outcome':>15} {'d_dist':>10} "
                  f"{'d_t_probe':>10} {'convergence':>14}  id")
     for r in runs_of(study):
@@ -157,6 +160,28 @@ def summary_lines(study):
         study.get("critical_length"), dict) else None
     if reason:
         lines.append(f"L_c reason: {reason}")
+    if "critical_length" in study:
+        lines.append(f"verdict: {report.verdict_text(study)}")
+    lines += cross_method_summary(study.get("cross_method") or [])
+    return lines
+
+
+def cross_method_summary(rows):
+    """One line per L of the cross-method table: n_d, distance, arrival, agreement."""
+    if not rows:
+        return []
+    lines = ["cross-method (FE / BI, |FE - BI| / BI):"]
+    for row in sorted(rows, key=lambda r: -float(r.get("L") or 0)):
+        fe, bi = row.get("fe") or {}, row.get("spectral_bi") or {}
+        diff = row.get("differences") or {}
+        text = f"  L = {_fmt(row.get('L'))}: n_d {_fmt(fe.get('n_d'))} / {_fmt(bi.get('n_d'))}"
+        for key, name in (("propagation_distance", "distance"), ("arrival_time_at_probe", "arrival")):
+            text += (f", {name} {_fmt(fe.get(key))} / {_fmt(bi.get(key))}"
+                     f" ({report.percent(diff.get(key))})")
+        agree = row.get("agree")
+        text += (f", agree {'yes' if agree else 'no'}" if agree is not None
+                 else f" ({row.get('reason') or 'one side missing'})")
+        lines.append(text)
     return lines
 
 

@@ -191,6 +191,34 @@ class EndToEnd(unittest.TestCase):
         finest = [c for c in study["convergence_map"]["cells"] if c["n_d"] == 10]
         self.assertTrue(all(c["status"] == "unknown" for c in finest), finest)
 
+    def test_bi_study_and_both_methods(self):
+        bi_base = os.path.join(self.tmp, "bi_base.json")
+        base = json.loads(json.dumps(TINY))
+        del base["geometry"]["height"]
+        base["method"] = "spectral_bi"
+        with open(bi_base, "w") as f:
+            json.dump(base, f)
+        ids = {}
+        for method, path in (("fe", self.job_file), ("spectral_bi", bi_base)):
+            r = self.client("study", "create", "--base", path, "--L", "1e-4,5e-5", "--n-d", "5,10",
+                            "--name", f"e2e {method}", "--wait", "--wait-timeout", "60", "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            study = json.loads(r.stdout)
+            self.assertEqual((study["status"], study.get("method")), ("finished", method))
+            ids[method] = study["id"]
+        self.assertIsInstance(study.get("cross_method"), list)
+        self.assertTrue(study.get("counterpart_scene_hash"))
+        r = self.client("study", "show", ids["spectral_bi"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("method spectral_bi", r.stdout)
+        self.assertRegex(r.stdout, r"verdict: (L_c = |no L meets the rule|L_c undetermined)")
+        # the cost chart's rows of both studies, each run with its method
+        from slipfront_client.commands_plot import study_cost_rows
+        rows = study_cost_rows(self.api, [ids["fe"], ids["spectral_bi"]])
+        self.assertEqual({r["method"] for r in rows}, {"fe", "spectral_bi"})
+        for method in ("fe", "spectral_bi"):
+            self.assertGreaterEqual(sum(r["method"] == method for r in rows), 4, rows)
+
     def test_study_cancel(self):
         long_base = os.path.join(self.tmp, "long_base.json")
         with open(long_base, "w") as f:

@@ -12,10 +12,10 @@ import tempfile
 import unittest
 
 import harness  # noqa: F401  (puts clients/ on sys.path)
-from slipfront_client import analysis, jobspec
+from slipfront_client import analysis, jobspec, report, reproduction
 from slipfront_client.api import Api, parse_retry_after
 from slipfront_client.errors import EXIT_USAGE, JobCancelled, JobFailed, ServerError, UsageError
-from slipfront_client.plots import convergence, filter_response
+from slipfront_client.plots import convergence, cost, filter_response
 from slipfront_client.plots.common import parse_formats
 from slipfront_client.waiting import Backoff, ProgressBar, check_outcome
 
@@ -200,6 +200,147 @@ class PlotInputTest(unittest.TestCase):
         self.assertEqual(parse_formats("png, pdf"), ["png", "pdf"])
         with self.assertRaises(UsageError):
             parse_formats("gif")
+
+
+def _study(method, L_c, steps, reason, converged=None, refinement=None, spectral=1.7e-5):
+    runs = [{"job_id": f"{method}{L}{n}", "L": L, "n_d": n}
+            for L in (1e-4, 1e-5) for n in (10, 20, 40)]
+    return {"id": f"study-{method}", "status": "finished", "method": method, "L_c": L_c,
+            "spectral_critical_length": spectral, "runs": runs,
+            "convergence_map": {"converged_n_d": converged or {"0.0001": 10, "1e-05": None}},
+            "refinement": refinement or {"0.0001": {"state": "converged"},
+                                         "1e-05": {"state": "not_converged_at_cap"}},
+            "critical_length": {"L_c": L_c, "steps_in_L": steps, "reason": reason,
+                                "spectral_critical_length": spectral, "spectral_from_L": 5e-6}}
+
+
+STEPS = [{"from_L": 5e-6, "to_L": 1e-5, "agree": False,
+          "changes": {"propagation_distance": 0.0213, "arrival_time": 0.00312}},
+         {"from_L": 1e-5, "to_L": 5e-5, "agree": False,
+          "changes": {"propagation_distance": 0.0187, "arrival_time": None}}]
+
+
+class ReportTest(unittest.TestCase):
+    """The report's pieces (slipfront_client.report) on small fixtures."""
+
+    def test_verdict_text(self):
+        none = _study("spectral_bi", None, STEPS, "no L meets the rule: the two smallest ...")
+        self.assertEqual(report.verdict_text(none), "no L meets the rule")
+        # no reason prefix (an older server), but every step disagrees: the same verdict
+        self.assertEqual(report.verdict_text(_study("fe", None, STEPS, "")), "no L meets the rule")
+        self.assertEqual(report.verdict_text(_study("fe", 1e-5, STEPS[:1], "L = 5e-05 ...")),
+                         "L_c = 1e-05 m")
+        self.assertEqual(report.verdict_text(_study("fe", None, [], "needs at least two")),
+                         "L_c undetermined")
+
+    def test_verdict_lines_lead_with_the_verdict_steps_and_n_d(self):
+        study = _study("spectral_bi", None, STEPS, "no L meets the rule: steps ...")
+        lines = report.verdict_lines(study)
+        self.assertEqual(lines[0], "### spectral boundary integral (`spectral_bi`): "
+                                   "no L meets the rule\n")
+        text = "\n".join(lines)
+        self.assertIn("Spectral estimate beside it: **1.7e-05 m** (from the reference run of "
+                      "L = 5e-06 m", text)
+        self.assertIn("| 5e-06 → 1e-05 | 2.13 % | 0.312 % | no |", lines)
+        self.assertIn("| 1e-05 → 5e-05 | 1.87 % | — | no |", lines)
+        self.assertIn("| 0.0001 | 10 | 40 | converged |", lines)
+        self.assertIn("| 1e-05 | none up to the cap | 40 | not_converged_at_cap |", lines)
+        lc = report.verdict_lines(_study("fe", 1e-5, STEPS[:1], "L = 5e-05 ..."))
+        self.assertTrue(lc[0].endswith(": L_c = 1e-05 m\n"), lc[0])
+
+    def test_cross_method_table(self):
+        side = {"run_id": "a", "n_d": 40, "outcome": "arrested", "wall_time_s": 12.0,
+                "arrest_position": 12.5, "propagation_distance": 12.43,
+                "arrival_time_at_probe": 4.512, "max_slip_velocity": 0.0081,
+                "spectral_velocity": 0.0031}
+        bi = dict(side, n_d=80, wall_time_s=0.4, propagation_distance=12.4)
+        rows = [{"L": 5e-6, "fe": None, "spectral_bi": bi, "differences": None, "agree": None,
+                 "reason": "no mesh-converged run of this L by fe"},
+                {"L": 5e-5, "fe": side, "spectral_bi": bi, "agree": True, "reason": "",
+                 "differences": {"propagation_distance": 0.0024194, "arrival_time_at_probe": 0.0,
+                                 "arrest_position": 0.0, "max_slip_velocity": 0.0,
+                                 "spectral_velocity": None}}]
+        lines = report.cross_method_lines(rows)
+        self.assertTrue(lines[0].startswith("| L [m] | n_d FE / BI | propagation distance [m] |"))
+        self.assertEqual(lines[2], "| 5e-05 | 40 / 80 | 12.43 / 12.4 (0.242 %) | 4.512 / 4.512 (0 %) | "
+                                   "12.5 / 12.5 (0 %) | 0.0081 / 0.0081 (0 %) | "
+                                   "0.0031 / 0.0031 (—) | 12 / 0.4 | yes |")
+        self.assertEqual(lines[3], "| 5e-06 | — / 80 | — / 12.4 | — / 4.512 | — / 12.5 | "
+                                   "— / 0.0081 | — / 0.0031 | — / 0.4 | "
+                                   "— no mesh-converged run of this L by fe |")
+        self.assertIn("No cross-method rows", report.cross_method_lines([])[0])
+
+    def test_bi_base_drops_fe_only_fields(self):
+        base = {"geometry": {"width": 20, "height": 8}, "time": {"duration": 10, "safety_factor": 0.5}}
+        self.assertEqual(reproduction.bi_base(base),
+                         {"geometry": {"width": 20}, "time": {"duration": 10},
+                          "method": "spectral_bi"})
+        self.assertEqual(base["geometry"]["height"], 8)  # the FE base is left alone
+        self.assertEqual(reproduction.bi_base(None), {"method": "spectral_bi"})
+
+
+class SpeedAccuracyTest(unittest.TestCase):
+    def run_(self, method, L, n_d, wall, mem, err):
+        return {"id": f"{method}-{n_d}", "job_id": f"{method}-{n_d}", "method": method, "L": L,
+                "n_d": n_d, "wall_time_s": wall, "memory_bytes": mem,
+                "errors": {"propagation_distance": err, "arrival_time": err / 10}}
+
+    def test_across_methods_preferred_and_runs_fallback(self):
+        fe = self.run_("fe", 5e-5, 20, 3.0, 9e7, 0.01)
+        bi = self.run_("spectral_bi", 5e-5, 40, 0.2, 2.8e7, 0.001)
+        doc = {"runs": [dict(fe, errors={"propagation_distance": 0.5})],
+               "across_methods": {"runs": [fe, bi], "reference": "finest converged"}}
+        rows = analysis.rows_from_speed_accuracy(doc)
+        self.assertEqual([(r["method"], r["error"], r["memory_bytes"]) for r in rows],
+                         [("fe", 0.01, 9e7), ("spectral_bi", 0.001, 2.8e7)])
+        self.assertTrue(analysis.has_across_methods(doc))
+        old = {"runs": [{k: v for k, v in bi.items() if k != "method"}]}
+        self.assertEqual(analysis.rows_from_speed_accuracy(old, "spectral_bi")[0]["method"],
+                         "spectral_bi")
+        self.assertEqual(analysis.rows_from_speed_accuracy(old)[0]["method"], "fe")
+        rows, source = reproduction.cost_rows(old, doc)
+        self.assertEqual(source, "across_methods")
+        rows, source = reproduction.cost_rows({"runs": [fe]}, old)
+        self.assertEqual((source, [r["method"] for r in rows]), ("runs", ["fe", "spectral_bi"]))
+        self.assertEqual(len(analysis.merge_rows(rows, rows)), 2)
+
+    def test_plot_cost_study_rows(self):
+        from slipfront_client.commands_plot import study_cost_rows
+        fe = self.run_("fe", 5e-5, 20, 3.0, 9e7, 0.01)
+        bi = self.run_("spectral_bi", 5e-5, 40, 0.2, 2.8e7, 0.001)
+        strip = lambda r: {k: v for k, v in r.items() if k != "method"}  # noqa: E731
+
+        class FakeApi:
+            def __init__(self, docs):
+                self.docs = docs
+
+            def get_json(self, path):
+                return self.docs[path.split("/")[4]]
+
+            def study(self, sid):
+                return {"id": sid, "method": "spectral_bi" if sid == "B" else "fe"}
+
+        old = FakeApi({"F": {"runs": [strip(fe)]}, "B": {"runs": [strip(bi)]}})
+        self.assertEqual([r["method"] for r in study_cost_rows(old, ["F", "B"])],
+                         ["fe", "spectral_bi"])
+        new = FakeApi({"F": {"runs": [fe], "across_methods": {"runs": [fe, bi]}}})
+        self.assertEqual([r["method"] for r in study_cost_rows(new, ["F"])], ["fe", "spectral_bi"])
+
+    def test_cost_chart_has_both_methods_and_a_memory_panel(self):
+        rows = analysis.rows_from_speed_accuracy({"across_methods": {"runs": [
+            self.run_("fe", 5e-5, 10, 0.8, 2.5e7, 0.03), self.run_("fe", 5e-5, 20, 3.0, 9e7, 0.01),
+            self.run_("spectral_bi", 5e-5, 20, 0.1, 1.4e7, 0.002),
+            self.run_("spectral_bi", 5e-5, 40, 0.2, 2.8e7, 0.0)]}})  # a reference: left out
+        fig, data = cost.plot_cost(rows)
+        self.assertEqual(set(data), {("fe", 5e-5), ("spectral_bi", 5e-5)})
+        self.assertEqual(data[("spectral_bi", 5e-5)]["memory_bytes"], [1.4e7])
+        self.assertEqual(len(fig.axes), 2)
+        labels = [t.get_text() for t in fig.axes[-1].get_legend().get_texts()]
+        self.assertEqual(labels, ["L = 5e-5 m", "FE (finite elements)",
+                                  "BI (spectral boundary integral)"])
+        self.assertEqual(fig.axes[1].get_xlabel(), "memory estimate [MB]")
+        fig, _ = cost.plot_cost([{"L": 1e-4, "n_d": 10, "wall_time_s": 1, "error": 0.1}])
+        self.assertEqual(len(fig.axes), 1)  # no memory: wall time only
 
 
 if __name__ == "__main__":

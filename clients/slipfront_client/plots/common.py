@@ -22,9 +22,11 @@ def parse_formats(text):
     return formats
 
 
-def new_figure(width=6.4, height=4.2):
-    fig, ax = plt.subplots(figsize=(width, height), constrained_layout=True)
-    return fig, ax
+def new_figure(width=6.4, height=4.2, ncols=None):
+    """A figure and its axes: one axes, or with `ncols` a list of that many side by side."""
+    fig, ax = plt.subplots(1, ncols or 1, figsize=(width, height), constrained_layout=True,
+                           squeeze=False)
+    return fig, (list(ax[0]) if ncols else ax[0][0])
 
 
 def colours(n, cmap="viridis"):

@@ -72,6 +72,9 @@ def plot_convergence(points, critical_length=None, title=None):
         ax.text(ax.get_xlim()[1], critical_length, "L_c ", ha="right", va="bottom")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    meshes = sorted({float(p["n_d"]) for p in points})  # ticks at the meshes run, as numbers
+    ax.set_xticks(meshes, [f"{n:g}" for n in meshes])
+    ax.set_xticks([], minor=True)
     ax.set_xlabel("n_d [nodes/m]")
     ax.set_ylabel("L [m]")
     ax.set_title(title or "Convergence map")
