@@ -48,9 +48,6 @@ public:
   // Store the velocities of the step just finished as lag 1 of the next step.
   void push(const std::complex<double>* v1, const std::complex<double>* v2);
 
-  // Work of mode n's sum (for splitting the modes between threads).
-  long work(int n) const { return std::min(length_[n], pushed_); }
-
 private:
   std::vector<long> length_; // M_n
   std::vector<std::size_t>

@@ -82,11 +82,12 @@ SpectralModel::SpectralModel(const SimulationParams& params, int threads)
   mu_k_.resize(modes_);
   for (int n = 0; n < modes_; ++n)
     mu_k_[n] = mat.shear_modulus() * two_pi * n / params.geometry.width;
-  for (auto* v :
-       {&d1_hat_, &d2_hat_, &v1_hat_, &v2_hat_, &f1_known_, &f2_known_, &f1_hat_, &f2_hat_})
+  for (auto* v : {&d1_hat_, &d2_hat_, &v1_hat_, &v2_hat_, &v1_hat_new_, &v2_hat_new_, &f1_known_,
+                  &f2_known_, &f1_hat_, &f2_hat_})
     v->assign(modes_, complex(0.0, 0.0));
   sums_.resize(modes_);
-  for (auto* v : {&f1_, &f2_, &d1_, &d2_, &v1_, &v2_, &v1_new_, &v2_new_, &load1_, &load2_})
+  for (auto* v :
+       {&f1_, &f2_, &d1_, &d2_, &v1_, &v2_, &v1_new_, &v2_new_, &load1_, &load2_, &slip_speed_})
     v->assign(nx_, 0.0);
   solved_.resize(nx_);
   team_split_ = split_modes(*memory_, max_steps(params), team_.size());
@@ -139,7 +140,7 @@ void SpectralModel::add_current_interval(const std::vector<complex>& v1,
   fft_.inverse(f2_hat_.data(), f2_.data());
 }
 
-void SpectralModel::solve_nodes(const std::vector<double>& slip_speed, bool /*last_pass*/) {
+void SpectralModel::solve_nodes(const std::vector<double>& slip_speed) {
   const double t_half = (double(step_) + 0.5) * dt_;
   const double sigma1 = params_.loading.shear_stress, sigma2 = params_.loading.normal_stress;
   for (int i = 0; i < nx_; ++i) {
@@ -165,19 +166,19 @@ void SpectralModel::step(bool /*compute_energy*/) {
   // Predictor: this interval's memory term with V^{n-1/2}; the strength update with the
   // slip speed of the last interval. Corrector: with the solved V^{n+1/2}, and the mean slip
   // speed over [t_{n-1/2}, t_{n+1/2}].
-  std::vector<double> slip_speed(nx_);
+  std::vector<double>& slip_speed = slip_speed_;
+  std::vector<complex>&v1_hat = v1_hat_new_, &v2_hat = v2_hat_new_;
   for (int i = 0; i < nx_; ++i)
     slip_speed[i] = std::abs(v1_[i]);
   add_current_interval(v1_hat_, v2_hat_);
-  solve_nodes(slip_speed, params_.spectral.corrector_passes == 0);
-  std::vector<complex> v1_hat(modes_), v2_hat(modes_);
+  solve_nodes(slip_speed);
   for (int pass = 1; pass <= params_.spectral.corrector_passes; ++pass) {
     fft_.forward(v1_new_.data(), v1_hat.data());
     fft_.forward(v2_new_.data(), v2_hat.data());
     for (int i = 0; i < nx_; ++i)
       slip_speed[i] = std::abs(0.5 * (v1_[i] + v1_new_[i]));
     add_current_interval(v1_hat, v2_hat);
-    solve_nodes(slip_speed, pass == params_.spectral.corrector_passes);
+    solve_nodes(slip_speed);
   }
   fft_.forward(v1_new_.data(), v1_hat.data());
   fft_.forward(v2_new_.data(), v2_hat.data());
@@ -213,14 +214,14 @@ void SpectralModel::step(bool /*compute_energy*/) {
     d1_hat_[n] += dt_ * v1_hat[n];
     d2_hat_[n] += dt_ * v2_hat[n];
   }
-  v1_hat_ = v1_hat;
-  v2_hat_ = v2_hat;
+  v1_hat_.swap(v1_hat);
+  v2_hat_.swap(v2_hat);
   for (int i = 0; i < nx_; ++i) {
     d1_[i] += dt_ * v1_new_[i];
     d2_[i] += dt_ * v2_new_[i];
   }
-  v1_ = v1_new_;
-  v2_ = v2_new_;
+  v1_.swap(v1_new_);
+  v2_.swap(v2_new_);
   ++step_;
 }
 

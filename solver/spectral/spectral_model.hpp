@@ -45,9 +45,7 @@ public:
 
   int nx() const { return nx_; }
   double dx() const { return dx_; }
-  long steps_done() const { return step_; }
   double time() const { return step_ * dt_; }
-  int threads() const { return team_.size(); }
   const ModeMemory& memory() const { return *memory_; }
 
   // Time step of the method: beta dx / c_s.
@@ -63,7 +61,7 @@ private:
   using complex = std::complex<double>;
   void known_memory_term();
   void add_current_interval(const std::vector<complex>& v1, const std::vector<complex>& v2);
-  void solve_nodes(const std::vector<double>& slip_speed, bool last_pass);
+  void solve_nodes(const std::vector<double>& slip_speed);
 
   SimulationParams params_;
   int nx_, modes_;
@@ -75,17 +73,19 @@ private:
   ThreadTeam team_;
   InterfaceNodeConstants node_;
 
-  std::vector<double> mu_k_;                 // mu |k_n|
-  std::vector<complex> d1_hat_, d2_hat_;     // D^n in Fourier space
-  std::vector<complex> v1_hat_, v2_hat_;     // V^{n-1/2} in Fourier space
-  std::vector<complex> f1_known_, f2_known_; // known part of f_hat at t_{n+1/2}
-  std::vector<complex> f1_hat_, f2_hat_;     // scratch
+  std::vector<double> mu_k_;                     // mu |k_n|
+  std::vector<complex> d1_hat_, d2_hat_;         // D^n in Fourier space
+  std::vector<complex> v1_hat_, v2_hat_;         // V^{n-1/2} in Fourier space
+  std::vector<complex> v1_hat_new_, v2_hat_new_; // V^{n+1/2} in Fourier space (scratch)
+  std::vector<complex> f1_known_, f2_known_;     // known part of f_hat at t_{n+1/2}
+  std::vector<complex> f1_hat_, f2_hat_;         // scratch
   std::vector<ModeHistorySums> sums_;
   std::vector<double> f1_, f2_;         // f at the nodes
   std::vector<double> d1_, d2_;         // D^n at the nodes (slip, opening)
   std::vector<double> v1_, v2_;         // V^{n-1/2} at the nodes
   std::vector<double> v1_new_, v2_new_; // V^{n+1/2} being solved
   std::vector<double> load1_, load2_;   // interface loads at t_{n+1/2} [Pa]
+  std::vector<double> slip_speed_;      // |V| entering the strength update (scratch)
   std::vector<InterfaceNodeStep> solved_;
   std::vector<int> team_split_; // mode ranges per team member
 
