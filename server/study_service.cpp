@@ -200,7 +200,6 @@ std::optional<json> StudyService::view(const std::string& id) {
   json j = study_to_json(*study, studies_.runs(id));
   // The same scene by the other method, from every run the group has made of it.
   if (const auto scenes = method_scenes(*study)) {
-    j["method"] = scenes->is_fe ? "fe" : "spectral_bi";
     j["counterpart_scene_hash"] =
         scenes->other_scene.empty() ? json(nullptr) : json(scenes->other_scene);
     if (!scenes->other_scene.empty()) {
@@ -225,6 +224,7 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   j["updated_at"] = s.updated_at.empty() ? json(nullptr) : json(s.updated_at);
   j["finished_at"] = s.finished_at.empty() ? json(nullptr) : json(s.finished_at);
   j["scene_hash"] = s.scene_hash;
+  j["method"] = s.base.is_object() ? s.base.value("method", "fe") : "fe";
   j["progress"] = {{"done", s.runs_done},
                    {"total", s.runs_total},
                    {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};

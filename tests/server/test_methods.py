@@ -123,6 +123,9 @@ class Methods(unittest.TestCase):
         for side in ("fe", "spectral_bi"):
             if big[side]:
                 self.assertEqual(big[side]["outcome"], "no_rupture")
+        listed = {st["id"]: st["method"] for st in self.server.get(STUDIES).json()["studies"]}
+        self.assertEqual(listed[ids["fe"]], "fe")
+        self.assertEqual(listed[ids["spectral_bi"]], "spectral_bi")
         sa = self.server.get(f"{STUDIES}/{ids['fe']}/speed-accuracy").json()
         methods = {e["method"] for e in sa["across_methods"]["runs"]}
         self.assertEqual(methods, {"fe", "spectral_bi"})
