@@ -13,6 +13,7 @@
 
 #include "solver/spectral/half_space_kernels.hpp"
 
+#include <array>
 #include <complex>
 #include <cstddef>
 #include <vector>
@@ -37,7 +38,7 @@ public:
 
   int modes() const { return int(length_.size()); }
   long length(int n) const { return length_[n]; } // M_n (0 for the uniform mode)
-  std::size_t stored_values() const { return history_.size(); }
+  std::size_t stored_values() const { return 4 * offset_.back(); }
 
   // The weights of the current interval (m = 0), scaled like the others.
   const KernelValues& current_weights(int n) const { return w0_[n]; }
@@ -45,17 +46,29 @@ public:
   // Sums over lags 1 .. min(M_n, pushed) for the modes [first, last).
   void history_sums(int first, int last, ModeHistorySums* out) const;
 
+  // Consecutive lags of one mode: their weights, and the history at the same lags.
+  struct LagSpan {
+    const double *w11, *w22, *w12;
+    const double *v1r, *v1i, *v2r, *v2i;
+  };
+
   // Store the velocities of the step just finished as lag 1 of the next step.
   void push(const std::complex<double>* v1, const std::complex<double>* v2);
 
 private:
-  std::vector<long> length_; // M_n
-  std::vector<std::size_t>
-      offset_;                   // start of mode n in history_ (4 doubles a lag) and weights_ (3)
-  std::vector<long> head_;       // position of lag 1 in the ring of mode n
-  std::vector<double> history_;  // V1 re, V1 im, V2 re, V2 im per lag, newest first (ring)
-  std::vector<double> weights_;  // W11, W22, W12 per lag m = 1 .. M_n
-  std::vector<KernelValues> w0_; // m = 0 (g fields only)
+  // One array per component (structure of arrays), so that the sums over the lags run in
+  // SIMD lanes; mode n occupies [offset_[n], offset_[n + 1]) of each.
+  enum History { v1_re, v1_im, v2_re, v2_im };
+  enum Weight { w11, w22, w12 };
+
+  LagSpan span(int n, long first_lag, long position) const;
+
+  std::vector<long> length_;                   // M_n
+  std::vector<std::size_t> offset_;            // start of mode n in every component array
+  std::vector<long> head_;                     // position of lag 1 in the ring of mode n
+  std::array<std::vector<double>, 4> history_; // V1, V2 per lag, newest first (ring)
+  std::array<std::vector<double>, 3> weights_; // W11, W22, W12 per lag m = 1 .. M_n
+  std::vector<KernelValues> w0_;               // m = 0 (g fields only)
   long pushed_ = 0;
 };
 
