@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -99,6 +100,20 @@ MeshInfo SpectralModel::mesh_info() const {
   // No bulk: one row of nodes, no height, and no closed-form stable step (docs/spectral-bi.md).
   const double nan = std::numeric_limits<double>::quiet_NaN();
   return {nx_, 1, dx_, nan, nan, dt_, team_.size(), Method::spectral_bi};
+}
+
+std::vector<std::string> SpectralModel::end_warnings(double /*simulated_time*/) const {
+  // Measured (tests/solver/interface_growth_test.cpp): 0.021 c_s/dx at beta = 0.4, 0.025-0.030
+  // at 0.5; none at 0.3 and 0.25 on every n_d tried.
+  if (params_.friction.law != FrictionLaw::coulomb || params_.spectral.time_step_factor < 0.35)
+    return {};
+  char msg[300];
+  std::snprintf(msg, sizeof msg,
+                "plain Coulomb friction with spectral_bi.time_step_factor = %.3g: the scheme grows "
+                "a mesh-scale mode of steady sliding (about 0.03 c_s/dx) that the continuum does "
+                "not have; a time_step_factor of 0.25 removes it (docs/verification.md)",
+                params_.spectral.time_step_factor);
+  return {msg};
 }
 
 void SpectralModel::known_memory_term() {

@@ -138,5 +138,21 @@ TEST(SpectralFreeMode, OneModeRingsAtTheRayleighFrequencyAroundTheStaticSolution
           period, measured, e_period, m2 / u2_static, m1 / u1_static);
 }
 
+// Plain Coulomb friction at the default step (beta = 0.5) grows a mesh-scale mode that the
+// continuum does not have (InterfaceGrowth.*): the run says so; not with beta = 0.25 nor with
+// Prakash-Clifton friction.
+TEST(SpectralModelWarnings, CoulombAtLongStepsIsFlagged) {
+  SimulationParams p = bi_strip(2.0, 10.0);
+  p.friction.law = FrictionLaw::coulomb;
+  const auto flagged = spectral::SpectralModel(p).end_warnings(1.0);
+  ASSERT_EQ(flagged.size(), 1u);
+  EXPECT_NE(flagged[0].find("time_step_factor = 0.5"), std::string::npos) << flagged[0];
+  p.spectral.time_step_factor = 0.25;
+  EXPECT_TRUE(spectral::SpectralModel(p).end_warnings(1.0).empty());
+  p.spectral.time_step_factor = 0.5;
+  p.friction.law = FrictionLaw::prakash_clifton;
+  EXPECT_TRUE(spectral::SpectralModel(p).end_warnings(1.0).empty());
+}
+
 } // namespace
 } // namespace slipfront
