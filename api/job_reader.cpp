@@ -29,6 +29,9 @@ void read_height(ObjectReader& in, Geometry& geometry) {
   }
   in.set_canonical("height",
                    geometry.auto_height ? nlohmann::json("auto") : nlohmann::json(geometry.height));
+  in.describe("height", {{"oneOf",
+                          {{{"type", "number"}, {"exclusiveMinimum", 0}},
+                           {{"type", "string"}, {"const", "auto"}}}}});
 }
 
 // A field that the chosen method has no use for is an error, not silently ignored.

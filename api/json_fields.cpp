@@ -83,8 +83,32 @@ std::string child_pointer(const std::string& parent, const std::string& key) {
 }
 
 ObjectReader::ObjectReader(const nlohmann::json* object, std::string pointer,
-                           std::vector<FieldError>& errors)
-    : object_(object), pointer_(std::move(pointer)), errors_(errors) {}
+                           std::vector<FieldError>& errors, SchemaRecorder* recorder)
+    : object_(object), pointer_(std::move(pointer)), errors_(errors), recorder_(recorder) {}
+
+void ObjectReader::record(const std::string& key, nlohmann::json schema) {
+  if (recorder_ == nullptr) return;
+  if (canonical_.contains(key)) schema["default"] = canonical_[key];
+  recorder_->push_back({pointer(key), std::move(schema)});
+}
+
+void ObjectReader::describe(const std::string& key, nlohmann::json schema) {
+  record(key, std::move(schema));
+}
+
+namespace {
+
+// JSON Schema bounds of an interval (an absent bound is left out).
+nlohmann::json number_schema(const Interval& allowed) {
+  nlohmann::json schema = {{"type", "number"}};
+  if (std::isfinite(allowed.lo))
+    schema[allowed.lo_open ? "exclusiveMinimum" : "minimum"] = allowed.lo;
+  if (std::isfinite(allowed.hi))
+    schema[allowed.hi_open ? "exclusiveMaximum" : "maximum"] = allowed.hi;
+  return schema;
+}
+
+} // namespace
 
 const nlohmann::json* ObjectReader::raw(const std::string& key) {
   known_.insert(key);
@@ -112,6 +136,7 @@ void ObjectReader::number(const std::string& key, double& target, const Interval
     }
   }
   set_canonical(key, target);
+  record(key, number_schema(allowed));
 }
 
 void ObjectReader::integer(const std::string& key, int& target, int lo, int hi) {
@@ -128,6 +153,7 @@ void ObjectReader::integer(const std::string& key, int& target, int lo, int hi) 
     }
   }
   set_canonical(key, target);
+  record(key, {{"type", "integer"}, {"minimum", lo}, {"maximum", hi}});
 }
 
 void ObjectReader::boolean(const std::string& key, bool& target) {
@@ -139,6 +165,7 @@ void ObjectReader::boolean(const std::string& key, bool& target) {
     }
   }
   set_canonical(key, target);
+  record(key, {{"type", "boolean"}});
 }
 
 void ObjectReader::string(const std::string& key, std::string& target, std::size_t max_length) {
@@ -151,6 +178,7 @@ void ObjectReader::string(const std::string& key, std::string& target, std::size
     }
   }
   set_canonical(key, target);
+  record(key, {{"type", "string"}, {"maxLength", max_length}});
 }
 
 void ObjectReader::string_list(const std::string& key, std::vector<std::string>& target,
@@ -180,6 +208,9 @@ void ObjectReader::string_list(const std::string& key, std::vector<std::string>&
     }
   }
   set_canonical(key, target);
+  record(key, {{"type", "array"},
+               {"maxItems", max_items},
+               {"items", {{"type", "string"}, {"minLength", 1}, {"maxLength", max_length}}}});
 }
 
 void ObjectReader::object(const std::string& key, const std::function<void(ObjectReader&)>& read) {
@@ -188,7 +219,7 @@ void ObjectReader::object(const std::string& key, const std::function<void(Objec
     error(key, "must be an object, got " + describe_value(*member));
     member = nullptr;
   }
-  ObjectReader child(member, pointer(key), errors_);
+  ObjectReader child(member, pointer(key), errors_, recorder_);
   read(child);
   child.finish();
   set_canonical(key, child.canonical());

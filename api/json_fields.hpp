@@ -45,10 +45,21 @@ std::string describe_value(const nlohmann::json& value);
 // The JSON pointer of `key` inside the object at `parent` (escapes '~' and '/').
 std::string child_pointer(const std::string& parent, const std::string& key);
 
+// What a reader asks for, as JSON Schema fragments by JSON pointer, in reading order: the
+// job schema (api/job_schema.hpp) is recorded from the reader itself, so that the types,
+// ranges and defaults are written once, in api/job_reader.cpp.
+struct FieldSchemaRecord {
+  std::string pointer;
+  nlohmann::json schema; // type, bounds, enum; "default": the value the reader kept
+};
+using SchemaRecorder = std::vector<FieldSchemaRecord>;
+
 class ObjectReader {
 public:
-  // `object` may be null: every field then keeps its default.
-  ObjectReader(const nlohmann::json* object, std::string pointer, std::vector<FieldError>& errors);
+  // `object` may be null: every field then keeps its default. With a recorder, every field
+  // read also appends its schema to it.
+  ObjectReader(const nlohmann::json* object, std::string pointer, std::vector<FieldError>& errors,
+               SchemaRecorder* recorder = nullptr);
 
   void number(const std::string& key, double& target, const Interval& allowed);
   void integer(const std::string& key, int& target, int lo, int hi);
@@ -68,6 +79,8 @@ public:
   const nlohmann::json* raw(const std::string& key);
   void set_canonical(const std::string& key, nlohmann::json value);
   void error(const std::string& key, std::string reason);
+  // For a field read through raw(): its schema, when a recorder listens.
+  void describe(const std::string& key, nlohmann::json schema);
   std::string pointer(const std::string& key) const { return child_pointer(pointer_, key); }
 
   // Records every member that was never asked for as an unknown field.
@@ -76,10 +89,13 @@ public:
 
 private:
   std::string choice_error(const std::vector<std::string>& names, const nlohmann::json& got);
+  // Records `schema` for `key` with the canonical value as its default.
+  void record(const std::string& key, nlohmann::json schema);
 
   const nlohmann::json* object_;
   std::string pointer_;
   std::vector<FieldError>& errors_;
+  SchemaRecorder* recorder_;
   std::set<std::string> known_;
   nlohmann::json canonical_ = nlohmann::json::object();
 };
@@ -108,6 +124,7 @@ void ObjectReader::choice(const std::string& key, Enum& target,
     if (!matched) error(key, choice_error(spellings, *member));
   }
   set_canonical(key, current);
+  record(key, {{"type", "string"}, {"enum", spellings}});
 }
 
 } // namespace slipfront::api

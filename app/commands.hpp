@@ -18,6 +18,7 @@ constexpr int interrupted = 130; // SIGINT (128 + 2)
 
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);
+int schema_command(const std::vector<std::string>& args);
 void print_usage(std::ostream& out);
 
 } // namespace slipfront::app

@@ -15,6 +15,9 @@ usage:
       Check a job: prints "ok", its spec hash and memory estimate, or every error.
   --max-memory SIZE refuses a job whose memory estimate is above SIZE (bytes, or with a
       suffix K, M, G, T; default 8G).
+  slipfront schema [--markdown]
+      The job schema: JSON Schema (also served at /api/v1/schema/job.json), or the field
+      tables of docs/api-job-spec.md.
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [...]
       Run the HTTP job server (docs/server.md).
   slipfront --version

@@ -1,4 +1,6 @@
 // The OpenAPI 3.0 description served at GET /api/v1/openapi.json.
+#include "api/job_schema.hpp"
+
 #include "server/handlers.hpp"
 
 namespace slipfront::server {
@@ -27,19 +29,7 @@ const char* document = R"json({
           "errors": {"type": "array", "items": {"type": "object", "properties": {
             "pointer": {"type": "string", "description": "JSON pointer of the bad field"},
             "reason": {"type": "string"}}}}}},
-      "JobSpec": {"type": "object", "description": "The job JSON of SPEC §4 (every field optional; unknown fields are errors). The server also reads and removes \"fresh\" (boolean) and \"priority\" (integer -100..100).",
-        "properties": {"name": {"type": "string"}, "tags": {"type": "array", "items": {"type": "string"}},
-          "material": {"type": "object"}, "geometry": {"type": "object"}, "loading": {"type": "object"},
-          "friction": {"type": "object"}, "nucleation": {"type": "object"}, "time": {"type": "object"},
-          "output": {"type": "object"}, "probe": {"type": "object"}, "threads": {"type": "integer"},
-          "method": {"type": "string", "enum": ["fe", "spectral_bi"], "default": "fe",
-                     "description": "fe: explicit Q4 finite elements of the block (SPEC §1); spectral_bi: the elastic half-space by the spectral boundary-integral method (docs/spectral-bi.md). Fields the method does not use are errors."},
-          "spectral_bi": {"type": "object", "description": "options of method spectral_bi only",
-            "properties": {"time_step_factor": {"type": "number", "exclusiveMinimum": 0, "maximum": 0.75, "default": 0.5},
-                           "memory_periods": {"type": "number", "exclusiveMinimum": 0, "maximum": 256, "default": 8},
-                           "corrector_passes": {"type": "integer", "minimum": 0, "maximum": 4, "default": 1}},
-            "additionalProperties": false},
-          "fresh": {"type": "boolean"}, "priority": {"type": "integer"}}},
+      "JobSpec": {"description": "generated from the job schema (api/job_schema.hpp) by openapi_document()"},
       "StudyRequest": {"type": "object", "description": "docs/studies-api.md. Exactly one of grid, convergence, preset.",
         "properties": {"name": {"type": "string"}, "tags": {"type": "array", "items": {"type": "string"}},
           "base": {"$ref": "#/components/schemas/JobSpec"},
@@ -203,6 +193,7 @@ const char* document = R"json({
         "responses": {"200": {"description": "{scene_hash, count, runs, convergence_map, critical_length}"},
           "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
+    "/api/v1/schema/job.json": {"get": {"summary": "The job schema (JSON Schema 2020-12): every field with its type, range, default, unit, meaning and methods (x-unit, x-methods)", "responses": {"200": {"description": "JSON Schema", "content": {"application/json": {"schema": {"type": "object"}}}}}}},
     "/api/v1/openapi.json": {"get": {"summary": "This document", "responses": {"200": {"description": "OpenAPI 3"}}}},
     "/healthz": {"get": {"summary": "Liveness and readiness", "responses": {"200": {"description": "ok"}, "503": {"description": "draining or database error"}}}},
     "/metrics": {"get": {"summary": "Prometheus metrics: queue depth, running, jobs by status, run durations, HTTP requests", "responses": {"200": {"description": "text/plain; version=0.0.4"}}}}
@@ -211,7 +202,23 @@ const char* document = R"json({
 } // namespace
 
 nlohmann::json openapi_document() {
-  return nlohmann::json::parse(document);
+  nlohmann::json doc = nlohmann::json::parse(document);
+  // The job body: the job schema, plus the two submission options the server reads and
+  // removes before validation (docs/server.md).
+  nlohmann::json job = api::job_json_schema();
+  job.erase("$schema");
+  job.erase("$id");
+  job["properties"]["fresh"] = {
+      {"type", "boolean"},
+      {"default", false},
+      {"description", "submission option: run again even if an identical job succeeded"}};
+  job["properties"]["priority"] = {{"type", "integer"},
+                                   {"minimum", -100},
+                                   {"maximum", 100},
+                                   {"default", 0},
+                                   {"description", "submission option: higher runs first"}};
+  doc["components"]["schemas"]["JobSpec"] = job;
+  return doc;
 }
 
 } // namespace slipfront::server

@@ -1,5 +1,8 @@
-// GET /healthz, GET /metrics (Prometheus text), GET /api/v1/openapi.json.
+// GET /healthz, GET /metrics (Prometheus text), GET /api/v1/openapi.json,
+// GET /api/v1/schema/job.json (the job schema, api/job_schema.hpp).
 #include "server/handlers.hpp"
+
+#include "api/job_schema.hpp"
 #include "server/responses.hpp"
 
 #include <sys/statvfs.h>
@@ -90,6 +93,10 @@ void add_ops_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::get, "/api/v1/openapi.json", [](RequestContext& rc) {
     static const nlohmann::json doc = openapi_document();
     return Response(json_response(rc.request, http::status::ok, doc));
+  });
+  router.add(http::verb::get, "/api/v1/schema/job.json", [](RequestContext& rc) {
+    static const nlohmann::json schema = api::job_json_schema();
+    return Response(json_response(rc.request, http::status::ok, schema));
   });
 }
 

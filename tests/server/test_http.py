@@ -93,8 +93,25 @@ class MainServer(unittest.TestCase):
         self.assertEqual(doc["openapi"][:2], "3.")
         for path in ["/api/v1/jobs", "/api/v1/jobs/{id}", "/api/v1/jobs/{id}/cancel",
                      "/api/v1/jobs/{id}/result.h5", "/api/v1/jobs/{id}/metrics",
-                     "/api/v1/jobs/{id}/front", "/healthz", "/metrics"]:
+                     "/api/v1/jobs/{id}/front", "/healthz", "/metrics", "/api/v1/schema/job.json"]:
             self.assertIn(path, doc["paths"])
+        # The job body is the job schema, section by section (api/job_schema.hpp).
+        job = doc["components"]["schemas"]["JobSpec"]
+        L = job["properties"]["friction"]["properties"]["L"]
+        self.assertEqual((L["type"], L["exclusiveMinimum"], L["x-unit"]), ("number", 0, "m"))
+        self.assertIn("priority", job["properties"])
+
+    def test_job_schema_is_served_and_matches_validation(self):
+        r = self.server.get("/api/v1/schema/job.json")
+        self.assertEqual(r.status_code, 200)
+        schema = r.json()
+        self.assertTrue(schema["$schema"].startswith("https://json-schema.org/"))
+        nu = schema["properties"]["material"]["properties"]["poisson_ratio"]
+        self.assertEqual((nu["exclusiveMinimum"], nu["exclusiveMaximum"], nu["default"]), (0, 0.5, 0.25))
+        # The bound the schema states is the one the server enforces.
+        bad = self.server.post("/api/v1/jobs", json={"material": {"poisson_ratio": 0.5}})
+        self.assertEqual(bad.status_code, 422)
+        self.assertIn("/material/poisson_ratio", bad.text)
 
     def test_prometheus_metrics(self):
         self.run_tiny(name="for-metrics")

@@ -1,0 +1,275 @@
+#include "api/job_schema.hpp"
+
+#include "api/job_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace slipfront::api {
+
+namespace {
+
+struct Words {
+  const char* unit;
+  const char* meaning;
+};
+
+// The unit and meaning of every field (docs/api-job-spec.md shows them beside the type,
+// default and range that the reader records). Rules across fields are named here too; the
+// code that checks them is api/job_checks.cpp.
+const std::map<std::string, Words>& field_words() {
+  static const std::map<std::string, Words> words = {
+      {"/method",
+       {"",
+        "`\"fe\"`: the explicit Q4 finite elements of SPEC §1 (a block of height h); "
+        "`\"spectral_bi\"`: the elastic half-space by the spectral boundary-integral method, only "
+        "the interface discretised (docs/spectral-bi.md)"}},
+      {"/spectral_bi/time_step_factor",
+       {"", "beta: dt = beta · dx / c_s; beta = 1 diverges; with plain Coulomb friction use 0.25 "
+            "(docs/spectral-bi.md)"}},
+      {"/spectral_bi/memory_periods",
+       {"", "q: each Fourier mode k keeps q periods 2 pi / (\\|k\\| c_s) of its history"}},
+      {"/spectral_bi/corrector_passes", {"", "local solves after the predictor in each step"}},
+      {"/fe/mesh_damping",
+       {"", "ζ of the mesh-scale stiffness-proportional (Kelvin–Voigt) damping force `−a K v`, "
+            "`a = ζ dx / c_s`, which vanishes under refinement; 0 is the paper's undamped "
+            "scheme. It shrinks the stable step to `sqrt(a² + dt0²) − a` (ζ = 0.1: 0.84 dt0) and "
+            "costs about twice the work per step (docs/physics.md, docs/small-l-study.md)"}},
+      {"/material/density", {"kg/m^3", "rho"}},
+      {"/material/young_modulus", {"Pa", "E"}},
+      {"/material/poisson_ratio", {"", "nu; 0.5 (incompressible) has no finite c_p"}},
+      {"/geometry/width", {"m", "w: x1 in [x_min, x_min + w), periodic"}},
+      {"/geometry/height",
+       {"m", "h; `\"auto\"`: the smallest height whose top reflection cannot reach the "
+             "interface before the run ends (c_p · duration / 2, in whole elements, plus one; "
+             "docs/physics.md)"}},
+      {"/geometry/x_min", {"m", "left end of the domain"}},
+      {"/geometry/nodes_per_meter",
+       {"1/m", "n_d: interface nodes per metre; element size dx = 1/n_d. width · n_d (and "
+               "height · n_d) must be whole numbers of elements, 3 to 1e7 along x1"}},
+      {"/geometry/top_boundary",
+       {"", "the top keeps the remote traction, or absorbs waves (Lysmer–Kuhlemeyer dashpots)"}},
+      {"/loading/normal_stress",
+       {"Pa", "tau2_0; negative = compressive (the solid must be pressed on the plane)"}},
+      {"/loading/shear_stress",
+       {"Pa", "tau1_0; positive drives the solid towards +x1. At most mu · \\|normal_stress\\| "
+              "(the initial state is stuck)"}},
+      {"/friction/law", {"", "regularised (paper eq. 1) or plain Coulomb"}},
+      {"/friction/mu", {"", "friction coefficient (static = kinetic)"}},
+      {"/friction/L", {"m", "characteristic length of the regularisation"}},
+      {"/friction/v_star", {"m/s", "reference velocity V*"}},
+      {"/friction/strength_update",
+       {"", "how the strength ODE is advanced in a step (docs/physics.md): exact for \\|V\\| "
+            "frozen and p linear over the step (second order); exact for \\|V\\| and p frozen at "
+            "the step's end (SPEC §1's scheme, first order); or forward Euler (unstable once "
+            "dt (\\|V\\|+V*)/L > 2; for failure studies)"}},
+      {"/nucleation/enabled",
+       {"", "apply the nucleation load (the moving ellipse of the paper's "
+            "appendix A)"}},
+      {"/nucleation/a", {"m", "a_ell"}},
+      {"/nucleation/b", {"m", "b_ell"}},
+      {"/nucleation/v", {"m/s", "v_ell: speed of the ellipse towards +x1"}},
+      {"/nucleation/alpha", {"", "largest relative reduction of the normal load"}},
+      {"/time/duration", {"s", "simulated time"}},
+      {"/time/safety_factor",
+       {"", "dt = safety_factor × the stable step of the discrete system; above 1 the scheme is "
+            "unstable and the run ends `diverged` (for failure studies)"}},
+      {"/time/stop_on_arrest", {"", "end the run once the rupture has arrested"}},
+      {"/time/arrest_window",
+       {"s", "the front must have stood still this long to count as arrested (docs/metrics.md)"}},
+      {"/output/interval",
+       {"s", "time between stored samples, rounded to whole steps (at least one)"}},
+      {"/output/space_stride",
+       {"", "store every k-th interface node (at most the number of interface nodes)"}},
+      {"/probe/arrival_x1",
+       {"m", "where `arrival_time_at_probe` is measured; inside [x_min, x_min + width)"}},
+      {"/probe/spectrum_x1",
+       {"m", "where tau_s(t) is recorded for the spectral L_c estimate; inside the domain"}},
+      {"/probe/front_threshold", {"m/s", "slip velocity that defines the slip front"}},
+      {"/threads", {"", "worker threads of the run; 0 = all hardware threads"}},
+      {"/name", {"", "free text"}},
+      {"/tags", {"", "free text, for filtering"}},
+  };
+  return words;
+}
+
+// The fields the reader asks for when it reads `document` (an empty job of one method).
+SchemaRecorder record_fields(const nlohmann::json& document) {
+  SchemaRecorder recorder;
+  std::vector<FieldError> errors;
+  ObjectReader reader(&document, "", errors, &recorder);
+  JobSpec job;
+  read_job_fields(reader, job);
+  reader.finish();
+  if (!errors.empty())
+    throw std::logic_error("job schema: reading " + document.dump() + " gave " + errors[0].pointer +
+                           ": " + errors[0].reason);
+  return recorder;
+}
+
+// "/friction/L" -> {"friction", "L"}; "/threads" -> {"", "threads"}.
+std::pair<std::string, std::string> split_pointer(const std::string& pointer) {
+  const auto slash = pointer.rfind('/');
+  return {slash == 0 ? "" : pointer.substr(1, slash - 1), pointer.substr(slash + 1)};
+}
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::string type_text(const nlohmann::json& schema) {
+  if (schema.contains("oneOf")) return "number or `\"auto\"`";
+  const std::string type = schema.at("type");
+  if (type == "array") return "array of strings";
+  return type;
+}
+
+std::string default_text(const nlohmann::json& schema) {
+  const nlohmann::json& value = schema.at("default");
+  if (value.is_string() || value.is_array()) return "`" + value.dump() + "`";
+  if (value.is_number_float()) return format_number(value.get<double>());
+  return value.dump();
+}
+
+std::string allowed_text(const nlohmann::json& schema) {
+  if (schema.contains("oneOf")) return "> 0, or `\"auto\"`";
+  if (schema.contains("enum")) {
+    std::string list;
+    for (const auto& name : schema["enum"])
+      list += (list.empty() ? "`" : ", `") + name.dump() + "`";
+    return list;
+  }
+  const std::string type = schema.at("type");
+  if (type == "integer")
+    return std::to_string(schema["minimum"].get<long>()) + " .. " +
+           std::to_string(schema["maximum"].get<long>());
+  if (type == "string")
+    return "at most " + std::to_string(schema["maxLength"].get<long>()) + " characters";
+  if (type == "array")
+    return "at most " + std::to_string(schema["maxItems"].get<long>()) +
+           " non-empty strings of at most " +
+           std::to_string(schema["items"]["maxLength"].get<long>()) + " characters";
+  if (type != "number") return "";
+  const bool lo = schema.contains("minimum") || schema.contains("exclusiveMinimum");
+  const bool hi = schema.contains("maximum") || schema.contains("exclusiveMaximum");
+  const double lo_value = lo ? schema.value("minimum", schema.value("exclusiveMinimum", 0.0)) : 0;
+  const double hi_value = hi ? schema.value("maximum", schema.value("exclusiveMaximum", 0.0)) : 0;
+  const bool lo_open = schema.contains("exclusiveMinimum");
+  const bool hi_open = schema.contains("exclusiveMaximum");
+  if (lo && hi)
+    return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo_value) + ", " +
+           format_number(hi_value) + (hi_open ? ")" : "]");
+  if (lo) return (lo_open ? "> " : ">= ") + format_number(lo_value);
+  if (hi) return (hi_open ? "< " : "<= ") + format_number(hi_value);
+  return "any";
+}
+
+} // namespace
+
+std::vector<JobField> job_fields() {
+  // FE is the default method: its record gives the defaults of the fields both methods read.
+  const SchemaRecorder fe = record_fields(nlohmann::json::object());
+  const SchemaRecorder bi = record_fields({{"method", "spectral_bi"}});
+  std::vector<JobField> fields;
+  std::map<std::string, std::size_t> index;
+  for (const auto& r : fe) {
+    index[r.pointer] = fields.size();
+    fields.push_back({r.pointer, r.schema, true, false, "", ""});
+  }
+  for (const auto& r : bi) {
+    if (auto found = index.find(r.pointer); found != index.end()) {
+      fields[found->second].spectral_bi = true;
+    } else {
+      index[r.pointer] = fields.size();
+      fields.push_back({r.pointer, r.schema, false, true, "", ""});
+    }
+  }
+  fields[index.at("/method")].schema["default"] = "fe";
+  for (JobField& field : fields) {
+    const auto words = field_words().find(field.pointer);
+    if (words == field_words().end())
+      throw std::logic_error("job schema: no unit and meaning for " + field.pointer +
+                             " (api/job_schema.cpp)");
+    field.unit = words->second.unit;
+    field.meaning = words->second.meaning;
+  }
+  return fields;
+}
+
+std::vector<std::string> documented_job_pointers() {
+  std::vector<std::string> pointers;
+  for (const auto& [pointer, words] : field_words())
+    pointers.push_back(pointer);
+  return pointers;
+}
+
+nlohmann::json job_json_schema() {
+  nlohmann::json root = {
+      {"$schema", "https://json-schema.org/draft/2020-12/schema"},
+      {"$id", "/api/v1/schema/job.json"},
+      {"title", "slipfront job"},
+      {"description", "One simulation (SPEC §4, docs/api-job-spec.md). Every field is optional "
+                      "and defaults to the paper's scene; unknown fields are errors, and so are "
+                      "fields the chosen method does not use (x-methods)."},
+      {"type", "object"},
+      {"additionalProperties", false},
+      {"properties", nlohmann::json::object()}};
+  for (const JobField& field : job_fields()) {
+    const auto [section, name] = split_pointer(field.pointer);
+    nlohmann::json* parent = &root;
+    if (!section.empty()) {
+      nlohmann::json& object = root["properties"][section];
+      if (object.is_null())
+        object = {{"type", "object"},
+                  {"additionalProperties", false},
+                  {"properties", nlohmann::json::object()}};
+      parent = &object;
+    }
+    nlohmann::json schema = field.schema;
+    schema["description"] = field.meaning + (field.unit.empty() ? "" : " [" + field.unit + "]");
+    if (!field.unit.empty()) schema["x-unit"] = field.unit;
+    nlohmann::json methods = nlohmann::json::array();
+    if (field.fe) methods.push_back("fe");
+    if (field.spectral_bi) methods.push_back("spectral_bi");
+    schema["x-methods"] = methods;
+    (*parent)["properties"][name] = schema;
+  }
+  return root;
+}
+
+std::string job_fields_markdown() {
+  // The docs' order of sections; a section not listed here comes last.
+  const std::vector<std::string> order = {"top level", "spectral_bi", "fe",       "material",
+                                          "geometry",  "loading",     "friction", "nucleation",
+                                          "time",      "output",      "probe"};
+  std::map<std::string, std::string> rows;
+  std::vector<std::string> titles = order;
+  for (const JobField& field : job_fields()) {
+    const auto [section, name] = split_pointer(field.pointer);
+    const std::string title = section.empty() ? "top level" : section;
+    if (std::find(titles.begin(), titles.end(), title) == titles.end()) titles.push_back(title);
+    std::string meaning = field.meaning;
+    if (!field.spectral_bi) meaning += " (method `fe` only)";
+    if (!field.fe) meaning += " (method `spectral_bi` only)";
+    rows[title] += "| `" + name + "` | " + type_text(field.schema) + " | " +
+                   default_text(field.schema) + " | " + allowed_text(field.schema) + " | " +
+                   field.unit + " | " + meaning + " |\n";
+  }
+  std::string out;
+  for (const std::string& title : titles) {
+    if (!rows.contains(title)) continue;
+    out += "<!-- generated: job fields " + title + " -->\n";
+    out += "| field | type | default | allowed | unit | meaning |\n";
+    out += "| --- | --- | --- | --- | --- | --- |\n";
+    out += rows[title];
+    out += "<!-- end generated -->\n\n";
+  }
+  return out;
+}
+
+} // namespace slipfront::api
