@@ -10,7 +10,6 @@ usage: /usr/bin/python3 bench/end_to_end.py [--binary build/slipfront] [--nd 40 
 import argparse
 import json
 import os
-import resource
 import subprocess
 import tempfile
 import time

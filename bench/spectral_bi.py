@@ -397,7 +397,7 @@ def section_d(runner, args, out):
     print(f"- arrival at 11 m, first-order Richardson limits: FE (n_d 40, 80) {lim_fe:.5f} s, BI (n_d "
           f"{bi_half['n_d']:g}, {bi_ref['n_d']:g}) {lim_bi:.5f} s (differ by {pct(rel(lim_fe, lim_bi), 4)}); "
           f"FE n_d = 40 is {pct(rel(m(fe40, 'arrival_time_at_probe'), lim_fe), 4)} from its own limit")
-    print(f"- L = 5e-5 m: FE n_d = 40 against FE n_d = 80: "
+    print("- L = 5e-5 m: FE n_d = 40 against FE n_d = 80: "
           + ", ".join(f"{k} {pct(v)}" for k, v in fe_err.items())
           + f". BI candidates against BI n_d = {bi_ref['n_d']} (and against FE n_d = 80):\n")
     print("| BI run | wall [s] | load | propagation | arrival at 11 m | arrest | peak V at 6 m "

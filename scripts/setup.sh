@@ -11,7 +11,7 @@ packages=(
   libeigen3-dev libboost1.81-all-dev nlohmann-json3-dev libsqlite3-dev sqlite3
   libhdf5-dev hdf5-tools libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-requests
-  curl wrk
+  curl wrk clang-format pyflakes3
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -26,6 +26,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 build_dir="${BUILD_DIR:-build}"
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >&2
+# SLIPFRONT_CMAKE_ARGS: extra configure options (CI: -DSLIPFRONT_WERROR=ON).
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${SLIPFRONT_CMAKE_ARGS:-} >&2
 cmake --build "$build_dir" -j"$(nproc)" >&2
 echo "setup: built $build_dir/slipfront" >&2

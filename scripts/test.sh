@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it (.ci/run):
-#   1. packages + Release build (scripts/setup.sh), then every test except the `slow` label;
+#   1. packages + Release build with -Werror (scripts/setup.sh), the style checks
+#      (scripts/check_style.sh: clang-format, pyflakes), then every test except the `slow` label;
 #   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the same tests (without the
 #      `slow` and `no_sanitizer` labels: the server's crash test kills processes on purpose).
 # Options: SLIPFRONT_SKIP_SANITIZE=1 skips step 2; SLIPFRONT_SLOW=1 adds the `slow` tests.
@@ -8,13 +9,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
 
-bash scripts/setup.sh
+SLIPFRONT_CMAKE_ARGS="-DSLIPFRONT_WERROR=ON" bash scripts/setup.sh
+bash scripts/check_style.sh
 exclude="slow"
 [ "${SLIPFRONT_SLOW:-0}" = "1" ] && exclude="^$"
 ctest --test-dir build --output-on-failure -j2 -LE "$exclude" --timeout 900
 
 if [ "${SLIPFRONT_SKIP_SANITIZE:-0}" != "1" ]; then
-  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSLIPFRONT_SANITIZE=ON >&2
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSLIPFRONT_SANITIZE=ON \
+    -DSLIPFRONT_WERROR=ON >&2
   cmake --build build-sanitize -j"$(nproc)" >&2
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-sanitize --output-on-failure -j2 -LE "slow|no_sanitizer" --timeout 1800

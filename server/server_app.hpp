@@ -53,6 +53,8 @@ public:
   void shutdown();
   // SIGHUP: reads --token-file again; on an error the tokens in use stay (logged).
   void reload_tokens();
+  // The routes (after start()): for the test that they and the OpenAPI paths are one set.
+  const Router& router() const { return router_; }
 
 private:
   ServerConfig config_;

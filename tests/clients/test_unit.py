@@ -11,9 +11,11 @@ import os
 import tempfile
 import unittest
 
-import harness  # noqa: F401  (puts clients/ on sys.path)
+import harness
 from slipfront_client import analysis, jobspec, report, reproduction
 from slipfront_client.api import Api, parse_retry_after
+
+assert harness.CLIENTS  # importing harness put clients/ on sys.path
 from slipfront_client.errors import EXIT_USAGE, JobCancelled, JobFailed, ServerError, UsageError
 from slipfront_client.plots import convergence, cost, filter_response
 from slipfront_client.plots.common import parse_formats

@@ -16,7 +16,6 @@ import unittest
 
 import h5py
 import numpy as np
-import requests
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from server_harness import TERMINAL, TINY, Server, long_job  # noqa: E402
