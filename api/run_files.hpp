@@ -23,7 +23,6 @@ nlohmann::json run_report_json(const JobOutput& output);
 
 // Writes `doc` to `path` atomically (temporary file + rename; `durable` adds an fsync before
 // the rename, for the report). Throws std::runtime_error naming the path and the error.
-void write_json_atomically(const std::string& path, const nlohmann::json& doc,
-                           bool durable = true);
+void write_json_atomically(const std::string& path, const nlohmann::json& doc, bool durable = true);
 
 } // namespace slipfront::api

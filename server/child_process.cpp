@@ -79,8 +79,7 @@ ProgramResult run_program(const std::vector<std::string>& argv, double timeout_s
   pid_t pid = 0;
   const int rc = ::posix_spawnp(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0)
-    throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(rc));
+  if (rc != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(rc));
   out.close_write();
   err.close_write();
 

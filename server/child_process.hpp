@@ -8,9 +8,9 @@
 namespace slipfront::server {
 
 struct ProgramResult {
-  int exit_code = -1;      // the exit status; 128 + N if killed by signal N
-  bool timed_out = false;  // killed after the time bound
-  std::string out, err;    // standard output and error (each at most 1 MiB kept)
+  int exit_code = -1;     // the exit status; 128 + N if killed by signal N
+  bool timed_out = false; // killed after the time bound
+  std::string out, err;   // standard output and error (each at most 1 MiB kept)
   // "sbatch exited with 1: <first line of stderr>" and the like, for error messages.
   std::string describe(const std::string& program) const;
 };

@@ -62,7 +62,8 @@ void ServerApp::start() {
     fs::create_directories(config_.shared_dir, ec);
     if (ec) throw std::runtime_error("--shared-dir " + config_.shared_dir + ": " + ec.message());
     config_.shared_dir = fs::canonical(config_.shared_dir).string();
-    if (config_.slurm_binary.empty()) config_.slurm_binary = fs::read_symlink("/proc/self/exe").string();
+    if (config_.slurm_binary.empty())
+      config_.slurm_binary = fs::read_symlink("/proc/self/exe").string();
   }
   // Before anything reads or recovers the directory's jobs.
   data_dir_lock_ = std::make_unique<DataDirLock>(config_.data_dir);
@@ -108,10 +109,9 @@ void ServerApp::start() {
   else
     executor_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
 
-  context_.reset(new ServerContext{*service_, *store_, *queue_, running_, stats_, tokens_,
-                                   config_.data_dir, executor_->slots(), config_.retry_after_s,
-                                   draining_, *studies_, config_.min_free_bytes,
-                                   executor_->name()});
+  context_.reset(new ServerContext{
+      *service_, *store_, *queue_, running_, stats_, tokens_, config_.data_dir, executor_->slots(),
+      config_.retry_after_s, draining_, *studies_, config_.min_free_bytes, executor_->name()});
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
     stats_.record_storage_error(what);
   });

@@ -27,13 +27,13 @@ struct ServerConfig {
 
   // Where jobs run (docs/cluster.md): "local" (worker threads) or "slurm" (sbatch).
   std::string executor = "local";
-  std::string shared_dir;          // slurm: job files, seen by the compute nodes ("" = data dir/slurm)
-  std::string slurm_partition;     // "" = the cluster's default
-  std::string slurm_account;       // "" = the user's default
-  std::string slurm_time_limit;    // sbatch --time ("" = the partition's default)
-  std::string slurm_sbatch_args;   // more sbatch options, separated by spaces
-  std::string slurm_binary;        // slipfront on the compute nodes ("" = this executable)
-  int slurm_max_jobs = 100;        // jobs kept in SLURM at once
+  std::string shared_dir;       // slurm: job files, seen by the compute nodes ("" = data dir/slurm)
+  std::string slurm_partition;  // "" = the cluster's default
+  std::string slurm_account;    // "" = the user's default
+  std::string slurm_time_limit; // sbatch --time ("" = the partition's default)
+  std::string slurm_sbatch_args;      // more sbatch options, separated by spaces
+  std::string slurm_binary;           // slipfront on the compute nodes ("" = this executable)
+  int slurm_max_jobs = 100;           // jobs kept in SLURM at once
   double slurm_poll_interval_s = 2.0; // squeue and progress files
 };
 

@@ -27,7 +27,7 @@ struct ServerContext {
   int retry_after_s = 30;
   std::atomic<bool>& draining;
   StudyService& studies;
-  double min_free_bytes = 0.0; // /healthz: degraded below this free space in data_dir
+  double min_free_bytes = 0.0;    // /healthz: degraded below this free space in data_dir
   std::string executor = "local"; // "local" or "slurm"
 };
 

@@ -27,7 +27,8 @@ bool lost_with_its_node(const std::string& state) {
 }
 
 int job_threads(const Job& job) {
-  if (job.spec.is_object() && job.spec.contains("threads") && job.spec["threads"].is_number_integer())
+  if (job.spec.is_object() && job.spec.contains("threads") &&
+      job.spec["threads"].is_number_integer())
     return std::max(1, job.spec["threads"].get<int>());
   return 1;
 }
@@ -51,7 +52,8 @@ ResultFile move_result(const std::string& from, const std::string& data_dir,
     if (ec) throw std::runtime_error("copying " + from + " to " + temporary + ": " + ec.message());
     if (api::sha256_file(temporary) != sha) {
       fs::remove(temporary, ec);
-      throw std::runtime_error("the copy of " + from + " does not have the SHA-256 the run "
+      throw std::runtime_error("the copy of " + from +
+                               " does not have the SHA-256 the run "
                                "reported (the shared file system served another version?)");
     }
     fs::rename(temporary, to, ec);
@@ -65,8 +67,8 @@ ResultFile move_result(const std::string& from, const std::string& data_dir,
 
 SlurmExecutor::SlurmExecutor(SlurmExecutorOptions options, JobStore& store, JobQueue& queue,
                              RunningJobs& running, ServerStats& stats)
-    : options_(std::move(options)), store_(store), queue_(queue), running_(running),
-      stats_(stats), client_(options_.slurm) {}
+    : options_(std::move(options)), store_(store), queue_(queue), running_(running), stats_(stats),
+      client_(options_.slurm) {}
 
 SlurmExecutor::~SlurmExecutor() {
   drain();
@@ -174,8 +176,8 @@ void SlurmExecutor::submit(const std::string& id) {
   if (!job) throw std::runtime_error("job vanished from the store after it was marked running");
   const SlurmJobDir dir(options_.shared_dir, id);
   const std::int64_t memory_mb = slurm_memory_mb(job->memory_estimate_bytes);
-  SbatchRequest request{"slipfront-" + id, dir.script(), dir.path(), dir.log(),
-                        job_threads(*job), memory_mb};
+  SbatchRequest request{"slipfront-" + id, dir.script(),      dir.path(),
+                        dir.log(),         job_threads(*job), memory_mb};
   std::string slurm_job_id;
   try {
     dir.prepare(*job, options_.binary, static_cast<double>(memory_mb) * 1024.0 * 1024.0);
@@ -190,8 +192,8 @@ void SlurmExecutor::submit(const std::string& id) {
     fail_or_cancel(t, "preparing the job's files in --shared-dir: " + std::string(e.what()));
     return;
   }
-  Tracked t{id, slurm_job_id, entry, job->attempts, "PENDING", job->started_at, {}, false, 0,
-            job->priority};
+  Tracked t{id, slurm_job_id, entry, job->attempts, "PENDING", job->started_at,
+            {}, false,        0,     job->priority};
   tracked_[id] = t; // followed even if the next write fails: the SLURM job exists
   store_.set_slurm_job(id, slurm_job_id, "PENDING");
   log_info("job " + id + " (" + job->name + ") submitted to SLURM as job " + slurm_job_id + " (" +
@@ -258,8 +260,7 @@ void SlurmExecutor::follow(Tracked& t, const SlurmJobState& state) {
                               slurm_phase(state.state) == SlurmPhase::waiting ? "" : state.node);
     t.state_text = text;
   }
-  if (t.entry->user_cancelled && !t.scancel_sent &&
-      slurm_phase(state.state) != SlurmPhase::ended) {
+  if (t.entry->user_cancelled && !t.scancel_sent && slurm_phase(state.state) != SlurmPhase::ended) {
     client_.cancel(t.slurm_job_id); // throws: tried again at the next poll
     t.scancel_sent = true;
     log_info("job " + t.id + ": scancel " + t.slurm_job_id);
@@ -334,8 +335,8 @@ bool SlurmExecutor::lost(Tracked& t) {
 
 bool SlurmExecutor::requeue_or_fail(Tracked& t, const std::string& reason) {
   if (t.attempts >= options_.max_attempts)
-    return fail_or_cancel(t, reason + "; failed after " + std::to_string(t.attempts) +
-                                 " attempt(s)");
+    return fail_or_cancel(t,
+                          reason + "; failed after " + std::to_string(t.attempts) + " attempt(s)");
   if (store_.requeue(t.id)) queue_.push_unbounded(t.id, t.priority);
   running_.remove(t.id);
   stats_.record_run("requeued", 0.0);
@@ -368,8 +369,8 @@ bool SlurmExecutor::fail_or_cancel(Tracked& t, const std::string& reason) {
   return true;
 }
 
-void SlurmExecutor::finished(const std::string& id, const std::string& outcome,
-                             double wall_time_s, const std::string& error) {
+void SlurmExecutor::finished(const std::string& id, const std::string& outcome, double wall_time_s,
+                             const std::string& error) {
   running_.remove(id);
   if (options_.on_finished) {
     try {

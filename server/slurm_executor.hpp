@@ -82,7 +82,7 @@ private:
   void submit_from_queue(std::chrono::steady_clock::time_point until);
   void submit(const std::string& id);
   void poll();
-  void follow(Tracked& job, const SlurmJobState* state);
+  void follow(Tracked& job, const SlurmJobState& state);
   // The job ended in SLURM (or was lost): stores its final record. False if it must be
   // tried again at the next poll (the storage did not answer).
   bool collect(Tracked& job, const SlurmJobState& state);
@@ -100,7 +100,7 @@ private:
   RunningJobs& running_;
   ServerStats& stats_;
   SlurmClient client_;
-  std::map<std::string, Tracked> tracked_; // by job id; the thread's own
+  std::map<std::string, Tracked> tracked_;               // by job id; the thread's own
   std::chrono::steady_clock::time_point paused_until_{}; // after sbatch could not reach SLURM
   bool squeue_failing_ = false;                          // logged once per failing streak
   std::mutex mutex_;

@@ -54,20 +54,22 @@ void SlurmJobDir::prepare(const Job& job, const std::string& binary,
   fs::create_directories(path_, ec);
   if (ec) throw std::runtime_error("cannot create " + path_ + ": " + ec.message());
   write_file(spec(), job.spec.dump(2) + "\n");
-  std::ostringstream script;
-  script << "#!/bin/sh\n"
-         << "# slipfront job " << job.id << " (" << job.name << "), written by slipfront serve.\n"
-         << "# It runs on a compute node; its files are all it shares with the server.\n"
-         << "cd " << shell_quote(path_) << " || exit 1\n"
-         << shell_quote(binary) << " run spec.json --output result.h5 --quiet"
-         << " --progress-file progress.json --report-file report.json"
-         << " --max-memory " << static_cast<long long>(std::ceil(max_memory_bytes)) << "\n"
-         << "code=$?\n"
-         << "echo $code > exit_code.tmp && mv exit_code.tmp exit_code\n"
-         << "exit $code\n";
-  write_file(script(), script.str());
-  fs::permissions(script(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                                fs::perms::others_read | fs::perms::others_exec, ec);
+  std::ostringstream text;
+  text << "#!/bin/sh\n"
+       << "# slipfront job " << job.id << " (" << job.name << "), written by slipfront serve.\n"
+       << "# It runs on a compute node; its files are all it shares with the server.\n"
+       << "cd " << shell_quote(path_) << " || exit 1\n"
+       << shell_quote(binary) << " run spec.json --output result.h5 --quiet"
+       << " --progress-file progress.json --report-file report.json"
+       << " --max-memory " << static_cast<long long>(std::ceil(max_memory_bytes)) << "\n"
+       << "code=$?\n"
+       << "echo $code > exit_code.tmp && mv exit_code.tmp exit_code\n"
+       << "exit $code\n";
+  write_file(script(), text.str());
+  fs::permissions(script(),
+                  fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                      fs::perms::others_read | fs::perms::others_exec,
+                  ec);
 }
 
 std::optional<JobProgress> SlurmJobDir::read_progress() const {

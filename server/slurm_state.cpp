@@ -34,11 +34,11 @@ std::string first_word(const std::string& s) {
 } // namespace
 
 SlurmPhase slurm_phase(const std::string& state) {
-  static const std::set<std::string> waiting = {"PENDING",     "CONFIGURING",   "REQUEUED",
-                                                "REQUEUE_FED", "REQUEUE_HOLD",  "RESV_DEL_HOLD",
-                                                "RESIZING",    "SPECIAL_EXIT",  "POWER_UP_NODE"};
-  static const std::set<std::string> running = {"RUNNING", "COMPLETING", "SUSPENDED", "STOPPED",
-                                                "SIGNALING", "STAGE_OUT", "UPDATE_DB"};
+  static const std::set<std::string> waiting = {"PENDING",     "CONFIGURING",  "REQUEUED",
+                                                "REQUEUE_FED", "REQUEUE_HOLD", "RESV_DEL_HOLD",
+                                                "RESIZING",    "SPECIAL_EXIT", "POWER_UP_NODE"};
+  static const std::set<std::string> running = {"RUNNING",   "COMPLETING", "SUSPENDED", "STOPPED",
+                                                "SIGNALING", "STAGE_OUT",  "UPDATE_DB"};
   if (waiting.count(state)) return SlurmPhase::waiting;
   if (running.count(state)) return SlurmPhase::running;
   return SlurmPhase::ended; // COMPLETED, FAILED, TIMEOUT, OUT_OF_MEMORY, CANCELLED, ...
@@ -56,8 +56,9 @@ std::string slurm_failure_reason(const SlurmJobState& s) {
   const std::string node = s.node.empty() ? "" : " on " + s.node;
   if (s.state == "TIMEOUT") return head + ": it ran past its time limit (--slurm-time-limit)";
   if (s.state == "OUT_OF_MEMORY")
-    return head + ": it used more memory than it requested (--mem from the job's memory "
-                  "estimate)" +
+    return head +
+           ": it used more memory than it requested (--mem from the job's memory "
+           "estimate)" +
            node;
   if (s.state == "NODE_FAIL") return head + ": its node failed" + node;
   if (s.state == "BOOT_FAIL") return head + ": its node failed to boot" + node;
@@ -65,8 +66,9 @@ std::string slurm_failure_reason(const SlurmJobState& s) {
     return head + ": cancelled outside slipfront (scancel by a user or an administrator)";
   if (s.state == "PREEMPTED") return head + ": preempted by a higher-priority job";
   if (s.state == "DEADLINE") return head + ": it reached its deadline";
-  if (s.state == "COMPLETED") return head + " but left no report file (is the shared directory "
-                                            "shared with the compute nodes?)";
+  if (s.state == "COMPLETED")
+    return head + " but left no report file (is the shared directory "
+                  "shared with the compute nodes?)";
   std::string text = head;
   if (!s.reason.empty() && s.reason != "None") text += " (" + s.reason + ")";
   return text + node;
@@ -92,7 +94,8 @@ std::map<std::string, SlurmJobState> parse_sacct_output(const std::string& text)
   while (std::getline(in, line)) {
     auto parts = split(line, '|');
     if (parts.size() < 2 || trim(parts[0]).empty() || trim(parts[1]).empty()) continue;
-    SlurmJobState s{trim(parts[0]), first_word(parts[1]), "", parts.size() > 2 ? trim(parts[2]) : ""};
+    SlurmJobState s{trim(parts[0]), first_word(parts[1]), "",
+                    parts.size() > 2 ? trim(parts[2]) : ""};
     states[s.job_id] = s;
   }
   return states;

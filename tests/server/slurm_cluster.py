@@ -54,6 +54,7 @@ class SingleHostCluster:
         self.conf = os.path.join(self.dir, "slurm.conf")
         self.munge_socket = os.path.join(self.dir, "munge", "munge.socket")
         self.procs = {}
+        self.logs = []
 
     # -- paths --------------------------------------------------------------------------
     def path(self, *parts):
@@ -166,6 +167,7 @@ PartitionName=debug Nodes={self.node} Default=YES MaxTime=INFINITE State=UP
 
     def _spawn(self, name, cmd):
         log = open(self.path("log", name + ".out"), "ab")
+        self.logs.append(log)
         self.procs[name] = subprocess.Popen(cmd, stdout=log, stderr=log, env=self.env(),
                                             start_new_session=True)
 
@@ -211,6 +213,9 @@ PartitionName=debug Nodes={self.node} Default=YES MaxTime=INFINITE State=UP
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait(timeout=5)
         self.procs.clear()
+        for log in self.logs:
+            log.close()
+        self.logs.clear()
         if self.own_dir:
             shutil.rmtree(self.dir, ignore_errors=True)
 

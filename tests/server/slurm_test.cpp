@@ -67,16 +67,16 @@ TEST(SlurmClient, SbatchAsksForThreadsMemoryAndTheConfiguredLimits) {
   settings.time_limit = "2:00:00";
   settings.extra_sbatch_args = {"--qos=long"};
   SlurmClient client(settings);
-  auto cmd = client.sbatch_command({"slipfront-abc", "/s/jobs/abc/job.sh", "/s/jobs/abc",
-                                    "/s/jobs/abc/slurm.out", 4, 1500});
+  auto cmd = client.sbatch_command(
+      {"slipfront-abc", "/s/jobs/abc/job.sh", "/s/jobs/abc", "/s/jobs/abc/slurm.out", 4, 1500});
   auto has = [&](const std::string& arg) {
     return std::find(cmd.begin(), cmd.end(), arg) != cmd.end();
   };
   EXPECT_EQ(cmd.front(), "sbatch");
   EXPECT_EQ(cmd.back(), "/s/jobs/abc/job.sh");
   for (const char* arg : {"--parsable", "--job-name=slipfront-abc", "--cpus-per-task=4",
-                          "--mem=1500M", "--partition=compute", "--account=geo",
-                          "--time=2:00:00", "--qos=long", "--no-requeue", "--chdir=/s/jobs/abc"})
+                          "--mem=1500M", "--partition=compute", "--account=geo", "--time=2:00:00",
+                          "--qos=long", "--no-requeue", "--chdir=/s/jobs/abc"})
     EXPECT_TRUE(has(arg)) << arg;
   EXPECT_FALSE(SlurmClient(SlurmSettings{}).sbatch_command({}).empty());
 }
@@ -111,8 +111,7 @@ TEST(SlurmJobDir, BatchScriptRunsTheJobAndRecordsItsExitCode) {
       << script.str();
   EXPECT_NE(script.str().find("--progress-file progress.json --report-file report.json"),
             std::string::npos);
-  EXPECT_NE(script.str().find("> exit_code.tmp && mv exit_code.tmp exit_code"),
-            std::string::npos);
+  EXPECT_NE(script.str().find("> exit_code.tmp && mv exit_code.tmp exit_code"), std::string::npos);
   std::ifstream spec(files.spec());
   EXPECT_EQ(nlohmann::json::parse(spec)["method"], "spectral_bi");
   EXPECT_FALSE(files.read_report());
