@@ -19,7 +19,8 @@ std::vector<std::string> SlurmClient::sbatch_command(const SbatchRequest& r) con
   std::vector<std::string> cmd = {
       "sbatch", "--parsable", "--job-name=" + r.job_name, "--chdir=" + r.working_dir,
       "--output=" + r.log_path, "--ntasks=1",
-      "--cpus-per-task=" + std::to_string(std::max(1, r.cpus)),
+      // threads 0 (all hardware threads) takes a whole node.
+      r.cpus > 0 ? "--cpus-per-task=" + std::to_string(r.cpus) : std::string("--exclusive"),
       "--mem=" + std::to_string(std::max<std::int64_t>(1, r.memory_mb)) + "M",
       // A node failure comes back to the server, which re-queues
       // the job itself (and counts the attempt).

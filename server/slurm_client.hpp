@@ -22,11 +22,11 @@ struct SlurmSettings {
 
 // What one job asks of SLURM.
 struct SbatchRequest {
-  std::string job_name;       // "slipfront-<id>": what an operator sees in squeue
-  std::string script_path;    // the batch script (slurm_job_dir.hpp)
-  std::string working_dir;    // --chdir
-  std::string log_path;       // --output (stdout and stderr of the batch script)
-  int cpus = 1;               // --cpus-per-task: the job's solver threads
+  std::string job_name;    // "slipfront-<id>": what an operator sees in squeue
+  std::string script_path; // the batch script (slurm_job_dir.hpp)
+  std::string working_dir; // --chdir
+  std::string log_path;    // --output (stdout and stderr of the batch script)
+  int cpus = 1; // --cpus-per-task: the job's solver threads; 0 (all threads): --exclusive
   std::int64_t memory_mb = 0; // --mem
 };
 

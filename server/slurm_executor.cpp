@@ -29,7 +29,7 @@ bool lost_with_its_node(const std::string& state) {
 int job_threads(const Job& job) {
   if (job.spec.is_object() && job.spec.contains("threads") &&
       job.spec["threads"].is_number_integer())
-    return std::max(1, job.spec["threads"].get<int>());
+    return std::max(0, job.spec["threads"].get<int>()); // 0: all of the node's threads
   return 1;
 }
 
@@ -197,7 +197,8 @@ void SlurmExecutor::submit(const std::string& id) {
   tracked_[id] = t; // followed even if the next write fails: the SLURM job exists
   store_.set_slurm_job(id, slurm_job_id, "PENDING");
   log_info("job " + id + " (" + job->name + ") submitted to SLURM as job " + slurm_job_id + " (" +
-           std::to_string(request.cpus) + " cpu, " + std::to_string(memory_mb) + " MiB)");
+           (request.cpus > 0 ? std::to_string(request.cpus) + " cpu" : std::string("whole node")) +
+           ", " + std::to_string(memory_mb) + " MiB)");
 }
 
 void SlurmExecutor::poll() {

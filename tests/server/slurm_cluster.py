@@ -174,6 +174,19 @@ PartitionName=debug Nodes={self.node} Default=YES MaxTime=INFINITE State=UP
     def _start_slurm(self, timeout):
         self._spawn("slurmctld", [self._sbin("slurmctld"), "-D", "-i", "-f", self.conf])
         self._spawn("slurmd", [self._sbin("slurmd"), "-D", "-f", self.conf, "-N", self.node])
+        self._wait_idle(timeout)
+
+    def restart_controller(self, clear_state=False, timeout=30.0):
+        """Stops slurmctld and starts it again; with `clear_state` it forgets every job
+        (slurmctld -c): how a test makes SLURM lose a job."""
+        proc = self.procs.pop("slurmctld")
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(timeout=20)
+        self._spawn("slurmctld", [self._sbin("slurmctld"), "-D", "-f", self.conf] +
+                    (["-c"] if clear_state else ["-R"]))
+        self._wait_idle(timeout)
+
+    def _wait_idle(self, timeout):
         deadline = time.monotonic() + timeout
         last = ""
         while time.monotonic() < deadline:

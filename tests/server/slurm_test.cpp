@@ -78,7 +78,9 @@ TEST(SlurmClient, SbatchAsksForThreadsMemoryAndTheConfiguredLimits) {
                           "--mem=1500M", "--partition=compute", "--account=geo", "--time=2:00:00",
                           "--qos=long", "--no-requeue", "--chdir=/s/jobs/abc"})
     EXPECT_TRUE(has(arg)) << arg;
-  EXPECT_FALSE(SlurmClient(SlurmSettings{}).sbatch_command({}).empty());
+  auto whole_node = SlurmClient(SlurmSettings{}).sbatch_command({"n", "s", "d", "l", 0, 100});
+  EXPECT_NE(std::find(whole_node.begin(), whole_node.end(), "--exclusive"), whole_node.end())
+      << "threads 0 (all hardware threads) takes a whole node";
 }
 
 TEST(SlurmClient, ControllerTroubleIsTransientARefusalIsNot) {

@@ -233,6 +233,42 @@ class SlurmExecutorTest(unittest.TestCase):
         self.assertEqual(squeue(done["slurm_job_id"])[0], "TIMEOUT")
 
 
+class SlurmZLostJobTest(unittest.TestCase):
+    """Runs after SlurmExecutorTest (its servers are gone): it makes slurmctld forget
+    every job."""
+
+    def setUp(self):
+        if SKIP_REASON:
+            raise unittest.SkipTest(SKIP_REASON)
+
+    def test_a_job_slurm_lost_is_queued_again_not_left_running(self):
+        server = Server(BINARY, args=["--executor", "slurm", *POLL]).start()
+        try:
+            spec = {"name": "lost by slurm", "geometry": {"nodes_per_meter": 20},
+                    "time": {"duration": 16.0, "stop_on_arrest": False}}
+            job_id = server.submit(spec).json()["id"]
+            first = wait_for("RUNNING in SLURM", lambda: (
+                lambda j: j if (j["slurm_state"] or "").startswith("RUNNING") else None)(
+                    server.get(f"/api/v1/jobs/{job_id}").json()), 90)
+            server.kill()
+            # While the server is down the job is killed and SLURM forgets it: no report,
+            # no exit code, unknown to squeue.
+            subprocess.run(["scancel", "--signal=KILL", "--full", first["slurm_job_id"]],
+                           timeout=20, env=CLUSTER.env())
+            wait_for("the run killed", lambda: squeue(first["slurm_job_id"])[0] not in
+                     ("RUNNING", "COMPLETING"), 30)
+            CLUSTER.restart_controller(clear_state=True)
+            self.assertEqual(squeue(first["slurm_job_id"]), (None, None))
+            server.start()
+            done = server.wait_status(job_id, {"succeeded", "failed", "cancelled"}, timeout=150)
+            self.assertEqual(done["status"], "succeeded", done)
+            self.assertEqual(done["attempts"], 2, "queued again and run as a new SLURM job")
+            self.assertNotEqual(done["slurm_job_id"], first["slurm_job_id"])
+            self.assertIn("is no longer known to squeue or sacct", server.read_log())
+        finally:
+            server.cleanup()
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
     parser.add_argument("--binary", required=True)
