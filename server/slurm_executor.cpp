@@ -150,6 +150,18 @@ void SlurmExecutor::submit_from_queue(steady::time_point until) {
     } catch (const std::exception& e) {
       log_error("slurm executor: job " + *id + ": " + e.what());
       if (storage_unavailable(e)) stats_.record_storage_error(e.what());
+      auto entry = running_.find(*id);
+      if (entry && entry->user_cancelled) { // cancelled through the API meanwhile: honour it
+        try {
+          Tracked t;
+          t.id = *id;
+          t.entry = entry;
+          fail_or_cancel(t, "");
+          continue;
+        } catch (const std::exception& again) {
+          log_error("job " + *id + ": storing its cancel: " + again.what());
+        }
+      }
       running_.remove(*id);
       // Not lost: queued or running without a SLURM job in the database; put it back.
       try {
@@ -194,8 +206,14 @@ void SlurmExecutor::submit(const std::string& id) {
   }
   Tracked t{id, slurm_job_id, entry, job->attempts, "PENDING", job->started_at,
             {}, false,        0,     job->priority};
-  tracked_[id] = t; // followed even if the next write fails: the SLURM job exists
-  store_.set_slurm_job(id, slurm_job_id, "PENDING");
+  try {
+    store_.set_slurm_job(id, slurm_job_id, "PENDING");
+  } catch (const std::exception& e) { // the SLURM job exists: follow it, store its id later
+    log_error("job " + id + ": storing SLURM job " + slurm_job_id + " (tried again): " + e.what());
+    if (storage_unavailable(e)) stats_.record_storage_error(e.what());
+    t.id_stored = false;
+  }
+  tracked_[id] = t;
   log_info("job " + id + " (" + job->name + ") submitted to SLURM as job " + slurm_job_id + " (" +
            (request.cpus > 0 ? std::to_string(request.cpus) + " cpu" : std::string("whole node")) +
            ", " + std::to_string(memory_mb) + " MiB)");
@@ -242,6 +260,10 @@ void SlurmExecutor::poll() {
 }
 
 void SlurmExecutor::follow(Tracked& t, const SlurmJobState& state) {
+  if (!t.id_stored) { // throws while the storage does not answer: tried at the next poll
+    store_.set_slurm_job(t.id, t.slurm_job_id, t.state_text);
+    t.id_stored = true;
+  }
   const SlurmJobDir dir(options_.shared_dir, t.id);
   if (auto progress = dir.read_progress()) {
     {

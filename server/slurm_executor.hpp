@@ -71,8 +71,9 @@ private:
     std::string started_at;
     std::chrono::steady_clock::time_point last_db_progress{};
     bool scancel_sent = false;
-    int unseen_polls = 0; // consecutive polls in which SLURM did not know the job
-    int priority = 0;     // its queue priority, if it must be queued again
+    int unseen_polls = 0;  // consecutive polls in which SLURM did not know the job
+    int priority = 0;      // its queue priority, if it must be queued again
+    bool id_stored = true; // slurm_job_id is in the database (else stored at the next poll)
   };
 
   void loop();
