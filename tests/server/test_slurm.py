@@ -3,7 +3,8 @@ slurmd started on this machine by tests/server/slurm_cluster.py (no systemd), th
 an ephemeral loopback port with `--executor slurm`. Submit → progress → succeeded with
 metrics and a readable HDF5 file; cancel (scancel); a job cancelled outside slipfront; a
 SLURM time limit (TIMEOUT); a study whose runs go through SLURM; the server killed and
-restarted while a job is in SLURM (re-attached, not run again).
+restarted while a job is in SLURM (re-attached, not run again); a job SLURM lost and a node
+failure (NODE_FAIL), both queued again.
 
 Skips, with the reason, only where the daemons cannot start (not root, packages missing).
 
@@ -233,9 +234,9 @@ class SlurmExecutorTest(unittest.TestCase):
         self.assertEqual(squeue(done["slurm_job_id"])[0], "TIMEOUT")
 
 
-class SlurmZLostJobTest(unittest.TestCase):
-    """Runs after SlurmExecutorTest (its servers are gone): it makes slurmctld forget
-    every job."""
+class SlurmZNodeTroubleTest(unittest.TestCase):
+    """Runs after SlurmExecutorTest (its servers are gone): these take the node down and
+    make slurmctld forget every job."""
 
     def setUp(self):
         if SKIP_REASON:
@@ -265,6 +266,29 @@ class SlurmZLostJobTest(unittest.TestCase):
             self.assertEqual(done["attempts"], 2, "queued again and run as a new SLURM job")
             self.assertNotEqual(done["slurm_job_id"], first["slurm_job_id"])
             self.assertIn("is no longer known to squeue or sacct", server.read_log())
+        finally:
+            server.cleanup()
+
+    def test_node_failure_queues_the_job_again(self):
+        server = Server(BINARY, args=["--executor", "slurm", *POLL]).start()
+        try:
+            spec = {"name": "its node fails", "geometry": {"nodes_per_meter": 20},
+                    "time": {"duration": 16.0, "stop_on_arrest": False}}
+            job_id = server.submit(spec).json()["id"]
+            first = wait_for("RUNNING in SLURM", lambda: (
+                lambda j: j if (j["slurm_state"] or "").startswith("RUNNING") else None)(
+                    server.get(f"/api/v1/jobs/{job_id}").json()), 90)
+            # The node goes DOWN under the job: SLURM ends it NODE_FAIL (ReturnToService=2
+            # brings the node back as soon as its slurmd answers).
+            subprocess.run(["scontrol", "update", f"nodename={CLUSTER.node}", "state=down",
+                            "reason=slipfront-test"], check=True, timeout=20, env=CLUSTER.env())
+            self.assertEqual(wait_for("NODE_FAIL", lambda: squeue(first["slurm_job_id"])[0] ==
+                                      "NODE_FAIL", 30), True)
+            done = server.wait_status(job_id, {"succeeded", "failed", "cancelled"}, timeout=150)
+            self.assertEqual(done["status"], "succeeded", done)
+            self.assertEqual(done["attempts"], 2, "queued again after NODE_FAIL")
+            self.assertNotEqual(done["slurm_job_id"], first["slurm_job_id"])
+            self.assertIn("ended NODE_FAIL: its node failed", server.read_log())
         finally:
             server.cleanup()
 
