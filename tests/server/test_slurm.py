@@ -210,12 +210,15 @@ class SlurmExecutorTest(unittest.TestCase):
             before = wait_for("progress in SLURM", lambda: (
                 lambda j: j if j["progress"]["fraction"] > 0 else None)(self.job(job_id, server)),
                 90)
-            server.kill()  # SIGKILL: nothing relies on a clean stop
+            # SIGTERM (a stop, an upgrade): exit 0, the job left running in SLURM.
+            self.assertEqual(server.terminate(), 0)
             self.assertEqual(squeue(before["slurm_job_id"])[0], "RUNNING")
             server.start()
             after = self.job(job_id, server)
             self.assertEqual(after["status"], "running")
             self.assertEqual(after["slurm_job_id"], before["slurm_job_id"])
+            server.kill()  # then SIGKILL: nothing relies on a clean stop either
+            server.start()
             done = server.wait_status(job_id, {"succeeded", "failed", "cancelled"}, timeout=120)
             self.assertEqual(done["status"], "succeeded", done)
             self.assertEqual(done["attempts"], 1, "re-attached, not run again")
