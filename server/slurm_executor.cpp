@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <set>
 
 namespace slipfront::server {
 
