@@ -147,6 +147,7 @@ class SlurmExecutorTest(unittest.TestCase):
         done = self.server.wait_status(job_id, {"succeeded", "failed", "cancelled"}, timeout=120)
         self.assertEqual(done["status"], "succeeded", done)
         self.assertEqual(done["attempts"], 1)
+        self.assertEqual(done["host"], CLUSTER.node, "the compute node it ran on")
         self.assertEqual(done["progress"]["fraction"], 1.0)
         self.assertIn(done["metrics"]["outcome"], {"arrested", "running_at_end"})
         self.assertGreater(done["metrics"]["steps"], 0)
