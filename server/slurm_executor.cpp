@@ -1,6 +1,7 @@
 #include "server/slurm_executor.hpp"
 
 #include "api/job_spec.hpp"
+#include "server/child_process.hpp"
 #include "server/clock.hpp"
 #include "server/log.hpp"
 #include "server/worker_pool.hpp"
@@ -79,6 +80,16 @@ void SlurmExecutor::start() {
   if (ec)
     throw std::runtime_error("--shared-dir: cannot create " + options_.shared_dir +
                              "/jobs: " + ec.message());
+  // A server that cannot submit should say so at start, not job by job.
+  for (const char* tool : {"sbatch", "squeue", "scancel"}) {
+    try {
+      run_program({tool, "--version"}, options_.slurm.command_timeout_s);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("--executor slurm: ") + e.what() +
+                               " (install SLURM's client commands and put them in PATH; "
+                               "docs/cluster.md)");
+    }
+  }
   for (const Job& job : store_.running_slurm_jobs()) {
     Tracked t;
     t.id = job.id;
@@ -190,17 +201,21 @@ void SlurmExecutor::submit(const std::string& id) {
   SbatchRequest request{"slipfront-" + id, dir.script(),      dir.path(),
                         dir.log(),         job_threads(*job), memory_mb};
   std::string slurm_job_id;
+  Tracked unsent{id, "", entry, job->attempts, "", job->started_at, {}, false, 0, job->priority};
   try {
     dir.prepare(*job, options_.binary, static_cast<double>(memory_mb) * 1024.0 * 1024.0);
+  } catch (const std::exception& e) {
+    fail_or_cancel(unsent, "preparing the job's files in --shared-dir: " + std::string(e.what()));
+    return;
+  }
+  try {
     slurm_job_id = client_.submit(request);
   } catch (const SlurmError& e) {
     if (e.transient()) throw; // put back in the queue; submissions pause a few seconds
-    Tracked t{id, "", entry, job->attempts, "", job->started_at, {}, false, 0, job->priority};
-    fail_or_cancel(t, "SLURM refused the job: " + std::string(e.what()));
+    fail_or_cancel(unsent, "SLURM refused the job: " + std::string(e.what()));
     return;
-  } catch (const std::exception& e) {
-    Tracked t{id, "", entry, job->attempts, "", job->started_at, {}, false, 0, job->priority};
-    fail_or_cancel(t, "preparing the job's files in --shared-dir: " + std::string(e.what()));
+  } catch (const std::exception& e) { // sbatch could not be started at all
+    fail_or_cancel(unsent, "submitting to SLURM: " + std::string(e.what()));
     return;
   }
   Tracked t{id, slurm_job_id, entry, job->attempts, "PENDING", job->started_at,

@@ -243,6 +243,25 @@ class SlurmExecutorTest(unittest.TestCase):
         self.assertEqual(squeue(done["slurm_job_id"])[0], "TIMEOUT")
 
 
+class SlurmCommandsMissingTest(unittest.TestCase):
+    """Needs no cluster: a server told to use SLURM where sbatch is not found refuses to
+    start, saying so."""
+
+    def test_server_refuses_to_start_without_sbatch(self):
+        saved = os.environ["PATH"]
+        os.environ["PATH"] = tempfile.mkdtemp(prefix="slipfront-empty-path-")
+        server = Server(BINARY, args=["--executor", "slurm"], startup_timeout=10)
+        try:
+            with self.assertRaises(RuntimeError):
+                server.start()
+            log = server.read_log()
+            self.assertIn("--executor slurm: cannot run sbatch", log)
+            self.assertIn("docs/cluster.md", log)
+        finally:
+            os.environ["PATH"] = saved
+            server.cleanup()
+
+
 class SlurmZNodeTroubleTest(unittest.TestCase):
     """Runs after SlurmExecutorTest (its servers are gone): these take the node down and
     make slurmctld forget every job."""
