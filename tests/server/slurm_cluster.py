@@ -79,13 +79,11 @@ class SingleHostCluster:
 
     # -- start / stop -------------------------------------------------------------------
     def start(self, timeout=30.0):
-        if os.geteuid() != 0:
-            raise ClusterUnavailable("a single-host SLURM needs root (slurmd runs jobs as "
-                                     "their user); run the tests as root")
-        for tool in ("munged", "slurmctld", "slurmd", "sbatch", "squeue", "scancel", "scontrol"):
-            if shutil.which(tool) is None and not os.path.exists("/usr/sbin/" + tool):
-                raise ClusterUnavailable(f"{tool} not found: install Debian's slurm-wlm and "
-                                         "munge (bash scripts/setup.sh)")
+        try:
+            self._check_tools()
+        except ClusterUnavailable:
+            self.stop()  # removes the temporary directory
+            raise
         for sub in ("munge", "log", "state", "spool", "run"):
             os.makedirs(self.path(sub), exist_ok=True)
         os.chmod(self.path("munge"), 0o700)
@@ -97,6 +95,15 @@ class SingleHostCluster:
             self.stop()
             raise
         return self
+
+    def _check_tools(self):
+        if os.geteuid() != 0:
+            raise ClusterUnavailable("a single-host SLURM needs root (slurmd runs jobs as "
+                                     "their user); run the tests as root")
+        for tool in ("munged", "slurmctld", "slurmd", "sbatch", "squeue", "scancel", "scontrol"):
+            if shutil.which(tool) is None and not os.path.exists("/usr/sbin/" + tool):
+                raise ClusterUnavailable(f"{tool} not found: install Debian's slurm-wlm and "
+                                         "munge (bash scripts/setup.sh)")
 
     def _sbin(self, name):
         return shutil.which(name) or "/usr/sbin/" + name
