@@ -1,8 +1,10 @@
-// `slipfront run JOB.json [--output RESULT.h5] [--threads N] [--max-memory SIZE] [--quiet]`
+// `slipfront run JOB.json [--output RESULT.h5] [--threads N] [--max-memory SIZE] [--quiet]
+//                        [--progress-file F] [--report-file F]`
 #include "app/commands.hpp"
 #include "app/job_input.hpp"
 #include "app/progress_display.hpp"
 
+#include "api/run_files.hpp"
 #include "api/run_job.hpp"
 
 #include <unistd.h>
@@ -38,6 +40,8 @@ struct RunOptions {
   std::optional<int> threads;
   api::ValidationLimits limits;
   bool quiet = false;
+  std::string progress_path; // rewritten at every progress callback (api/run_files.hpp)
+  std::string report_path;   // written once the run has a result (or diverged)
 };
 
 // Parses the arguments; prints the problem and returns nothing if they are wrong.
@@ -66,6 +70,10 @@ std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
         return std::nullopt;
       }
       options.limits.max_memory_bytes = *bytes;
+    } else if (arg == "--progress-file" && has_value) {
+      options.progress_path = args[++i];
+    } else if (arg == "--report-file" && has_value) {
+      options.report_path = args[++i];
     } else if (arg == "--quiet") {
       options.quiet = true;
     } else if ((arg.starts_with("-") && arg != "-") || have_job) {
@@ -95,7 +103,19 @@ int run_command(const std::vector<std::string>& args) {
   ProgressDisplay display(std::cerr, ::isatty(STDERR_FILENO) == 1);
   RunHooks hooks;
   hooks.cancel = &interrupted;
-  if (!options->quiet) hooks.on_progress = [&](const Progress& p) { display.update(p); };
+  std::string progress_error; // reported once: the run goes on without the file
+  hooks.on_progress = [&](const Progress& p) {
+    if (!options->quiet) display.update(p);
+    if (options->progress_path.empty()) return;
+    try {
+      api::write_json_atomically(options->progress_path, api::progress_json(p), false);
+    } catch (const std::exception& e) {
+      if (progress_error.empty()) {
+        progress_error = e.what();
+        std::cerr << "slipfront run: progress file: " << progress_error << '\n';
+      }
+    }
+  };
   install_sigint_handler();
 
   api::JobOutput output;
@@ -112,6 +132,15 @@ int run_command(const std::vector<std::string>& args) {
     std::cerr << "slipfront run: interrupted at t = " << output.result.metrics.simulated_time
               << " s; no result file written\n";
     return exit_code::interrupted;
+  }
+
+  if (!options->report_path.empty()) {
+    try {
+      api::write_json_atomically(options->report_path, api::run_report_json(output));
+    } catch (const std::exception& e) {
+      std::cerr << "slipfront run: report file: " << e.what() << '\n';
+      return exit_code::failure;
+    }
   }
 
   nlohmann::json printed = output.metrics;

@@ -9,8 +9,12 @@ void print_usage(std::ostream& out) {
 
 usage:
   slipfront run JOB.json [--output RESULT.h5] [--threads N] [--max-memory SIZE] [--quiet]
+                [--progress-file F] [--report-file F]
       Run one job in the foreground; progress on stderr, the metrics as one JSON object
       on stdout. JOB.json may be "-" to read the job from standard input.
+      --progress-file rewrites F (JSON: fraction, time, duration, steps, eta_s) about
+      twice a second; --report-file writes F at the end (metrics, front, result file):
+      what the server's SLURM executor follows (docs/cluster.md).
   slipfront validate JOB.json [--max-memory SIZE]
       Check a job: prints "ok", its spec hash and memory estimate, or every error.
   --max-memory SIZE refuses a job whose memory estimate is above SIZE (bytes, or with a

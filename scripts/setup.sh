@@ -12,6 +12,7 @@ packages=(
   libhdf5-dev hdf5-tools libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-requests
   curl wrk clang-format pyflakes3
+  slurm-wlm munge
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -90,6 +90,9 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["attempts"] = job.attempts;
   j["scene_hash"] = text_or_null(job.scene_hash);
   j["study_id"] = text_or_null(job.study_id);
+  j["executor"] = text_or_null(job.executor);
+  j["slurm_job_id"] = text_or_null(job.slurm_job_id);
+  j["slurm_state"] = text_or_null(job.slurm_state);
   j["links"] = {{"self", "/api/v1/jobs/" + job.id},
                 {"metrics", "/api/v1/jobs/" + job.id + "/metrics"},
                 {"front", "/api/v1/jobs/" + job.id + "/front"},

@@ -61,10 +61,13 @@ struct Job {
   std::string code_version;
   std::string host;
   ResultFile result;
-  std::string cached_from; // id of the job whose result this one reuses
-  int attempts = 0;        // how many times a worker started it
-  std::string scene_hash;  // api::scene_hash of the spec: the convergence map it belongs to
-  std::string study_id;    // the study that submitted it; "" = none
+  std::string cached_from;  // id of the job whose result this one reuses
+  int attempts = 0;         // how many times a worker started it
+  std::string scene_hash;   // api::scene_hash of the spec: the convergence map it belongs to
+  std::string study_id;     // the study that submitted it; "" = none
+  std::string executor;     // "local" or "slurm" once started; "" = not yet
+  std::string slurm_job_id; // its SLURM job while it runs in SLURM (and after); "" = none
+  std::string slurm_state;  // last SLURM state seen, with the reason: "PENDING (Resources)"
 };
 
 // The job as the API shows it. `fields` (if not empty) keeps only these top-level keys

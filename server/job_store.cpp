@@ -158,6 +158,14 @@ ALTER TABLE studies_v4 RENAME TO studies;
 CREATE INDEX studies_scene_hash ON studies (scene_hash);
 CREATE INDEX studies_status ON studies (status);
 )sql",
+      // 4 -> 5: the executor that ran (or runs) a job, and its SLURM job while it is in
+      // SLURM: the server re-attaches to it after a restart instead of running it again.
+      R"sql(
+ALTER TABLE jobs ADD COLUMN executor TEXT;
+ALTER TABLE jobs ADD COLUMN slurm_job_id TEXT;
+ALTER TABLE jobs ADD COLUMN slurm_state TEXT;
+CREATE INDEX jobs_slurm ON jobs (status, slurm_job_id);
+)sql",
   };
   return migrations;
 }
@@ -170,7 +178,8 @@ const char* job_columns =
     "j.started_at, j.finished_at, j.progress_fraction, j.progress_time, j.progress_duration, "
     "j.progress_steps, j.progress_eta_s, j.progress_updated_at, j.error, j.wall_time_s, "
     "j.code_version, j.host, j.result_path, j.result_size, j.result_sha256, j.cached_from, "
-    "j.attempts, m.metrics_json, j.scene_hash, j.study_id";
+    "j.attempts, m.metrics_json, j.scene_hash, j.study_id, j.executor, j.slurm_job_id, "
+    "j.slurm_state";
 
 const char* job_from = " FROM jobs j LEFT JOIN metrics m ON m.job_id = j.id ";
 
@@ -213,6 +222,9 @@ Job read_job(const Statement& s) {
   job.metrics = parse_stored_json(s.text(32), "metrics of job " + job.id);
   job.scene_hash = s.text(33);
   job.study_id = s.text(34);
+  job.executor = s.text(35);
+  job.slurm_job_id = s.text(36);
+  job.slurm_state = s.text(37);
   return job;
 }
 
@@ -426,13 +438,48 @@ std::optional<Job> JobStore::find_reusable(const std::string& spec_sha256,
 }
 
 bool JobStore::mark_running(const std::string& id, const std::string& started_at,
-                            const std::string& host, const std::string& code_version) {
+                            const std::string& host, const std::string& code_version,
+                            const std::string& executor) {
   std::lock_guard lock(mutex_);
   auto s = db_.prepare("UPDATE jobs SET status = 'running', started_at = ?2, host = ?3, "
-                       "code_version = ?4, attempts = attempts + 1, progress_updated_at = ?2 "
+                       "code_version = ?4, attempts = attempts + 1, progress_updated_at = ?2, "
+                       "executor = ?5, slurm_job_id = NULL, slurm_state = NULL "
                        "WHERE id = ?1 AND status = 'queued'");
-  s.bind(1, id).bind(2, started_at).bind(3, host).bind(4, code_version).run();
+  s.bind(1, id).bind(2, started_at).bind(3, host).bind(4, code_version).bind(5, executor).run();
   return s.changes() == 1;
+}
+
+bool JobStore::set_slurm_job(const std::string& id, const std::string& slurm_job_id,
+                             const std::string& slurm_state) {
+  std::lock_guard lock(mutex_);
+  auto s = db_.prepare("UPDATE jobs SET slurm_job_id = ?2, slurm_state = ?3 "
+                       "WHERE id = ?1 AND status = 'running'");
+  s.bind(1, id).bind(2, slurm_job_id).bind(3, slurm_state).run();
+  return s.changes() == 1;
+}
+
+void JobStore::update_slurm_state(const std::string& id, const std::string& slurm_state,
+                                  const std::string& host) {
+  std::lock_guard lock(mutex_);
+  auto s = db_.prepare("UPDATE jobs SET slurm_state = ?2, host = COALESCE(?3, host) "
+                       "WHERE id = ?1 AND status = 'running'");
+  s.bind(1, id).bind(2, slurm_state);
+  if (host.empty())
+    s.bind_null(3);
+  else
+    s.bind(3, host);
+  s.run();
+}
+
+std::vector<Job> JobStore::running_slurm_jobs() {
+  std::lock_guard lock(mutex_);
+  auto s = db_.prepare(std::string("SELECT ") + job_columns + job_from +
+                       "WHERE j.status = 'running' AND j.slurm_job_id IS NOT NULL "
+                       "ORDER BY j.seq ASC");
+  std::vector<Job> jobs;
+  while (s.step())
+    jobs.push_back(read_job(s));
+  return jobs;
 }
 
 void JobStore::update_progress(const std::string& id, const JobProgress& p) {
@@ -526,7 +573,8 @@ bool JobStore::cancel_queued(const std::string& id, const std::string& finished_
 namespace {
 const char* requeue_set = "UPDATE jobs SET status = 'queued', started_at = NULL, "
                           "progress_fraction = 0, progress_time = 0, progress_steps = 0, "
-                          "progress_eta_s = NULL, progress_updated_at = NULL ";
+                          "progress_eta_s = NULL, progress_updated_at = NULL, "
+                          "slurm_job_id = NULL, slurm_state = NULL ";
 }
 
 bool JobStore::requeue(const std::string& id) {
@@ -536,9 +584,10 @@ bool JobStore::requeue(const std::string& id) {
   return s.changes() == 1;
 }
 
-int JobStore::requeue_all_running() {
+int JobStore::requeue_all_running(bool keep_slurm_jobs) {
   std::lock_guard lock(mutex_);
-  auto s = db_.prepare(std::string(requeue_set) + "WHERE status = 'running'");
+  auto s = db_.prepare(std::string(requeue_set) + "WHERE status = 'running'" +
+                       (keep_slurm_jobs ? " AND slurm_job_id IS NULL" : ""));
   s.run();
   return s.changes();
 }

@@ -52,7 +52,7 @@ struct RunRecord {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 4;
+  static constexpr int schema_version = 5;
 
   // Refuses (throws) a zero-length database file and, unless `integrity_check` is false, a
   // database that fails PRAGMA quick_check: the server must not start on a damaged file.
@@ -68,9 +68,18 @@ public:
   // The newest succeeded job with this physics hash and code version that has a result.
   std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version);
 
-  // queued -> running (attempts + 1). False if the job is no longer queued.
+  // queued -> running (attempts + 1) on `executor` ("local" or "slurm"). False if the job
+  // is no longer queued.
   bool mark_running(const std::string& id, const std::string& started_at, const std::string& host,
-                    const std::string& code_version);
+                    const std::string& code_version, const std::string& executor = "local");
+  // The SLURM job of a running job (stored as soon as sbatch answers) and its last seen
+  // SLURM state ("PENDING (Resources)", "RUNNING"); `host` "" keeps the stored host.
+  bool set_slurm_job(const std::string& id, const std::string& slurm_job_id,
+                     const std::string& slurm_state);
+  void update_slurm_state(const std::string& id, const std::string& slurm_state,
+                          const std::string& host);
+  // Running jobs that have a SLURM job: what the SLURM executor re-attaches to at start-up.
+  std::vector<Job> running_slurm_jobs();
   void update_progress(const std::string& id, const JobProgress& progress);
   // running -> final status, with the metrics row. False if the job was not running.
   bool finish(const std::string& id, const RunRecord& record);
@@ -78,8 +87,9 @@ public:
   bool cancel_queued(const std::string& id, const std::string& finished_at);
   // running -> queued: only for drain (SIGTERM) and crash recovery. False if not running.
   bool requeue(const std::string& id);
-  // Crash recovery at start-up: every running job goes back to queued. Returns the count.
-  int requeue_all_running();
+  // Crash recovery at start-up: every running job goes back to queued (with
+  // `keep_slurm_jobs`, except those with a SLURM job: they are re-attached). Returns the count.
+  int requeue_all_running(bool keep_slurm_jobs = false);
   // Queued jobs in run order: priority (high first), then submission order.
   std::vector<Job> queued_jobs();
 

@@ -76,6 +76,9 @@ const char* document = R"json({
         "cached_from": {"type": "string", "nullable": true},
         "memory_estimate_bytes": {"type": "number"}, "attempts": {"type": "integer"},
         "scene_hash": {"type": "string", "nullable": true}, "study_id": {"type": "string", "nullable": true},
+        "executor": {"type": "string", "nullable": true, "enum": ["local", "slurm", null], "description": "where it ran (null until it started)"},
+        "slurm_job_id": {"type": "string", "nullable": true, "description": "its SLURM job (executor slurm)"},
+        "slurm_state": {"type": "string", "nullable": true, "description": "last SLURM state seen, with the reason: PENDING (Resources), RUNNING on node7, TIMEOUT (TimeLimit)"},
         "links": {"type": "object"}}}
     },
     "responses": {

@@ -42,6 +42,7 @@ nlohmann::json storage_health(ServerContext& ctx, bool& degraded) {
 Response healthz(ServerContext& ctx, RequestContext& rc) {
   nlohmann::json body = {{"status", ctx.draining ? "draining" : "ok"},
                          {"code_version", ctx.service.options().code_version},
+                         {"executor", ctx.executor},
                          {"workers", ctx.workers},
                          {"running", ctx.running.size()},
                          {"queue_depth", ctx.queue.size()},

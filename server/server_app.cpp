@@ -9,6 +9,7 @@
 #include <sys/resource.h>
 
 #include <filesystem>
+#include <sstream>
 
 namespace slipfront::server {
 
@@ -56,13 +57,22 @@ void ServerApp::start() {
     throw std::runtime_error("cannot create data dir " + config_.data_dir +
                              "/results: " + ec.message());
   config_.data_dir = fs::canonical(config_.data_dir).string();
+  if (config_.executor == "slurm") {
+    if (config_.shared_dir.empty()) config_.shared_dir = config_.data_dir + "/slurm";
+    fs::create_directories(config_.shared_dir, ec);
+    if (ec) throw std::runtime_error("--shared-dir " + config_.shared_dir + ": " + ec.message());
+    config_.shared_dir = fs::canonical(config_.shared_dir).string();
+    if (config_.slurm_binary.empty())
+      config_.slurm_binary = fs::read_symlink("/proc/self/exe").string();
+  }
   // Before anything reads or recovers the directory's jobs.
   data_dir_lock_ = std::make_unique<DataDirLock>(config_.data_dir);
   if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
 
   store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db", config_.integrity_check);
   queue_ = std::make_unique<JobQueue>(config_.queue_limit);
-  int recovered = store_->requeue_all_running();
+  const bool slurm = config_.executor == "slurm";
+  int recovered = store_->requeue_all_running(slurm);
   if (recovered > 0)
     log_info("recovery: " + std::to_string(recovered) +
              " job(s) left running by the last process are queued again");
@@ -93,11 +103,15 @@ void ServerApp::start() {
   studies_ = std::make_unique<StudyService>(*study_store_, *service_, *queue_, *supervisor_);
   wo.on_finished = [this](const std::string& id) { supervisor_->job_finished(id); };
   service_->set_on_cancelled([this](const std::string& id) { supervisor_->job_finished(id); });
-  pool_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
+  if (slurm)
+    executor_ = std::make_unique<SlurmExecutor>(slurm_options(wo.on_finished), *store_, *queue_,
+                                                running_, stats_);
+  else
+    executor_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
 
-  context_.reset(new ServerContext{*service_, *store_, *queue_, running_, stats_, tokens_,
-                                   config_.data_dir, config_.workers, config_.retry_after_s,
-                                   draining_, *studies_, config_.min_free_bytes});
+  context_.reset(new ServerContext{
+      *service_, *store_, *queue_, running_, stats_, tokens_, config_.data_dir, executor_->slots(),
+      config_.retry_after_s, draining_, *studies_, config_.min_free_bytes, executor_->name()});
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
     stats_.record_storage_error(what);
   });
@@ -120,7 +134,7 @@ void ServerApp::start() {
       stats_, limits);
 
   supervisor_->start(); // resumes every study left running
-  pool_->start();
+  executor_->start();
   listener_->run();
   work_.emplace(ioc_.get_executor());
   for (int i = 0; i < config_.io_threads; ++i)
@@ -134,11 +148,34 @@ void ServerApp::start() {
         }
       }
     });
-  log_info("slipfront " + code_version_ + ": " + std::to_string(config_.workers) +
-           " worker(s), data dir " + config_.data_dir + ", " + std::to_string(queued.size()) +
+  log_info("slipfront " + code_version_ + ": " +
+           (slurm ? "slurm executor (up to " + std::to_string(executor_->slots()) +
+                        " jobs in SLURM, shared dir " + config_.shared_dir + ")"
+                  : std::to_string(config_.workers) + " worker(s)") +
+           ", data dir " + config_.data_dir + ", " + std::to_string(queued.size()) +
            " job(s) queued, memory limit per job " +
            std::to_string(static_cast<long long>(config_.max_memory_bytes)) + " bytes" +
            (tokens_ ? ", " + std::to_string(tokens_->size()) + " token(s)" : ", no auth"));
+}
+
+SlurmExecutorOptions
+ServerApp::slurm_options(std::function<void(const std::string&)> on_finished) const {
+  SlurmExecutorOptions so;
+  so.slurm.partition = config_.slurm_partition;
+  so.slurm.account = config_.slurm_account;
+  so.slurm.time_limit = config_.slurm_time_limit;
+  std::istringstream args(config_.slurm_sbatch_args);
+  for (std::string arg; args >> arg;)
+    so.slurm.extra_sbatch_args.push_back(arg);
+  so.shared_dir = config_.shared_dir;
+  so.data_dir = config_.data_dir;
+  so.binary = config_.slurm_binary;
+  so.code_version = code_version_;
+  so.max_jobs = config_.slurm_max_jobs;
+  so.poll_interval_s = config_.slurm_poll_interval_s;
+  so.db_progress_interval_s = config_.db_progress_interval_s;
+  so.on_finished = std::move(on_finished);
+  return so;
 }
 
 void ServerApp::reload_tokens() {
@@ -177,7 +214,8 @@ void ServerApp::shutdown() {
   draining_ = true;
   log_info("shutting down: no new connections; running jobs stop and are queued again");
   if (listener_) listener_->stop();
-  if (pool_) pool_->drain(); // each running job stops at its next step
+  // Local: each running job stops at its next step. SLURM: the jobs stay in SLURM.
+  if (executor_) executor_->drain();
   if (supervisor_) supervisor_->stop();
   work_.reset();
   ioc_.stop();
@@ -185,7 +223,7 @@ void ServerApp::shutdown() {
     if (t.joinable()) t.join();
   io_threads_.clear();
   if (offload_pool_) offload_pool_->join(); // listings in flight finish; their answers are dropped
-  pool_.reset();
+  executor_.reset();
   studies_.reset();
   supervisor_.reset();
   study_store_.reset();

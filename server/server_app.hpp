@@ -2,7 +2,8 @@
 // tests may build one with another JobRunner.
 //
 // start(): lock the data dir (DataDirLock: one server per directory), open (and migrate) the
-// database, re-queue jobs a crash left running, queue every queued job, start the workers, bind the
+// database, re-queue jobs a crash left running (with the SLURM executor: those not in SLURM;
+// it re-attaches to the others), queue every queued job, start the executor, bind the
 // listener. shutdown(): stop accepting, stop the running jobs at their next step and put them back
 // to queued, close the database.
 #pragma once
@@ -19,6 +20,7 @@
 #include "server/running_jobs.hpp"
 #include "server/server_config.hpp"
 #include "server/server_stats.hpp"
+#include "server/slurm_executor.hpp"
 #include "server/study_service.hpp"
 #include "server/study_store.hpp"
 #include "server/study_supervisor.hpp"
@@ -30,6 +32,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -57,6 +60,8 @@ public:
   const Router& router() const { return router_; }
 
 private:
+  SlurmExecutorOptions slurm_options(std::function<void(const std::string&)> on_finished) const;
+
   ServerConfig config_;
   std::string code_version_;
   std::unique_ptr<JobRunner> runner_;
@@ -71,7 +76,7 @@ private:
   std::unique_ptr<StudyStore> study_store_;
   std::unique_ptr<StudySupervisor> supervisor_;
   std::unique_ptr<StudyService> studies_;
-  std::unique_ptr<WorkerPool> pool_;
+  std::unique_ptr<Executor> executor_; // WorkerPool or SlurmExecutor (--executor)
   std::unique_ptr<ServerContext> context_;
   Router router_;
   boost::asio::io_context ioc_;

@@ -19,6 +19,9 @@ std::string usage_text() {
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
          "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
          "         [--integrity-check on|off]\n"
+         "         [--executor local|slurm] [--shared-dir DIR] [--slurm-partition P]\n"
+         "         [--slurm-account A] [--slurm-time-limit T] [--slurm-sbatch-args ARGS]\n"
+         "         [--slurm-binary PATH] [--slurm-max-jobs N] [--slurm-poll-interval-s S]\n"
          "see docs/server.md\n";
 }
 
@@ -94,6 +97,33 @@ const std::map<std::string, Setter>& setters() {
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          c.max_connections = parse_number<int>(f, v);
          if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
+       }},
+      {"executor",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         if (v != "local" && v != "slurm") throw UsageError(f + ": must be local or slurm");
+         c.executor = v;
+       }},
+      {"shared-dir",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.shared_dir = v; }},
+      {"slurm-partition",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_partition = v; }},
+      {"slurm-account",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_account = v; }},
+      {"slurm-time-limit",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_time_limit = v; }},
+      {"slurm-sbatch-args",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_sbatch_args = v; }},
+      {"slurm-binary",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_binary = v; }},
+      {"slurm-max-jobs",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.slurm_max_jobs = parse_number<int>(f, v);
+         if (c.slurm_max_jobs < 1) throw UsageError(f + ": must be >= 1");
+       }},
+      {"slurm-poll-interval-s",
+       [](ServerConfig& c, const std::string& f, const std::string& v) {
+         c.slurm_poll_interval_s = parse_number<double>(f, v);
+         if (!(c.slurm_poll_interval_s >= 0.05)) throw UsageError(f + ": must be >= 0.05");
        }},
       {"integrity-check",
        [](ServerConfig& c, const std::string& f, const std::string& v) {

@@ -24,6 +24,17 @@ struct ServerConfig {
   double min_free_bytes = 64.0 * 1024 * 1024; // /healthz is degraded below this free space
   bool integrity_check = true;                // PRAGMA quick_check of the database at start
   int max_connections = 256; // open connections; more are answered 503 and closed at once
+
+  // Where jobs run (docs/cluster.md): "local" (worker threads) or "slurm" (sbatch).
+  std::string executor = "local";
+  std::string shared_dir;       // slurm: job files, seen by the compute nodes ("" = data dir/slurm)
+  std::string slurm_partition;  // "" = the cluster's default
+  std::string slurm_account;    // "" = the user's default
+  std::string slurm_time_limit; // sbatch --time ("" = the partition's default)
+  std::string slurm_sbatch_args;      // more sbatch options, separated by spaces
+  std::string slurm_binary;           // slipfront on the compute nodes ("" = this executable)
+  int slurm_max_jobs = 100;           // jobs kept in SLURM at once
+  double slurm_poll_interval_s = 2.0; // squeue and progress files
 };
 
 class UsageError : public std::runtime_error {

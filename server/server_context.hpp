@@ -23,11 +23,12 @@ struct ServerContext {
   ServerStats& stats;
   const std::optional<TokenTable>& tokens;
   std::string data_dir;
-  int workers = 1;
+  int workers = 1; // the executor's slots: worker threads, or jobs kept in SLURM
   int retry_after_s = 30;
   std::atomic<bool>& draining;
   StudyService& studies;
-  double min_free_bytes = 0.0; // /healthz: degraded below this free space in data_dir
+  double min_free_bytes = 0.0;    // /healthz: degraded below this free space in data_dir
+  std::string executor = "local"; // "local" or "slurm"
 };
 
 } // namespace slipfront::server

@@ -6,6 +6,7 @@
 // queued, to be run again from the start by the next server process.
 #pragma once
 
+#include "server/executor.hpp"
 #include "server/job_queue.hpp"
 #include "server/job_runner.hpp"
 #include "server/job_store.hpp"
@@ -33,17 +34,19 @@ struct WorkerOptions {
   std::function<void(const std::string& id)> on_finished;
 };
 
-class WorkerPool {
+class WorkerPool : public Executor {
 public:
   WorkerPool(WorkerOptions options, JobStore& store, JobQueue& queue, JobRunner& runner,
              RunningJobs& running, ServerStats& stats);
-  ~WorkerPool();
+  ~WorkerPool() override;
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
-  void start();
+  const char* name() const override { return "local"; }
+  void start() override;
   // Stop taking jobs, stop the running ones at a safe point, re-queue them, join.
-  void drain();
+  void drain() override;
+  int slots() const override { return options_.workers; }
   int workers() const { return options_.workers; }
 
   // data_dir-relative path of a job's result file.

@@ -100,7 +100,7 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
     EXPECT_THROW(raw.exec("UPDATE studies SET status = 'cancelled'"), std::exception);
   }
   JobStore jobs(path);
-  EXPECT_EQ(jobs.user_version(), 4);
+  EXPECT_EQ(jobs.user_version(), JobStore::schema_version);
   StudyStore studies(jobs);
   auto study = studies.get(study_id);
   ASSERT_TRUE(study);
