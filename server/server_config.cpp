@@ -18,7 +18,7 @@ std::string usage_text() {
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
          "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
-         "         [--integrity-check on|off]\n"
+         "         [--integrity-check on|off] [--web-dir DIR]\n"
          "see docs/server.md\n";
 }
 
@@ -95,6 +95,7 @@ const std::map<std::string, Setter>& setters() {
          c.max_connections = parse_number<int>(f, v);
          if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
        }},
+      {"web-dir", [](ServerConfig& c, const std::string&, const std::string& v) { c.web_dir = v; }},
       {"integrity-check",
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          if (v == "on" || v == "true")

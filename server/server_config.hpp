@@ -24,6 +24,7 @@ struct ServerConfig {
   double min_free_bytes = 64.0 * 1024 * 1024; // /healthz is degraded below this free space
   bool integrity_check = true;                // PRAGMA quick_check of the database at start
   int max_connections = 256; // open connections; more are answered 503 and closed at once
+  std::string web_dir;       // the web view's files; "" = beside the executable (docs/web.md)
 };
 
 class UsageError : public std::runtime_error {
