@@ -53,7 +53,8 @@ std::string StaticFiles::default_dir() {
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return "";
   const fs::path base = exe.parent_path();
-  for (const auto& candidate : {base / "web", base / ".." / "share" / "slipfront" / "web"})
+  for (const auto& candidate :
+       {base / "share" / "slipfront" / "web", base / ".." / "share" / "slipfront" / "web"})
     if (fs::is_regular_file(candidate / "index.html", ec)) return fs::canonical(candidate, ec);
   return "";
 }
@@ -120,14 +121,17 @@ void add_static_routes(Router& router, std::shared_ptr<const StaticFiles> files)
   router.add(http::verb::get, "/index.html", serve("index.html"));
   router.add(http::verb::get, "/api-docs", serve("api-docs.html"));
   // One to three segments below /app and /vendor: the router matches whole segments.
+  static const std::string segment[] = {"p1", "p2", "p3"};
   for (const std::string top : {"app", "vendor"}) {
     std::string pattern = "/" + top;
     for (int depth = 1; depth <= 3; ++depth) {
-      pattern += "/{p" + std::to_string(depth) + "}";
+      pattern.append("/{").append(segment[depth - 1]).append("}");
       router.add(http::verb::get, pattern, [files, top, depth](RequestContext& rc) {
         std::string rel = top;
-        for (int i = 1; i <= depth; ++i)
-          rel += "/" + rc.path_params.at("p" + std::to_string(i));
+        for (int i = 0; i < depth; ++i) {
+          rel.push_back('/');
+          rel.append(rc.path_params.at(segment[i]));
+        }
         return files->serve(rc.request, rel);
       });
     }

@@ -16,8 +16,8 @@ public:
   // Reads every regular file under `dir` (at most 64 MiB in all). An empty or missing
   // directory gives an empty set (the routes then answer 404 naming --web-dir).
   static std::shared_ptr<StaticFiles> load(const std::string& dir);
-  // The web directory beside the executable: <exe dir>/web (build tree), then
-  // <exe dir>/../share/slipfront/web (install); "" when neither exists.
+  // The web directory beside the executable: <exe dir>/share/slipfront/web (build tree),
+  // then <exe dir>/../share/slipfront/web (install); "" when neither exists.
   static std::string default_dir();
 
   std::size_t size() const { return files_.size(); }

@@ -167,13 +167,11 @@ class WebView(unittest.TestCase):
         self.assertEqual(errors, [], f"console errors on {page}: {errors}")
 
     def test_3_job_from_the_form_progresses_and_ends_with_figures(self):
+        # The paper's run: the form untouched but for a name (its defaults are the paper's
+        # scene; several seconds on this machine, long enough to watch it progress).
         self.open("/#/submit")
         self.wait(lambda d: self.css("#f_geometry_nodes_per_meter"), message="the form is built")
-        name = "from the form"
-        self.css("#job-name")[0].send_keys(name)
-        nd = self.css("#f_geometry_nodes_per_meter")[0]
-        nd.clear()
-        nd.send_keys("12")
+        self.css("#job-name")[0].send_keys("paper run, from the form")
         self.shot("submit-job")
         self.css("#job-submit")[0].click()
         self.wait(lambda d: "#/jobs/" in d.current_url, message="the job page opens")
@@ -231,10 +229,15 @@ class WebView(unittest.TestCase):
         self.css("#study-submit")[0].click()
         self.wait(lambda d: "#/studies/" in d.current_url, message="the study page opens")
         self.wait(lambda d: self.css("#study-cmap"), message="the map is shown")
-        # The map fills in: cells of finished runs carry a convergence class.
-        self.wait(lambda d: len(self.css("#study-cmap td.cs-converged")) >= 3, timeout=240,
-                  message="three L converged on the map")
-        self.wait(lambda d: "finished" in self.css("h1 .badge")[0].text, timeout=120)
+        # The map fills in: cells of finished runs carry a convergence class, until the study
+        # has finished with no cell left running.
+        self.wait(lambda d: self.css("#study-cmap td.cell[class*='cs-']"), timeout=240,
+                  message="a first cell of the map filled in")
+        self.wait(lambda d: "finished" in self.css("h1 .badge")[0].text, timeout=240,
+                  message="the study finished")
+        self.wait(lambda d: not self.css("#study-cmap td.st-running, #study-cmap td.st-queued"))
+        self.assertGreaterEqual(len(self.css("#study-cmap td.cs-converged")), 3,
+                                "each of the three L has a converged cell")
         self.wait(lambda d: self.css("#lc-reason")[0].text not in ("", "—"))
         self.wait(lambda d: self.css("#fig-speed canvas"))
         self.wait(lambda d: self.css("#scene-cmap td.cs-converged"))
