@@ -32,6 +32,7 @@ SKIP = 77
 try:
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
+    from selenium.common.exceptions import StaleElementReferenceException
     from selenium.webdriver.common.by import By
     from selenium.webdriver.support.ui import Select, WebDriverWait
 except ImportError as e:  # pragma: no cover
@@ -93,11 +94,20 @@ class WebView(unittest.TestCase):
 
     # -- helpers -------------------------------------------------------------------------
     def open(self, path):
+        # A fresh document each time (a change of the #fragment alone would keep the page).
+        self.driver.get("about:blank")
         self.driver.get(self.server.url(path))
 
     def wait(self, predicate, timeout=30, message=""):
-        return WebDriverWait(self.driver, timeout, poll_frequency=0.1).until(
-            lambda d: predicate(d), message)
+        # The pages re-render as they poll: an element read may be replaced meanwhile.
+        return WebDriverWait(self.driver, timeout, poll_frequency=0.1,
+                             ignored_exceptions=(StaleElementReferenceException, IndexError)
+                             ).until(lambda d: predicate(d), message)
+
+    def texts(self, selector):
+        return self.driver.execute_script(
+            "return [...document.querySelectorAll(arguments[0])].map(e => e.textContent)",
+            selector)
 
     def css(self, selector):
         return self.driver.find_elements(By.CSS_SELECTOR, selector)
@@ -182,7 +192,7 @@ class WebView(unittest.TestCase):
         seen = set()
         deadline = time.monotonic() + 240
         while time.monotonic() < deadline:
-            text = " ".join(e.text for e in self.css("#job-live .ptext"))
+            text = " ".join(self.texts("#job-live .ptext"))
             if "%" in text and "ETA" in text:
                 seen.add(text.split("%")[0])
             if self.css("#fig-map canvas") and self.css("#fig-vr canvas"):
@@ -201,7 +211,7 @@ class WebView(unittest.TestCase):
             "return s.size;")
         self.assertGreater(filled, 20, "the map has colours")
         self.assertIn("Download HDF5", self.css("#download")[0].text)
-        self.assertIn("succeeded", self.css("h1 .badge")[0].text)
+        self.assertIn("succeeded", " ".join(self.texts("h1 .badge")))
         # Picking an x1 on the map redraws V(t) with that position.
         canvas = self.css("#fig-map canvas")[0]
         webdriver.ActionChains(self.driver).move_to_element_with_offset(canvas, 0, 0).click().perform()
@@ -233,12 +243,12 @@ class WebView(unittest.TestCase):
         # has finished with no cell left running.
         self.wait(lambda d: self.css("#study-cmap td.cell[class*='cs-']"), timeout=240,
                   message="a first cell of the map filled in")
-        self.wait(lambda d: "finished" in self.css("h1 .badge")[0].text, timeout=240,
+        self.wait(lambda d: "finished" in " ".join(self.texts("h1 .badge")), timeout=240,
                   message="the study finished")
         self.wait(lambda d: not self.css("#study-cmap td.st-running, #study-cmap td.st-queued"))
         self.assertGreaterEqual(len(self.css("#study-cmap td.cs-converged")), 3,
                                 "each of the three L has a converged cell")
-        self.wait(lambda d: self.css("#lc-reason")[0].text not in ("", "—"))
+        self.wait(lambda d: " ".join(self.texts("#lc-reason")) not in ("", "—"))
         self.wait(lambda d: self.css("#fig-speed canvas"))
         self.wait(lambda d: self.css("#scene-cmap td.cs-converged"))
         self.assert_no_console_errors("study")
