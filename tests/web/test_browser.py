@@ -214,6 +214,7 @@ class WebView(unittest.TestCase):
         self.assertIn("succeeded", " ".join(self.texts("h1 .badge")))
         # Picking an x1 on the map redraws V(t) with that position.
         canvas = self.css("#fig-map canvas")[0]
+        self.driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", canvas)
         webdriver.ActionChains(self.driver).move_to_element_with_offset(canvas, 0, 0).click().perform()
         self.wait(lambda d: len(self.css("#vt-x1")[0].get_attribute("value").split(",")) >= 4)
         self.assert_no_console_errors("job")

@@ -1,12 +1,12 @@
 // The OpenAPI document rendered by Swagger UI (vendored from npm, served locally), or, when
 // the build had no Swagger UI, by the small renderer below.
-import { h, clear } from './dom.js';
+import { h, clear, fill } from './dom.js';
 
 const URL = '/api/v1/openapi.json';
 
 async function fallback(root) {
   const doc = await (await fetch(URL)).json();
-  clear(root).append(h('h1', { text: `${doc.info?.title || 'API'} ${doc.info?.version || ''}` }), h('p', { text: doc.info?.description || '' }));
+  fill(root, h('h1', { text: `${doc.info?.title || 'API'} ${doc.info?.version || ''}` }), h('p', { text: doc.info?.description || '' }));
   for (const [path, ops] of Object.entries(doc.paths || {})) {
     for (const [method, op] of Object.entries(ops)) {
       const params = (op.parameters || []).map((p) => (p.$ref ? p.$ref.split('/').pop() : `${p.name} (${p.in})`));

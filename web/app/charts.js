@@ -263,8 +263,13 @@ function legend(ctx, box, series, style) {
     const yy = y0 + 12 + i * 17;
     ctx.strokeStyle = s.color; ctx.fillStyle = s.color; ctx.lineWidth = 2;
     if (s.dash) ctx.setLineDash(s.dash);
-    if (s.points && !s.line) { ctx.beginPath(); ctx.arc(x0 + 14, yy, 4, 0, 2 * Math.PI); ctx.fill(); }
-    else { ctx.beginPath(); ctx.moveTo(x0 + 6, yy); ctx.lineTo(x0 + 24, yy); ctx.stroke(); }
+    if (!s.points || s.line) { ctx.beginPath(); ctx.moveTo(x0 + 4, yy); ctx.lineTo(x0 + 24, yy); ctx.stroke(); }
+    ctx.setLineDash([]);
+    if (s.points) {
+      ctx.beginPath();
+      if (s.marker === 'square') ctx.rect(x0 + 10, yy - 4, 8, 8); else ctx.arc(x0 + 14, yy, 4, 0, 2 * Math.PI);
+      ctx.fill();
+    }
     ctx.setLineDash([]);
     ctx.fillStyle = INK; ctx.textBaseline = 'middle'; ctx.textAlign = 'left';
     ctx.fillText(s.label, x0 + 28, yy);

@@ -89,3 +89,9 @@ export function link(href, text) {
 export function shortId(id) {
   return id ? String(id).slice(0, 8) : '—';
 }
+
+// Replaces the children of `el` (null, undefined and false children are skipped; the DOM's
+// own append would write them as text).
+export function fill(el, ...children) {
+  return append(clear(el), children);
+}

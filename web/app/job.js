@@ -1,6 +1,6 @@
 // A run: status and progress (live), spec, metrics, cost, convergence status, provenance,
 // the HDF5 download, and the paper's figures drawn from /fields and /front slices.
-import { h, clear, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, shortId } from './dom.js';
+import { h, clear, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, shortId } from './dom.js';
 import { get, getJSON } from './api.js';
 import { heatmap, plot, PALETTE } from './charts.js';
 import { cancelJob, jobL, jobNd } from './jobs.js';
@@ -28,7 +28,7 @@ export async function jobPage(view, page, id) {
   let drawn = false;
 
   const renderHead = () => {
-    clear(head).append(
+    fill(head, 
       h('h1', {}, job.name || `job ${shortId(job.id)}`, ' ', badge(job.status)),
       h('div', { class: 'sub muted' }, `${job.method === 'spectral_bi' ? 'spectral BI' : 'FE'} · L = ${fmt(jobL(job))} m · n_d = ${fmt(jobNd(job))} /m · id `, h('code', { text: job.id }),
         job.study_id ? h('span', {}, ' · ', link(`#/studies/${job.study_id}`, 'its study')) : null));
@@ -38,7 +38,7 @@ export async function jobPage(view, page, id) {
     const p = job.progress || {};
     const out = h('span');
     const active = !FINAL.has(job.status);
-    clear(live).append(
+    fill(live, 
       h('h2', { text: 'Progress' }),
       progressBar(job.status === 'succeeded' ? 1 : p.fraction,
         job.status === 'running' ? `${((p.fraction || 0) * 100).toFixed(1)} % · t = ${fmt(p.time)} of ${fmt(p.duration)} s · ${p.steps ?? 0} steps · ETA ${fmtDuration(p.eta_s)}` : job.status),
@@ -59,7 +59,7 @@ export async function jobPage(view, page, id) {
         if (run?.convergence) convergence = run.convergence;
       } catch (e) { convergence = { status: 'unknown', reason: e.message }; }
     }
-    clear(cols).append(
+    fill(cols, 
       h('section', { class: 'card' }, h('h2', { text: 'Metrics' }), kvTable([
         ['outcome', m.outcome],
         ['arrest position', m.arrest_position != null ? `${fmt(m.arrest_position, 4)} m` : '—'],
@@ -110,9 +110,9 @@ export async function jobPage(view, page, id) {
       drawn = true;
       await drawFigures(figs, job);
     } else if (!FINAL.has(job.status)) {
-      clear(figs).append(h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'The figures appear when the run has succeeded.' }));
+      fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'The figures appear when the run has succeeded.' }));
     } else if (job.status !== 'succeeded') {
-      clear(figs).append(h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: `No result file: the run ${job.status}.` }));
+      fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: `No result file: the run ${job.status}.` }));
     }
   };
   try {
@@ -125,7 +125,7 @@ export async function jobPage(view, page, id) {
 }
 
 async function drawFigures(figs, job) {
-  clear(figs).append(h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'Drawn from slices of the HDF5 result (GET /api/v1/jobs/{id}/fields/{name}) and the front (/front), as the paper’s Fig. 2.' }));
+  fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'Drawn from slices of the HDF5 result (GET /api/v1/jobs/{id}/fields/{name}) and the front (/front), as the paper’s Fig. 2.' }));
   const mapBox = h('div', { class: 'fig', id: 'fig-map' });
   const vtBox = h('div', { class: 'fig', id: 'fig-vt' });
   const vrBox = h('div', { class: 'fig', id: 'fig-vr' });
@@ -159,9 +159,12 @@ async function drawFigures(figs, job) {
   });
   figs.querySelector('#fig-map').append(h('p', { class: 'caption muted', text: `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). Colours saturate at the 99.5th percentile (${fmt(vmax)} m/s).` }));
 
-  const probe = job.metrics?.probe_x1 ?? job.spec?.probe?.spectrum_x1;
+  // Default positions: a quarter, half and three quarters of the way from the nucleation
+  // (x1 = 0) to the arrest (or to the probes when the run did not arrest).
   const x0 = slice.x1[0], x1end = slice.x1[slice.x1.length - 1];
-  const defaults = [x0 + 0.15 * (x1end - x0), probe ?? x0 + 0.3 * (x1end - x0), x0 + 0.5 * (x1end - x0)].map((v) => Number(v.toFixed(2)));
+  const arrest = job.metrics?.arrest_position;
+  const reach = Number.isFinite(arrest) && arrest > 0 ? arrest : (job.spec?.probe?.arrival_x1 ?? x0 + 0.5 * (x1end - x0));
+  const defaults = [0.25, 0.5, 0.75].map((f) => Number((f * reach).toFixed(2)));
   picks.value = defaults.join(', ');
   function parsePicks() {
     return picks.value.split(/[,\s]+/).map(Number).filter((v) => Number.isFinite(v));
@@ -183,11 +186,17 @@ async function drawFigures(figs, job) {
   if (front) {
     const speeds = waveSpeeds(job.spec);
     const hl = speeds ? [{ y: speeds.cs, label: `c_s = ${fmt(speeds.cs)} m/s`, color: '#6b7785' }, { y: speeds.cp, label: `c_p = ${fmt(speeds.cp)} m/s`, color: '#6b7785' }] : [];
+    // Near the nucleation the front arrives almost at once (V_r -> infinity): the axis stops at
+    // 1.5 c_p so that the propagation stays readable.
+    const vr = front.rupture_speed.filter((v) => v !== null && Number.isFinite(v));
+    const top = Math.max(...vr, 0);
+    const yrange = speeds && top > 1.5 * speeds.cp ? [0, 1.5 * speeds.cp] : undefined;
     plot(vrBox, {
-      series: [{ x: front.x1, y: front.rupture_speed, label: 'V_r', color: PALETTE[0] }],
-      xlabel: 'x1 [m]', ylabel: 'rupture speed V_r [m/s]', height: 300, hlines: hl,
+      series: [{ x: front.x1, y: front.rupture_speed, label: 'V_r (from the front arrival times)', color: PALETTE[0] }],
+      xlabel: 'x1 [m]', ylabel: 'rupture speed V_r [m/s]', height: 300, hlines: hl, yrange,
       empty: 'no rupture speed (no front)',
     });
+    if (yrange) vrBox.append(h('p', { class: 'caption muted', text: `Axis cut at 1.5 c_p; V_r reaches ${fmt(top)} m/s near the nucleation, where the front arrives almost at once.` }));
   } else {
     vrBox.append(h('p', { class: 'muted', text: 'No front stored for this run.' }));
   }

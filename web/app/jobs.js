@@ -9,7 +9,7 @@ export function jobL(job) { return job.spec?.friction?.L ?? null; }
 export function jobNd(job) { return job.spec?.geometry?.nodes_per_meter ?? null; }
 
 const COLUMNS = [
-  { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', {}, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },
+  { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', { title: j.name || '' }, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },
   { key: 'method', label: 'Method', value: (j) => j.method || 'fe', cell: (j) => h('td', { text: j.method === 'spectral_bi' ? 'BI' : 'FE', title: j.method }) },
   { key: 'L', label: 'L [m]', num: true, value: jobL, cell: (j) => h('td', { class: 'num', text: fmt(jobL(j)) }) },
   { key: 'n_d', label: 'n_d [1/m]', num: true, value: jobNd, cell: (j) => h('td', { class: 'num', text: fmt(jobNd(j)) }) },

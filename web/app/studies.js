@@ -1,7 +1,7 @@
 // Studies: the list, and one study with its progress, live convergence map in the L–n_d
 // plane, the L_c verdict with its reason, the speed–accuracy chart and the shared map of the
 // scene (every run of the group with the same physics but L and n_d).
-import { h, clear, fmt, fmtDuration, fmtTime, badge, progressBar, kvTable, link, shortId } from './dom.js';
+import { h, clear, fill, fmt, fmtDuration, fmtTime, badge, progressBar, kvTable, link, shortId } from './dom.js';
 import { get, getJSON, post } from './api.js';
 import { plot, PALETTE } from './charts.js';
 
@@ -14,7 +14,7 @@ export function studiesPage(view, page) {
     message, h('div', { class: 'tablewrap' }, table));
   let studies = null;
   const render = () => {
-    clear(table).append(h('thead', {}, h('tr', {}, ['Name', 'Method', 'Kind', 'Status', 'Progress', 'L_c [m]', 'By', 'Created'].map((t) => h('th', { text: t })))));
+    fill(table, h('thead', {}, h('tr', {}, ['Name', 'Method', 'Kind', 'Status', 'Progress', 'L_c [m]', 'By', 'Created'].map((t) => h('th', { text: t })))));
     const body = h('tbody');
     for (const s of studies) {
       const p = s.progress || {};
@@ -111,12 +111,12 @@ export async function studyPage(view, page, id) {
     const p = study.progress || {};
     const cl = study.critical_length || {};
     const out = h('span');
-    clear(head).append(h('h1', {}, study.name || `study ${shortId(study.id)}`, ' ', badge(study.status)),
+    fill(head, h('h1', {}, study.name || `study ${shortId(study.id)}`, ' ', badge(study.status)),
       h('div', { class: 'sub muted' }, `${study.kind} study · ${study.method === 'spectral_bi' ? 'spectral BI' : 'FE'} · id `, h('code', { text: study.id })));
-    clear(summary).append(h('h2', { text: 'Progress and L_c' }),
+    fill(summary, h('h2', { text: 'Progress and L_c' }),
       progressBar(p.fraction, `${p.done ?? 0} of ${p.total ?? 0} runs final${study.status === 'running' ? ' (a convergence study adds finer meshes as it goes)' : ''}`),
       kvTable([
-        ['L_c', h('strong', { id: 'lc-value', text: study.L_c != null ? `${fmt(study.L_c)} m` : 'not determined yet' })],
+        ['L_c', h('strong', { id: 'lc-value', text: study.L_c != null ? `${fmt(study.L_c)} m` : (study.status === 'running' ? 'not determined yet' : 'not determined (see the reason)') })],
         ['reason', h('span', { id: 'lc-reason', text: cl.reason || '—' })],
         ['next larger L', cl.next_larger_L != null ? `${fmt(cl.next_larger_L)} m` : '—'],
         ['spectral estimate', study.spectral_critical_length != null ? `${fmt(study.spectral_critical_length)} m${cl.spectral_from_L != null ? ` (from the run at L = ${fmt(cl.spectral_from_L)} m)` : ''}` : '—'],
@@ -126,35 +126,40 @@ export async function studyPage(view, page, id) {
       study.status === 'running' ? h('div', { class: 'actions' }, h('button', { onclick: async () => {
         try { await post(`/api/v1/studies/${study.id}/cancel`); out.textContent = 'cancelled'; out.className = 'ok'; } catch (e) { out.textContent = e.message; out.className = 'error'; }
       }, text: 'Cancel study' }), out) : null);
-    clear(mapCard).append(h('h2', { text: 'Convergence map (this study)' }),
+    fill(mapCard, h('h2', { text: 'Convergence map (this study)' }),
       h('p', { class: 'muted', text: 'Each cell is a run at (L, n_d): converged when it agrees with the next finer mesh (SPEC §2). Cells fill in as runs finish; hover a cell for the reason.' }),
       convergenceGrid(study.convergence_map, study.runs, 'study-cmap'));
     if (study.refinement && Object.keys(study.refinement).length) {
       mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [`L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
     }
-    clear(runsCard).append(h('h2', { text: 'Runs' }), runsTable(study.runs || []));
+    fill(runsCard, h('h2', { text: 'Runs' }), runsTable(study.runs || []));
     if (study.cross_method && (Array.isArray(study.cross_method) ? study.cross_method.length : Object.keys(study.cross_method).length)) {
       runsCard.append(h('details', {}, h('summary', { text: 'The same L by FE and BI (cross-method table)' }), h('pre', { class: 'json', text: JSON.stringify(study.cross_method, null, 2) })));
     }
   };
 
   const renderSpeed = () => {
-    clear(saCard).append(h('h2', { text: 'Speed and accuracy' }));
+    fill(saCard, h('h2', { text: 'Speed and accuracy' }));
     const select = h('select', { id: 'sa-metric', onchange: () => { metric = select.value; renderSpeed(); } },
       [['slip_velocity_l2', 'L2 error of V at the spectrum probe'], ['propagation_distance', 'error of the propagation distance'], ['arrival_time', 'error of the arrival time']].map(([v, t]) => h('option', { value: v, text: t, selected: v === metric })));
     saCard.append(h('div', { class: 'toolbar' }, h('label', { text: 'error: ' }), select,
       h('span', { class: 'muted', text: ' relative, against the finest converged run of the same L; runs without a reference are left out' })));
     const entries = (sa?.across_methods?.runs || sa?.runs || []);
+    // One series per (method, L): colour by L, circles FE, squares BI; points in order of cost.
     const byKey = new Map();
+    const Ls = [...new Set(entries.map((e) => e.L))].sort((a, b) => b - a);
     for (const e of entries) {
       const err = e.errors?.[metric];
       if (!(err > 0) || !(e.wall_time_s > 0)) continue;
-      const k = `${e.method || study.method || 'fe'} L = ${fmt(e.L)} m`;
-      if (!byKey.has(k)) byKey.set(k, { x: [], y: [], label: k, points: true, line: true, marker: (e.method || study.method) === 'spectral_bi' ? 'square' : 'circle' });
-      byKey.get(k).x.push(e.wall_time_s);
-      byKey.get(k).y.push(err);
+      const m = e.method || study.method || 'fe';
+      const k = `${m === 'spectral_bi' ? 'BI' : 'FE'}, L = ${fmt(e.L)} m`;
+      if (!byKey.has(k)) byKey.set(k, { pts: [], label: k, points: true, line: true, marker: m === 'spectral_bi' ? 'square' : 'circle', dash: m === 'spectral_bi' ? [5, 3] : undefined, color: PALETTE[Ls.indexOf(e.L) % PALETTE.length] });
+      byKey.get(k).pts.push([e.wall_time_s, err]);
     }
-    const series = [...byKey.values()].map((s, i) => ({ ...s, color: PALETTE[i % PALETTE.length] }));
+    const series = [...byKey.values()].sort((a, b) => a.label.localeCompare(b.label)).map((s) => {
+      s.pts.sort((a, b) => a[0] - b[0]);
+      return { ...s, x: s.pts.map((p) => p[0]), y: s.pts.map((p) => p[1]) };
+    });
     const box = h('div', { class: 'fig', id: 'fig-speed' });
     saCard.append(box);
     plot(box, { series, xlog: true, ylog: true, xlabel: 'wall time [s]', ylabel: `relative error (${metric}) [1]`, height: 320, empty: 'no run has both a reference and an error yet' });
@@ -163,10 +168,10 @@ export async function studyPage(view, page, id) {
   const renderScene = async () => {
     try {
       const scene = await get(`/api/v1/convergence-map?study=${id}`);
-      clear(sceneCard).append(h('h2', { text: 'Shared map of the scene (every run of the group)' }),
+      fill(sceneCard, h('h2', { text: 'Shared map of the scene (every run of the group)' }),
         h('p', { class: 'muted', text: `${scene.count} run(s) with this physics but L and n_d, from any study or user. L_c on the scene: ${scene.critical_length?.L_c != null ? `${fmt(scene.critical_length.L_c)} m` : 'not determined'}.` }),
         convergenceGrid(scene.convergence_map, [], 'scene-cmap'));
-    } catch (e) { clear(sceneCard).append(h('p', { class: 'error', text: e.message })); }
+    } catch (e) { fill(sceneCard, h('p', { class: 'error', text: e.message })); }
   };
 
   const load = async () => {

@@ -1,7 +1,7 @@
 // Submit: a job form generated from the server's defaults (GET /api/v1/job-defaults), sending
 // only what differs from them; a study form (grid or convergence). Errors of the server's
 // problem+json are shown beside the field their JSON pointer names.
-import { h, clear, fmt } from './dom.js';
+import { h, clear, fill, fmt } from './dom.js';
 import { get, post, token } from './api.js';
 
 const HIDDEN = new Set(['/name', '/tags', '/method']);
@@ -104,7 +104,7 @@ async function jobForm(view) {
   view.append(form);
 
   const build = async () => {
-    clear(holder).append(h('p', { class: 'muted', text: 'Loading the defaults…' }));
+    fill(holder, h('p', { class: 'muted', text: 'Loading the defaults…' }));
     const d = await get(`/api/v1/job-defaults?method=${method.value}`);
     clear(holder);
     const grid = h('div', { class: 'fieldsets' });
