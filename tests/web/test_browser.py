@@ -236,6 +236,16 @@ class WebView(unittest.TestCase):
             box = self.css(sel)[0]
             box.clear()
             box.send_keys(value)
+        # A bad L first: the server's 422 names /convergence/L/1, shown beside the L box.
+        box = self.css("#study-L")[0]
+        box.clear()
+        box.send_keys("1e-3, -1")
+        self.css("#study-submit")[0].click()
+        self.wait(lambda d: " ".join(self.texts("#study-L ~ .ferr")).strip() != "",
+                  message="the L error is beside the L box")
+        self.assert_no_console_errors_except_422("study form (422)")
+        box.clear()
+        box.send_keys("1e-3, 1e-4, 5e-5")
         self.shot("submit-study")
         self.css("#study-submit")[0].click()
         self.wait(lambda d: "#/studies/" in d.current_url, message="the study page opens")

@@ -19,14 +19,21 @@ async function fallback(root) {
   }
 }
 
-function start() {
+// Swagger UI when the build vendored it (vendor.json says so), else the fallback.
+async function start() {
   const root = document.getElementById('swagger');
-  if (typeof window.SwaggerUIBundle === 'function') {
-    window.SwaggerUIBundle({ url: URL, dom_id: '#swagger', deepLinking: true, validatorUrl: null, tryItOutEnabled: false, supportedSubmitMethods: ['get', 'head'] });
-  } else {
-    fallback(root).catch((e) => root.append(h('p', { class: 'error', text: e.message })));
+  let vendored = false;
+  try { vendored = (await (await fetch('/app/vendor.json', { cache: 'no-store' })).json()).swagger_ui === true; } catch { vendored = false; }
+  if (!vendored) {
+    await fallback(root).catch((e) => root.append(h('p', { class: 'error', text: e.message })));
+    return;
   }
+  document.head.append(h('link', { rel: 'stylesheet', href: '/vendor/swagger-ui/swagger-ui.css' }));
+  const script = h('script', { src: '/vendor/swagger-ui/swagger-ui-bundle.js' });
+  script.addEventListener('load', () => {
+    window.SwaggerUIBundle({ url: URL, dom_id: '#swagger', deepLinking: true, validatorUrl: null, tryItOutEnabled: false, supportedSubmitMethods: ['get', 'head'] });
+  });
+  document.head.append(script);
 }
 
-if (document.readyState === 'complete') start();
-else window.addEventListener('load', start);
+start();

@@ -146,10 +146,10 @@ async function drawFigures(figs, job) {
   ]);
   const frontLine = front ? { x: front.x1, y: front.arrival_time, color: '#ff3b30', width: 2, label: 'slip front (arrival time)' } : null;
   const values = slice.values;
-  // Colour range: 0 to the 99.5th percentile of V, so that the nucleation peak does not wash
+  // Colour range: 0 to the 99.9th percentile of V, so that the nucleation peak does not wash
   // out the propagating pulse.
   const flat = values.flat().filter((v) => v !== null && Number.isFinite(v)).sort((a, b) => a - b);
-  const vmax = flat.length ? flat[Math.min(flat.length - 1, Math.floor(flat.length * 0.995))] : 1;
+  const vmax = flat.length ? flat[Math.min(flat.length - 1, Math.floor(flat.length * 0.999))] : 1;
   const vmin = Math.min(0, flat.length ? flat[0] : 0);
   heatmap(mapBox, {
     x: slice.x1, y: slice.time, values, vmin, vmax: vmax > vmin ? vmax : vmin + 1,
@@ -157,7 +157,7 @@ async function drawFigures(figs, job) {
     lines: frontLine ? [frontLine] : [],
     onPick: (x1) => { const list = parsePicks().concat([Number(x1.toFixed(2))]).slice(-5); picks.value = list.join(', '); drawVt(); },
   });
-  figs.querySelector('#fig-map').append(h('p', { class: 'caption muted', text: `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). Colours saturate at the 99.5th percentile (${fmt(vmax)} m/s).` }));
+  figs.querySelector('#fig-map').append(h('p', { class: 'caption muted', text: `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). Colours saturate at the 99.9th percentile (${fmt(vmax)} m/s).` }));
 
   // Default positions: a quarter, half and three quarters of the way from the nucleation
   // (x1 = 0) to the arrest (or to the probes when the run did not arrest).

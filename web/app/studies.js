@@ -165,12 +165,23 @@ export async function studyPage(view, page, id) {
     plot(box, { series, xlog: true, ylog: true, xlabel: 'wall time [s]', ylabel: `relative error (${metric}) [1]`, height: 320, empty: 'no run has both a reference and an error yet' });
   };
 
+  // The shared map of the study's scene, and of the same scene by the other method when the
+  // group has runs of it (found through speed-accuracy's across_methods entries).
   const renderScene = async () => {
     try {
       const scene = await get(`/api/v1/convergence-map?study=${id}`);
-      fill(sceneCard, h('h2', { text: 'Shared map of the scene (every run of the group)' }),
+      const name = (m) => (m === 'spectral_bi' ? 'spectral BI' : 'FE');
+      fill(sceneCard, h('h2', { text: `Shared map of the scene, ${name(study.method)} (every run of the group)` }),
         h('p', { class: 'muted', text: `${scene.count} run(s) with this physics but L and n_d, from any study or user. L_c on the scene: ${scene.critical_length?.L_c != null ? `${fmt(scene.critical_length.L_c)} m` : 'not determined'}.` }),
         convergenceGrid(scene.convergence_map, [], 'scene-cmap'));
+      const other = (sa?.across_methods?.runs || []).find((e) => e.method && e.method !== (study.method || 'fe'));
+      if (other) {
+        const job = await get(`/api/v1/jobs/${other.id}?fields=scene_hash`);
+        const otherScene = await get(`/api/v1/convergence-map?scene=${job.scene_hash}`);
+        sceneCard.append(h('h2', { text: `The same scene by ${name(other.method)}` }),
+          h('p', { class: 'muted', text: `${otherScene.count} run(s). L_c: ${otherScene.critical_length?.L_c != null ? `${fmt(otherScene.critical_length.L_c)} m` : 'not determined'}.` }),
+          convergenceGrid(otherScene.convergence_map, [], 'scene-cmap-other'));
+      }
     } catch (e) { fill(sceneCard, h('p', { class: 'error', text: e.message })); }
   };
 
