@@ -190,11 +190,15 @@ class WebView(unittest.TestCase):
         # Moving progress: at least two different fractions while it runs, or (on a fast
         # machine) a finished run.
         seen = set()
+        running_shot = False
         deadline = time.monotonic() + 240
         while time.monotonic() < deadline:
             text = " ".join(self.texts("#job-live .ptext"))
             if "%" in text and "ETA" in text:
                 seen.add(text.split("%")[0])
+                if not running_shot and len(seen) >= 3:
+                    self.shot("job-running")
+                    running_shot = True
             if self.css("#fig-map canvas") and self.css("#fig-vr canvas"):
                 break
             time.sleep(0.15)
@@ -268,6 +272,11 @@ class WebView(unittest.TestCase):
         self.wait(lambda d: self.css("#studies-table tbody tr[data-id]"))
         self.assert_no_console_errors("studies")
         self.shot("studies")
+        # The jobs table with the study's runs in it.
+        self.open("/")
+        self.wait(lambda d: len(self.css("#jobs-table tbody tr[data-id]")) >= 10)
+        self.assert_no_console_errors("jobs (all)")
+        self.shot("jobs-all")
 
     def test_5_api_docs(self):
         self.open("/api-docs")

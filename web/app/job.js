@@ -73,7 +73,7 @@ export async function jobPage(view, page, id) {
         m.warnings?.length ? ['warnings', m.warnings.join('; ')] : null,
       ])),
       h('section', { class: 'card' }, h('h2', { text: 'Cost' }), kvTable([
-        ['wall time', fmtDuration(job.wall_time_s)],
+        ['wall time', job.status === 'running' && job.started_at ? `${fmtDuration((Date.now() - Date.parse(job.started_at)) / 1000)} so far` : (job.cached_from ? 'none: reused' : fmtDuration(job.wall_time_s))],
         ['steps', m.steps ?? job.progress?.steps],
         ['time step', m.dt != null ? `${fmt(m.dt)} s (stable ${fmt(m.stable_dt)} s)` : '—'],
         ['mesh', m.mesh ? Object.entries(m.mesh).map(([k, v]) => `${k} = ${v}`).join(', ') : '—'],

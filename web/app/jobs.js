@@ -17,10 +17,10 @@ const COLUMNS = [
   { key: 'progress', label: 'Progress', num: true, value: (j) => j.progress?.fraction ?? 0, cell: (j) => h('td', { class: 'pcell' }, progressCell(j)) },
   { key: 'outcome', label: 'Outcome', value: (j) => j.metrics?.outcome || '', cell: (j) => h('td', { text: j.metrics?.outcome || (j.error ? 'error' : '—'), title: j.error || '' }) },
   { key: 'arrest', label: 'Arrest x1 [m]', num: true, value: (j) => j.metrics?.arrest_position ?? null, cell: (j) => h('td', { class: 'num', text: fmt(j.metrics?.arrest_position) }) },
-  { key: 'wall', label: 'Wall time', num: true, value: (j) => j.wall_time_s ?? null, cell: (j) => h('td', { class: 'num', text: fmtDuration(j.wall_time_s) }) },
+  { key: 'wall', label: 'Wall time', num: true, value: (j) => j.wall_time_s ?? null, cell: (j) => (j.cached_from ? h('td', { class: 'num muted', title: 'reused: no run', text: 'reused' }) : h('td', { class: 'num', text: fmtDuration(j.wall_time_s) })) },
   { key: 'cache', label: 'Cache', value: (j) => (j.cached_from ? 1 : 0), cell: (j) => h('td', {}, j.cached_from ? h('a', { class: 'hit', href: `#/jobs/${j.cached_from}`, title: `result reused from job ${j.cached_from}`, text: 'hit' }) : '') },
   { key: 'by', label: 'By', value: (j) => j.submitted_by || '', cell: (j) => h('td', { text: j.submitted_by || '—' }) },
-  { key: 'created', label: 'Submitted', value: (j) => j.created_at || '', cell: (j) => h('td', { class: 'when', text: (j.created_at || '').replace('T', ' ').replace(/\.\d+/, '').replace('Z', '') }) },
+  { key: 'created', label: 'Submitted (UTC)', value: (j) => j.created_at || '', cell: (j) => h('td', { class: 'when', title: j.created_at || '', text: (j.created_at || '').replace(/^\d{4}-/, '').replace('T', ' ').replace(/:\d\d(\.\d+)?Z$/, '') }) },
 ];
 
 function progressCell(j) {
