@@ -22,7 +22,7 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "server"))
-from server_harness import Server  # noqa: E402
+from server_harness import Server, long_job  # noqa: E402
 
 BINARY = None
 WEB_DIR = None
@@ -297,6 +297,56 @@ class WebView(unittest.TestCase):
         self.assertEqual(self.css("#token-input")[0].get_attribute("value"), "")
         self.assertIsNone(self.driver.execute_script("return localStorage.getItem('slipfront.token')"))
 
+
+    def test_7_cancel_needs_the_owners_token(self):
+        # A server with tokens: reading is open, cancelling needs the submitter's token,
+        # entered in the page (the answers 401 and 403 are shown beside the button).
+        token_file = os.path.join(self.server.data_dir, "tokens")
+        with open(token_file, "w") as f:
+            f.write("alice:alice-token-1234\nbob:bob-token-5678\n")
+        os.chmod(token_file, 0o600)
+        args = ["--workers", "1", "--token-file", token_file] + (
+            ["--web-dir", WEB_DIR] if WEB_DIR else [])
+        shared = Server(BINARY, args=args).start()
+        try:
+            spec = long_job("alice's long run")
+            spec["time"]["duration"] = 200.0
+            r = shared.submit(spec, headers={"Authorization": "Bearer alice-token-1234"})
+            self.assertEqual(r.status_code, 201, r.text)
+            job_id = r.json()["id"]
+            self.driver.get("about:blank")
+            self.driver.get(shared.url(f"/#/jobs/{job_id}"))
+            self.wait(lambda d: self.css("#cancel"), message="a Cancel button")
+
+            def cancel_answer():
+                # The button is re-rendered every second as the progress moves: click the
+                # current one.
+                self.driver.execute_script("document.getElementById('cancel').click()")
+                self.wait(lambda d: " ".join(self.texts("#cancel-message")).strip() != "")
+                return " ".join(self.texts("#cancel-message"))
+
+            def use_token(token):
+                self.css("#token-input")[0].send_keys(token)
+                self.css("#token-save")[0].click()
+                self.driver.execute_script(
+                    "document.getElementById('cancel-message').textContent = ''")
+
+            self.assertIn("token", cancel_answer())          # 401: enter your token
+            use_token("bob-token-5678")
+            self.assertIn("another user", cancel_answer())   # 403: not bob's job
+            use_token("alice-token-1234")
+            cancel_answer()
+            self.wait(lambda d: "cancelled" in " ".join(self.texts("h1 .badge")), timeout=30,
+                      message="the job is cancelled")
+            self.assertEqual(shared.get(f"/api/v1/jobs/{job_id}").json()["status"], "cancelled")
+            self.assertNotIn("token", self.driver.current_url)
+            # 401 and 403 are logged by the browser as failed loads: expected here.
+            errors = [e for e in self.console_errors()
+                      if " 401 " not in e.get("message", "") and " 403 " not in e.get("message", "")]
+            self.assertEqual(errors, [])
+            self.shot("job-cancelled")
+        finally:
+            shared.cleanup()
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()

@@ -34,9 +34,9 @@ export async function jobPage(view, page, id) {
         job.study_id ? h('span', {}, ' · ', link(`#/studies/${job.study_id}`, 'its study')) : null));
   };
 
+  const out = h('span', { id: 'cancel-message' }); // kept across re-renders
   const renderLive = () => {
     const p = job.progress || {};
-    const out = h('span');
     const active = !FINAL.has(job.status);
     fill(live, 
       h('h2', { text: 'Progress' }),
@@ -45,7 +45,7 @@ export async function jobPage(view, page, id) {
       job.error ? h('p', { class: 'error', text: job.error }) : null,
       h('div', { class: 'actions' },
         job.result ? h('a', { class: 'button', id: 'download', href: job.result.url, download: `${job.id}.h5`, text: `Download HDF5 (${fmtBytes(job.result.size)})` }) : null,
-        active ? h('button', { onclick: () => cancelJob(job.id, out), text: 'Cancel' }) : null, out));
+        active ? h('button', { id: 'cancel', onclick: () => cancelJob(job.id, out), text: 'Cancel' }) : null, out));
   };
 
   const renderDetails = async () => {

@@ -47,6 +47,7 @@ export async function cancelJob(id, out) {
 
 export function jobsPage(view, page) {
   const state = { sort: 'created', dir: -1, filter: '', status: '', jobs: [] };
+  const messages = new Map();
   const filter = h('input', { type: 'search', id: 'job-filter', placeholder: 'filter: name, tag, id, user…', size: 30 });
   const status = h('select', { id: 'job-status' },
     ['', 'queued', 'running', 'succeeded', 'failed', 'cancelled'].map((s) => h('option', { value: s, text: s || 'any status' })));
@@ -76,7 +77,8 @@ export function jobsPage(view, page) {
     }, c.label, state.sort === c.key ? (state.dir > 0 ? ' ▲' : ' ▼') : '')), h('th', { text: '' }))));
     const body = h('tbody');
     for (const j of rows) {
-      const out = h('span');
+      if (!messages.has(j.id)) messages.set(j.id, h('span'));
+      const out = messages.get(j.id); // a cancel's answer stays through the refreshes
       const active = j.status === 'queued' || j.status === 'running';
       body.append(h('tr', { dataset: { id: j.id, status: j.status } }, COLUMNS.map((c) => c.cell(j)),
         h('td', {}, active ? h('button', { class: 'small', onclick: () => cancelJob(j.id, out), text: 'Cancel' }) : null, out)));
