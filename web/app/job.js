@@ -6,6 +6,8 @@ import { heatmap, plot, PALETTE } from './charts.js';
 import { cancelJob, jobL, jobNd } from './jobs.js';
 
 const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
+// Colours of the V(t) positions: visible on the map's dark background and on white.
+const MARKS = ['#00b4d8', '#ff9f1c', '#e040fb', '#7cb342', '#ffd166', '#f4f4f4'];
 
 // Shear and P wave speeds of the block (plane strain) from the spec's material.
 function waveSpeeds(spec) {
@@ -151,12 +153,20 @@ async function drawFigures(figs, job) {
   const flat = values.flat().filter((v) => v !== null && Number.isFinite(v)).sort((a, b) => a - b);
   const vmax = flat.length ? flat[Math.min(flat.length - 1, Math.floor(flat.length * 0.999))] : 1;
   const vmin = Math.min(0, flat.length ? flat[0] : 0);
-  heatmap(mapBox, {
-    x: slice.x1, y: slice.time, values, vmin, vmax: vmax > vmin ? vmax : vmin + 1,
-    xlabel: 'x1 [m]', ylabel: 't [s]', clabel: 'slip velocity V [m/s]',
-    lines: frontLine ? [frontLine] : [],
-    onPick: (x1) => { const list = parsePicks().concat([Number(x1.toFixed(2))]).slice(-5); picks.value = list.join(', '); drawVt(); },
-  });
+  // The map is redrawn when the V(t) positions change: they are marked on it as vertical
+  // lines in the colours of their curves, as in the paper's Fig. 2a-b.
+  const mapHolder = h('div');
+  mapBox.append(mapHolder);
+  const drawMap = (marks = []) => {
+    clear(mapHolder);
+    heatmap(mapHolder, {
+      x: slice.x1, y: slice.time, values, vmin, vmax: vmax > vmin ? vmax : vmin + 1,
+      xlabel: 'x1 [m]', ylabel: 't [s]', clabel: 'slip velocity V [m/s]',
+      lines: (frontLine ? [frontLine] : []).concat(marks.map((m) => ({ x: [m.x, m.x], y: [slice.time[0], slice.time[slice.time.length - 1]], color: m.color, dash: [6, 4], width: 1.5 }))),
+      onPick: (x1) => { const list = parsePicks().concat([Number(x1.toFixed(2))]).slice(-5); picks.value = list.join(', '); drawVt(); },
+    });
+  };
+  drawMap();
   figs.querySelector('#fig-map').append(h('p', { class: 'caption muted', text: `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). Colours saturate at the 99.9th percentile (${fmt(vmax)} m/s).` }));
 
   // Default positions: a quarter, half and three quarters of the way from the nucleation
@@ -175,8 +185,9 @@ async function drawFigures(figs, job) {
     try {
       const series = await Promise.all(xs.map((x) => get(`/api/v1/jobs/${job.id}/fields/slip_velocity?x1_min=${x}&x1_max=${x}&max_points=4000`)));
       clear(vtBox);
+      drawMap(series.map((s, i) => ({ x: s.x1[0], color: MARKS[i % MARKS.length] })));
       plot(vtBox, {
-        series: series.map((s, i) => ({ x: s.time, y: s.values.map((r) => r[0]), label: `x1 = ${fmt(s.x1[0], 4)} m`, color: PALETTE[i % PALETTE.length] })),
+        series: series.map((s, i) => ({ x: s.time, y: s.values.map((r) => r[0]), label: `x1 = ${fmt(s.x1[0], 4)} m`, color: MARKS[i % MARKS.length] })),
         xlabel: 't [s]', ylabel: 'slip velocity V [m/s]', height: 300,
       });
     } catch (e) { pickMsg.textContent = e.message; pickMsg.className = 'error'; }
