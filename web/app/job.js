@@ -53,14 +53,22 @@ export async function jobPage(view, page, id) {
   const renderDetails = async () => {
     const m = job.metrics || {};
     const spec = job.spec || {};
+    // Convergence: from the run's study, else from the shared map of its scene (every run
+    // of the group with the same physics but L and n_d).
     let convergence = null;
-    if (job.study_id) {
-      try {
+    let source = null;
+    try {
+      if (job.study_id) {
         const study = await get(`/api/v1/studies/${job.study_id}`);
-        const run = (study.runs || []).find((r) => r.job_id === job.id);
-        if (run?.convergence) convergence = run.convergence;
-      } catch (e) { convergence = { status: 'unknown', reason: e.message }; }
-    }
+        convergence = (study.runs || []).find((r) => r.job_id === job.id)?.convergence || null;
+        source = 'its study';
+      }
+      if (!convergence && job.scene_hash && FINAL.has(job.status)) {
+        const scene = await get(`/api/v1/convergence-map?scene=${job.scene_hash}`);
+        convergence = (scene.runs || []).find((r) => r.job_id === job.id)?.convergence || null;
+        source = `the scene's shared map (${scene.count} run${scene.count === 1 ? '' : 's'})`;
+      }
+    } catch (e) { convergence = { status: 'unknown', reason: e.message }; }
     fill(cols, 
       h('section', { class: 'card' }, h('h2', { text: 'Metrics' }), kvTable([
         ['outcome', m.outcome],
@@ -81,9 +89,9 @@ export async function jobPage(view, page, id) {
         ['mesh', m.mesh ? Object.entries(m.mesh).map(([k, v]) => `${k} = ${v}`).join(', ') : '—'],
         ['memory estimate', fmtBytes(job.memory_estimate_bytes)],
         ['result file', job.result ? fmtBytes(job.result.size) : '—'],
-      ]), h('h2', { text: 'Convergence' }), job.study_id
-        ? kvTable([['status', convergence ? badge(convergence.status) : '—'], ['against', convergence?.partner_n_d ? `n_d = ${convergence.partner_n_d}` : '—'], ['reason', convergence?.reason]])
-        : h('p', { class: 'muted', text: 'Not part of a study: its convergence is judged against other meshes on the scene’s map (Studies).' })),
+      ]), h('h2', { text: 'Convergence' }), convergence
+        ? kvTable([['status', badge(convergence.status)], ['against', convergence.partner_n_d ? `n_d = ${convergence.partner_n_d}` : '—'], ['reason', convergence.reason], ['judged in', source]])
+        : h('p', { class: 'muted', text: FINAL.has(job.status) ? 'No convergence status (the run has no result to compare).' : 'Judged when the run has finished, against the other meshes of its scene.' })),
       h('section', { class: 'card' }, h('h2', { text: 'Provenance' }), kvTable([
         ['code version', job.code_version],
         ['method', m.method_description || job.method],
