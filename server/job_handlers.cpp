@@ -251,6 +251,29 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
   return problem_response(rc.request, http::status::internal_server_error, "unreachable");
 }
 
+// GET /job-defaults?method=fe|spectral_bi: the canonical spec of an empty job of that method
+// (every field with its default), what the web view's submit form starts from.
+Response job_defaults(RequestContext& rc) {
+  std::string method = "fe";
+  for (const auto& [key, value] : rc.query) {
+    if (key != "method")
+      return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
+                              {{"/query/" + key, "unknown query parameter (known: method)"}});
+    method = value;
+  }
+  if (method != "fe" && method != "spectral_bi")
+    return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
+                            {{"/query/method", "must be fe or spectral_bi"}});
+  auto parsed = api::parse_job(nlohmann::json{{"method", method}});
+  if (!parsed.ok())
+    return problem_response(rc.request, http::status::internal_server_error,
+                            "the defaults do not validate", parsed.errors);
+  return json_response(rc.request, http::status::ok,
+                       {{"method", method},
+                        {"spec", parsed.spec->canonical},
+                        {"memory_estimate_bytes", parsed.spec->memory_estimate_bytes}});
+}
+
 } // namespace
 
 void add_job_routes(Router& router, ServerContext& ctx) {
@@ -263,6 +286,8 @@ void add_job_routes(Router& router, ServerContext& ctx) {
              [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
   router.add(http::verb::post, prefix + "/jobs/{id}/cancel",
              [&ctx](RequestContext& rc) { return cancel_job(ctx, rc); });
+  router.add(http::verb::get, prefix + "/job-defaults",
+             [](RequestContext& rc) { return job_defaults(rc); });
 }
 
 } // namespace slipfront::server

@@ -30,6 +30,15 @@ const char* document = R"json({
             "pointer": {"type": "string", "description": "JSON pointer of the bad field"},
             "reason": {"type": "string"}}}}}},
       "JobSpec": {"description": "generated from the job schema (api/job_schema.hpp) by openapi_document()"},
+      "FieldSlice": {"type": "object", "properties": {"id": {"type": "string"}, "field": {"type": "string"},
+        "units": {"type": "object", "properties": {"values": {"type": "string"}, "x1": {"type": "string"}, "time": {"type": "string"}}},
+        "shape": {"type": "array", "items": {"type": "integer"}, "description": "[n_time, n_x1] returned"},
+        "source_shape": {"type": "array", "items": {"type": "integer"}, "description": "[n_samples, n_nodes] of the dataset"},
+        "stride": {"type": "object", "properties": {"time": {"type": "integer"}, "x1": {"type": "integer"}}},
+        "first_index": {"type": "object", "properties": {"time": {"type": "integer"}, "x1": {"type": "integer"}}},
+        "x1": {"type": "array", "items": {"type": "number"}}, "time": {"type": "array", "items": {"type": "number"}},
+        "values": {"type": "array", "items": {"type": "array", "items": {"type": "number", "nullable": true}}},
+        "min": {"type": "number", "nullable": true}, "max": {"type": "number", "nullable": true}}},
       "StudyRequest": {"type": "object", "description": "docs/studies-api.md. Exactly one of grid, convergence, preset.",
         "properties": {"name": {"type": "string"}, "tags": {"type": "array", "items": {"type": "string"}},
           "base": {"$ref": "#/components/schemas/JobSpec"},
@@ -157,6 +166,26 @@ const char* document = R"json({
       "get": {"summary": "The slip front: x1, arrival_time, rupture_speed (null where undefined)", "parameters": [{"$ref": "#/components/parameters/id"}],
         "responses": {"200": {"description": "Front", "content": {"application/json": {}}},
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}/fields/{name}": {
+      "get": {"summary": "A window of one /interface field of the HDF5 result as JSON, decimated to a point budget (docs/server.md, docs/hdf5-layout.md)",
+        "description": "Rows are samples in time, columns nodes in x1 (time-major, as in the file). The samples (nodes) kept are those with t (x1) in [min, max]; a window holding none keeps the one nearest its middle, so x1_min = x1_max = X gives the history V(t) at the node nearest X. When n_time * n_x1 exceeds max_points, every k-th row and column is kept (one stride for both axes where possible; values are the file's, not averaged). NaN is null. GET answers carry a weak ETag.",
+        "parameters": [{"$ref": "#/components/parameters/id"},
+          {"name": "name", "in": "path", "required": true, "schema": {"type": "string", "enum": ["slip_velocity", "slip", "shear_traction", "contact_pressure", "strength", "state"]}},
+          {"name": "x1_min", "in": "query", "schema": {"type": "number"}, "description": "m; default: the first node"},
+          {"name": "x1_max", "in": "query", "schema": {"type": "number"}, "description": "m; >= x1_min; default: the last node"},
+          {"name": "t_min", "in": "query", "schema": {"type": "number"}, "description": "s; default: the first sample"},
+          {"name": "t_max", "in": "query", "schema": {"type": "number"}, "description": "s; >= t_min; default: the last sample"},
+          {"name": "max_points", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 4000000, "default": 200000}, "description": "budget for n_time * n_x1"}],
+        "responses": {"200": {"description": "The slice", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/FieldSlice"}}}},
+          "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"},
+          "409": {"$ref": "#/components/responses/Problem"}, "410": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/job-defaults": {
+      "get": {"summary": "The canonical spec of an empty job of a method: every field with its default (the web view's submit form starts from it)",
+        "parameters": [{"name": "method", "in": "query", "schema": {"type": "string", "enum": ["fe", "spectral_bi"], "default": "fe"}}],
+        "responses": {"200": {"description": "{method, spec, memory_estimate_bytes}", "content": {"application/json": {}}},
+          "400": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/studies": {
       "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist)", "security": [{"bearer": []}],

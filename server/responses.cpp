@@ -1,5 +1,8 @@
 #include "server/responses.hpp"
 
+#include <cstdint>
+#include <cstdio>
+
 namespace slipfront::server {
 
 http::response<http::string_body> text_response(const Request& req, http::status status,
@@ -14,11 +17,58 @@ http::response<http::string_body> text_response(const Request& req, http::status
   return res;
 }
 
+namespace {
+// A weak validator of a JSON body: FNV-1a (64 bits) of its bytes.
+std::string weak_etag(const std::string& body) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : body) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return std::string("W/\"") + hex + "\"";
+}
+
+bool if_none_match(std::string_view header, const std::string& etag) {
+  // Weak comparison (RFC 9110 §13.1.2): W/ prefixes are ignored on both sides.
+  const std::string_view tag = std::string_view(etag).substr(2);
+  std::size_t start = 0;
+  while (start < header.size()) {
+    auto comma = header.find(',', start);
+    if (comma == std::string_view::npos) comma = header.size();
+    auto item = header.substr(start, comma - start);
+    while (!item.empty() && item.front() == ' ')
+      item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ')
+      item.remove_suffix(1);
+    if (item.substr(0, 2) == "W/") item.remove_prefix(2);
+    if (item == tag || item == "*") return true;
+    start = comma + 1;
+  }
+  return false;
+}
+} // namespace
+
 http::response<http::string_body> json_response(const Request& req, http::status status,
                                                 const nlohmann::json& body) {
-  return text_response(req, status,
-                       body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                       "application/json");
+  auto res = text_response(req, status,
+                           body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                           "application/json");
+  // GET answers carry a weak ETag, so that pollers (the web view) send If-None-Match and get
+  // 304 without a body while nothing changed.
+  const bool get = req.method() == http::verb::get || req.method() == http::verb::head;
+  if (get && status == http::status::ok) {
+    const std::string etag = weak_etag(res.body());
+    res.set(http::field::etag, etag);
+    if (req.count(http::field::if_none_match) &&
+        if_none_match(req[http::field::if_none_match], etag)) {
+      res.result(http::status::not_modified);
+      res.body().clear();
+      res.prepare_payload();
+    }
+  }
+  return res;
 }
 
 http::response<http::string_body> problem_response(const Request& req, http::status status,

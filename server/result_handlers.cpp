@@ -1,11 +1,17 @@
-// GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/metrics, /jobs/{id}/front.
+// GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/metrics, /jobs/{id}/front,
+// /jobs/{id}/fields/{name} (a window of an /interface field as JSON).
 #include "server/byte_range.hpp"
+#include "server/field_slice.hpp"
 #include "server/handlers.hpp"
 #include "server/job_id.hpp"
 #include "server/range_file.hpp"
 #include "server/responses.hpp"
 
 #include <boost/beast/http/basic_file_body.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
 
 namespace slipfront::server {
 
@@ -157,6 +163,114 @@ Response front(ServerContext& ctx, RequestContext& rc) {
   return json_response(rc.request, http::status::ok, body);
 }
 
+std::optional<double> finite_number(const std::string& s) {
+  double v = 0;
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
+    return std::nullopt;
+  return v;
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+constexpr long max_slice_points = 4000000;
+
+// GET /jobs/{id}/fields/{name}?x1_min&x1_max&t_min&t_max&max_points
+Response field(ServerContext& ctx, RequestContext& rc) {
+  const auto& req = rc.request;
+  const auto& name = rc.path_params.at("name");
+  std::vector<api::FieldError> errors;
+  SliceWindow window;
+  for (const auto& [key, value] : rc.query) {
+    if (key == "x1_min" || key == "x1_max" || key == "t_min" || key == "t_max") {
+      auto v = finite_number(value);
+      if (!v) {
+        errors.push_back({"/query/" + key, "must be a finite number, got '" +
+                                               value.substr(0, 40) + "'"});
+        continue;
+      }
+      (key == "x1_min"   ? window.x1_min
+       : key == "x1_max" ? window.x1_max
+       : key == "t_min"  ? window.t_min
+                         : window.t_max) = *v;
+    } else if (key == "max_points") {
+      long n = 0;
+      auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+      if (value.empty() || ec != std::errc() || end != value.data() + value.size() || n < 1 ||
+          n > max_slice_points)
+        errors.push_back({"/query/max_points", "must be an integer in [1, " +
+                                                   std::to_string(max_slice_points) + "]"});
+      else
+        window.max_points = n;
+    } else {
+      errors.push_back({"/query/" + key, "unknown query parameter (known: x1_min, x1_max, "
+                                         "t_min, t_max, max_points)"});
+    }
+  }
+  if (window.x1_min && window.x1_max && *window.x1_min > *window.x1_max)
+    errors.push_back({"/query/x1_max", "must be >= x1_min"});
+  if (window.t_min && window.t_max && *window.t_min > *window.t_max)
+    errors.push_back({"/query/t_max", "must be >= t_min"});
+  if (!errors.empty())
+    return problem_response(req, http::status::bad_request, "invalid query parameters", errors);
+  if (slice_field_units(name).empty()) {
+    std::string known;
+    for (const auto& n : slice_field_names())
+      known += (known.empty() ? "" : ", ") + n;
+    return problem_response(req, http::status::not_found,
+                            "no field '" + name.substr(0, 40) + "'; the fields are " + known);
+  }
+  auto found = find_job(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<Job>(found);
+  if (!is_final(job.status)) return not_finished(req, job, "result file");
+  if (job.status != JobStatus::succeeded || job.result.path.empty())
+    return problem_response(req, http::status::not_found,
+                            "job " + job.id + " has no result file (" + to_string(job.status) +
+                                ")");
+  const std::string path = ctx.data_dir + "/" + job.result.path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    return problem_response(req, http::status::gone,
+                            "the result file of job " + job.id + " is no longer on the server");
+  std::string why;
+  auto slice = read_field_slice(path, name, window, why);
+  if (!slice)
+    return problem_response(req, http::status::internal_server_error,
+                            "the result file of job " + job.id + " cannot be read: " + why);
+  nlohmann::json body;
+  body["id"] = job.id;
+  body["field"] = name;
+  body["units"] = {{"values", slice->units}, {"x1", "m"}, {"time", "s"}};
+  body["shape"] = {slice->time.size(), slice->x1.size()};
+  body["source_shape"] = {slice->source_rows, slice->source_columns};
+  body["stride"] = {{"time", slice->row_stride}, {"x1", slice->column_stride}};
+  body["first_index"] = {{"time", slice->row_first}, {"x1", slice->column_first}};
+  body["x1"] = slice->x1;
+  body["time"] = slice->time;
+  auto rows = nlohmann::json::array();
+  const std::size_t nc = slice->x1.size();
+  double vmin = INFINITY, vmax = -INFINITY;
+  for (std::size_t r = 0; r < slice->time.size(); ++r) {
+    auto row = nlohmann::json::array();
+    for (std::size_t c = 0; c < nc; ++c) {
+      double v = slice->values[r * nc + c];
+      if (std::isfinite(v)) {
+        vmin = std::min(vmin, v);
+        vmax = std::max(vmax, v);
+      }
+      row.push_back(number_or_null(v));
+    }
+    rows.push_back(std::move(row));
+  }
+  body["values"] = std::move(rows);
+  body["min"] = number_or_null(vmin);
+  body["max"] = number_or_null(vmax);
+  return json_response(req, http::status::ok, body);
+}
+
 } // namespace
 
 void add_result_routes(Router& router, ServerContext& ctx) {
@@ -166,6 +280,9 @@ void add_result_routes(Router& router, ServerContext& ctx) {
              [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
   router.add(http::verb::get, prefix + "/jobs/{id}/front",
              [&ctx](RequestContext& rc) { return front(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs/{id}/fields/{name}",
+      [&ctx](RequestContext& rc) { return field(ctx, rc); }, true);
 }
 
 } // namespace slipfront::server

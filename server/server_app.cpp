@@ -2,6 +2,7 @@
 
 #include "server/clock.hpp"
 #include "server/log.hpp"
+#include "server/static_files.hpp"
 #include "solver/simulation.hpp"
 
 #include <boost/asio/ip/address.hpp>
@@ -119,6 +120,18 @@ void ServerApp::start() {
   add_result_routes(router_, *context_);
   add_ops_routes(router_, *context_);
   add_study_routes(router_, *context_);
+  {
+    const std::string web_dir =
+        config_.web_dir.empty() ? StaticFiles::default_dir() : config_.web_dir;
+    auto files = StaticFiles::load(web_dir);
+    if (files->size() == 0)
+      log_info("web view: no files found (" +
+               (web_dir.empty() ? std::string("no web/ beside the executable") : web_dir) +
+               "); / answers 404");
+    else
+      log_info("web view: " + std::to_string(files->size()) + " files from " + web_dir);
+    add_static_routes(router_, files);
+  }
 
   beast::error_code aec;
   auto address = net::ip::make_address(config_.host, aec);

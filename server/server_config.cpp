@@ -18,7 +18,7 @@ std::string usage_text() {
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
          "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
-         "         [--integrity-check on|off]\n"
+         "         [--integrity-check on|off] [--web-dir DIR]\n"
          "         [--executor local|slurm] [--shared-dir DIR] [--slurm-partition P]\n"
          "         [--slurm-account A] [--slurm-time-limit T] [--slurm-sbatch-args ARGS]\n"
          "         [--slurm-binary PATH] [--slurm-max-jobs N] [--slurm-poll-interval-s S]\n"
@@ -125,6 +125,7 @@ const std::map<std::string, Setter>& setters() {
          c.slurm_poll_interval_s = parse_number<double>(f, v);
          if (!(c.slurm_poll_interval_s >= 0.05)) throw UsageError(f + ": must be >= 0.05");
        }},
+      {"web-dir", [](ServerConfig& c, const std::string&, const std::string& v) { c.web_dir = v; }},
       {"integrity-check",
        [](ServerConfig& c, const std::string& f, const std::string& v) {
          if (v == "on" || v == "true")

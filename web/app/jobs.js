@@ -1,0 +1,104 @@
+// Jobs: the group's runs, newest first, filtered and sorted in the page, refreshed every
+// 2 s (If-None-Match: an unchanged listing costs a 304), with cancel for active jobs.
+import { h, clear, fmt, fmtDuration, badge, progressBar, shortId } from './dom.js';
+import { getJSON, post, qs } from './api.js';
+
+const FIELDS = 'id,name,tags,method,spec,status,progress,metrics,wall_time_s,cached_from,submitted_by,created_at,study_id,error';
+
+export function jobL(job) { return job.spec?.friction?.L ?? null; }
+export function jobNd(job) { return job.spec?.geometry?.nodes_per_meter ?? null; }
+
+const COLUMNS = [
+  { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', { title: j.name || '' }, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },
+  { key: 'method', label: 'Method', value: (j) => j.method || 'fe', cell: (j) => h('td', { text: j.method === 'spectral_bi' ? 'BI' : 'FE', title: j.method }) },
+  { key: 'L', label: 'L [m]', num: true, value: jobL, cell: (j) => h('td', { class: 'num', text: fmt(jobL(j)) }) },
+  { key: 'n_d', label: 'n_d [1/m]', num: true, value: jobNd, cell: (j) => h('td', { class: 'num', text: fmt(jobNd(j)) }) },
+  { key: 'status', label: 'Status', value: (j) => j.status, cell: (j) => h('td', {}, badge(j.status)) },
+  { key: 'progress', label: 'Progress', num: true, value: (j) => j.progress?.fraction ?? 0, cell: (j) => h('td', { class: 'pcell' }, progressCell(j)) },
+  { key: 'outcome', label: 'Outcome', value: (j) => j.metrics?.outcome || '', cell: (j) => h('td', { text: j.metrics?.outcome || (j.error ? 'error' : '—'), title: j.error || '' }) },
+  { key: 'arrest', label: 'Arrest x1 [m]', num: true, value: (j) => j.metrics?.arrest_position ?? null, cell: (j) => h('td', { class: 'num', text: fmt(j.metrics?.arrest_position) }) },
+  { key: 'wall', label: 'Wall time', num: true, value: (j) => j.wall_time_s ?? null, cell: (j) => (j.cached_from ? h('td', { class: 'num muted', title: 'reused: no run', text: 'reused' }) : h('td', { class: 'num', text: fmtDuration(j.wall_time_s) })) },
+  { key: 'cache', label: 'Cache', value: (j) => (j.cached_from ? 1 : 0), cell: (j) => h('td', {}, j.cached_from ? h('a', { class: 'hit', href: `#/jobs/${j.cached_from}`, title: `result reused from job ${j.cached_from}`, text: 'hit' }) : '') },
+  { key: 'by', label: 'By', value: (j) => j.submitted_by || '', cell: (j) => h('td', { text: j.submitted_by || '—' }) },
+  { key: 'created', label: 'Submitted (UTC)', value: (j) => j.created_at || '', cell: (j) => h('td', { class: 'when', title: j.created_at || '', text: (j.created_at || '').replace(/^\d{4}-/, '').replace('T', ' ').replace(/:\d\d(\.\d+)?Z$/, '') }) },
+];
+
+function progressCell(j) {
+  const p = j.progress || {};
+  if (j.status === 'running') {
+    const eta = Number.isFinite(p.eta_s) ? ` · ETA ${fmtDuration(p.eta_s)}` : '';
+    return progressBar(p.fraction, `${((p.fraction || 0) * 100).toFixed(0)} %${eta}`);
+  }
+  if (j.status === 'succeeded') return progressBar(1, '100 %');
+  if (j.status === 'queued') return h('span', { class: 'muted', text: 'queued' });
+  return progressBar(p.fraction || 0, `${((p.fraction || 0) * 100).toFixed(0)} %`);
+}
+
+export async function cancelJob(id, out) {
+  try {
+    const r = await post(`/api/v1/jobs/${id}/cancel`);
+    out.textContent = r.status === 'cancelled' ? 'cancelled' : 'cancel requested: stops at its next step';
+    out.className = 'ok';
+  } catch (e) {
+    out.textContent = e.status === 401 ? `${e.message} — enter your token at the top` : e.message;
+    out.className = 'error';
+  }
+}
+
+export function jobsPage(view, page) {
+  const state = { sort: 'created', dir: -1, filter: '', status: '', jobs: [] };
+  const messages = new Map();
+  const filter = h('input', { type: 'search', id: 'job-filter', placeholder: 'filter: name, tag, id, user…', size: 30 });
+  const status = h('select', { id: 'job-status' },
+    ['', 'queued', 'running', 'succeeded', 'failed', 'cancelled'].map((s) => h('option', { value: s, text: s || 'any status' })));
+  const counter = h('span', { class: 'muted' });
+  const message = h('span', { id: 'jobs-message' });
+  const table = h('table', { class: 'grid', id: 'jobs-table' });
+  view.append(
+    h('div', { class: 'pagehead' }, h('h1', { text: 'Jobs' }), h('a', { class: 'button', href: '#/submit', text: 'Submit a job' })),
+    h('div', { class: 'toolbar' }, filter, status, counter, message),
+    h('div', { class: 'tablewrap' }, table));
+
+  const render = () => {
+    const q = state.filter.toLowerCase();
+    let rows = state.jobs.filter((j) => !q || [j.name, j.id, j.submitted_by, j.method, ...(j.tags || [])].some((s) => String(s || '').toLowerCase().includes(q)));
+    const col = COLUMNS.find((c) => c.key === state.sort);
+    rows = rows.slice().sort((a, b) => {
+      const va = col.value(a), vb = col.value(b);
+      if (va === vb) return 0;
+      if (va === null || va === undefined) return 1;
+      if (vb === null || vb === undefined) return -1;
+      return (va < vb ? -1 : 1) * state.dir;
+    });
+    clear(table);
+    table.append(h('thead', {}, h('tr', {}, COLUMNS.map((c) => h('th', {
+      class: `${c.num ? 'num ' : ''}sortable${state.sort === c.key ? ' sorted' : ''}`,
+      title: 'sort', onclick: () => { state.dir = state.sort === c.key ? -state.dir : (c.key === 'created' ? -1 : 1); state.sort = c.key; render(); },
+    }, c.label, state.sort === c.key ? (state.dir > 0 ? ' ▲' : ' ▼') : '')), h('th', { text: '' }))));
+    const body = h('tbody');
+    for (const j of rows) {
+      if (!messages.has(j.id)) messages.set(j.id, h('span'));
+      const out = messages.get(j.id); // a cancel's answer stays through the refreshes
+      const active = j.status === 'queued' || j.status === 'running';
+      body.append(h('tr', { dataset: { id: j.id, status: j.status } }, COLUMNS.map((c) => c.cell(j)),
+        h('td', {}, active ? h('button', { class: 'small', onclick: () => cancelJob(j.id, out), text: 'Cancel' }) : null, out)));
+    }
+    if (!rows.length) body.append(h('tr', {}, h('td', { colspan: COLUMNS.length + 1, class: 'muted', text: state.jobs.length ? 'No job matches the filter.' : 'No jobs yet: submit one.' })));
+    table.append(body);
+    counter.textContent = `${rows.length} of ${state.jobs.length} shown`;
+  };
+
+  const load = async () => {
+    const { body, changed } = await getJSON(`/api/v1/jobs${qs({ limit: 500, fields: FIELDS, status: state.status })}`);
+    message.textContent = '';
+    if (!changed && state.jobs.length) return;
+    state.jobs = body.jobs || [];
+    render();
+  };
+  filter.addEventListener('input', () => { state.filter = filter.value; render(); });
+  status.addEventListener('change', () => { state.status = status.value; load().catch(showError); });
+  const showError = (e) => { message.textContent = `listing failed: ${e.message}`; message.className = 'error'; };
+  render();
+  load().catch(showError);
+  page.every(2000, () => load().catch(showError));
+}
