@@ -41,14 +41,12 @@ bool read_1d(hid_t group, const char* name, std::vector<double>& out, std::strin
 
 // [first, last] indices of the sorted `axis` within [lo, hi]; the nearest to the middle when
 // none is.
-std::pair<std::size_t, std::size_t> index_range(const std::vector<double>& axis,
-                                                std::optional<double> lo,
-                                                std::optional<double> hi) {
+std::pair<std::size_t, std::size_t>
+index_range(const std::vector<double>& axis, std::optional<double> lo, std::optional<double> hi) {
   const double a = lo.value_or(-INFINITY), b = hi.value_or(INFINITY);
   auto first = std::lower_bound(axis.begin(), axis.end(), a) - axis.begin();
   auto end = std::upper_bound(axis.begin(), axis.end(), b) - axis.begin();
-  if (first < end)
-    return {static_cast<std::size_t>(first), static_cast<std::size_t>(end - 1)};
+  if (first < end) return {static_cast<std::size_t>(first), static_cast<std::size_t>(end - 1)};
   double mid = std::isfinite(a) && std::isfinite(b) ? 0.5 * (a + b) : (std::isfinite(a) ? a : b);
   std::size_t best = 0;
   for (std::size_t i = 1; i < axis.size(); ++i)
@@ -56,7 +54,9 @@ std::pair<std::size_t, std::size_t> index_range(const std::vector<double>& axis,
   return {best, best};
 }
 
-std::size_t ceil_div(std::size_t a, std::size_t b) { return (a + b - 1) / b; }
+std::size_t ceil_div(std::size_t a, std::size_t b) {
+  return (a + b - 1) / b;
+}
 
 } // namespace
 
@@ -156,8 +156,7 @@ std::optional<FieldSlice> read_field_slice(const std::string& path, const std::s
     }
     Id memory{H5Screate_simple(2, count, nullptr), H5Sclose};
     s.values.resize(count[0] * count[1]);
-    if (H5Dread(set.id, H5T_NATIVE_DOUBLE, memory.id, space.id, H5P_DEFAULT, s.values.data()) <
-        0) {
+    if (H5Dread(set.id, H5T_NATIVE_DOUBLE, memory.id, space.id, H5P_DEFAULT, s.values.data()) < 0) {
       why = "reading /interface/" + name + " failed";
       return;
     }

@@ -187,8 +187,8 @@ Response field(ServerContext& ctx, RequestContext& rc) {
     if (key == "x1_min" || key == "x1_max" || key == "t_min" || key == "t_max") {
       auto v = finite_number(value);
       if (!v) {
-        errors.push_back({"/query/" + key, "must be a finite number, got '" +
-                                               value.substr(0, 40) + "'"});
+        errors.push_back(
+            {"/query/" + key, "must be a finite number, got '" + value.substr(0, 40) + "'"});
         continue;
       }
       (key == "x1_min"   ? window.x1_min
@@ -200,8 +200,8 @@ Response field(ServerContext& ctx, RequestContext& rc) {
       auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
       if (value.empty() || ec != std::errc() || end != value.data() + value.size() || n < 1 ||
           n > max_slice_points)
-        errors.push_back({"/query/max_points", "must be an integer in [1, " +
-                                                   std::to_string(max_slice_points) + "]"});
+        errors.push_back({"/query/max_points",
+                          "must be an integer in [1, " + std::to_string(max_slice_points) + "]"});
       else
         window.max_points = n;
     } else {

@@ -38,104 +38,116 @@ template <class T> T parse_number(const std::string& flag, const std::string& te
 using Setter = std::function<void(ServerConfig&, const std::string& flag, const std::string&)>;
 
 const std::map<std::string, Setter>& setters() {
-  static const std::map<std::string, Setter> table = {
-      {"host", [](ServerConfig& c, const std::string&, const std::string& v) { c.host = v; }},
-      {"port",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.port = parse_number<int>(f, v);
-         if (c.port < 0 || c.port > 65535) throw UsageError(f + ": must be in [0, 65535]");
-       }},
-      {"data-dir",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.data_dir = v; }},
-      {"workers",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.workers = parse_number<int>(f, v);
-         if (c.workers < 0 || c.workers > 1024) throw UsageError(f + ": must be in [0, 1024]");
-       }},
-      {"queue-limit",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.queue_limit = parse_number<std::size_t>(f, v);
-       }},
-      {"max-memory-bytes",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.max_memory_bytes = parse_number<double>(f, v);
-         if (!(c.max_memory_bytes >= 0)) throw UsageError(f + ": must be >= 0");
-       }},
-      {"max-result-bytes",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.max_result_bytes = parse_number<double>(f, v);
-         if (!(c.max_result_bytes > 0)) throw UsageError(f + ": must be > 0");
-       }},
-      {"max-body-bytes",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.max_body_bytes = parse_number<std::uint64_t>(f, v);
-       }},
-      {"token-file",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.token_file = v; }},
-      {"io-threads",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.io_threads = parse_number<int>(f, v);
-         if (c.io_threads < 1 || c.io_threads > 64) throw UsageError(f + ": must be in [1, 64]");
-       }},
-      {"request-timeout-s",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.request_timeout_s = parse_number<int>(f, v);
-         if (c.request_timeout_s < 1) throw UsageError(f + ": must be >= 1");
-       }},
-      {"retry-after-s", [](ServerConfig& c, const std::string& f,
-                           const std::string& v) { c.retry_after_s = parse_number<int>(f, v); }},
-      {"db-progress-interval-s",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.db_progress_interval_s = parse_number<double>(f, v);
-       }},
-      {"min-free-bytes",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.min_free_bytes = parse_number<double>(f, v);
-         if (!(c.min_free_bytes >= 0)) throw UsageError(f + ": must be >= 0");
-       }},
-      {"max-connections",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.max_connections = parse_number<int>(f, v);
-         if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
-       }},
-      {"executor",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         if (v != "local" && v != "slurm") throw UsageError(f + ": must be local or slurm");
-         c.executor = v;
-       }},
-      {"shared-dir",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.shared_dir = v; }},
-      {"slurm-partition",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_partition = v; }},
-      {"slurm-account",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_account = v; }},
-      {"slurm-time-limit",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_time_limit = v; }},
-      {"slurm-sbatch-args",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_sbatch_args = v; }},
-      {"slurm-binary",
-       [](ServerConfig& c, const std::string&, const std::string& v) { c.slurm_binary = v; }},
-      {"slurm-max-jobs",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.slurm_max_jobs = parse_number<int>(f, v);
-         if (c.slurm_max_jobs < 1) throw UsageError(f + ": must be >= 1");
-       }},
-      {"slurm-poll-interval-s",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         c.slurm_poll_interval_s = parse_number<double>(f, v);
-         if (!(c.slurm_poll_interval_s >= 0.05)) throw UsageError(f + ": must be >= 0.05");
-       }},
-      {"web-dir", [](ServerConfig& c, const std::string&, const std::string& v) { c.web_dir = v; }},
-      {"integrity-check",
-       [](ServerConfig& c, const std::string& f, const std::string& v) {
-         if (v == "on" || v == "true")
-           c.integrity_check = true;
-         else if (v == "off" || v == "false")
-           c.integrity_check = false;
-         else
-           throw UsageError(f + ": must be on or off");
-       }},
-  };
+  static const std::
+      map<std::string, Setter>
+          table =
+              {
+                  {"host",
+                   [](ServerConfig& c, const std::string&, const std::string& v) { c.host = v; }},
+                  {"port",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.port = parse_number<int>(f, v);
+                     if (c.port < 0 || c.port > 65535)
+                       throw UsageError(f + ": must be in [0, 65535]");
+                   }},
+                  {"data-dir", [](ServerConfig& c, const std::string&,
+                                  const std::string& v) { c.data_dir = v; }},
+                  {"workers",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.workers = parse_number<int>(f, v);
+                     if (c.workers < 0 || c.workers > 1024)
+                       throw UsageError(f + ": must be in [0, 1024]");
+                   }},
+                  {"queue-limit",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.queue_limit = parse_number<std::size_t>(f, v);
+                   }},
+                  {"max-memory-bytes",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_memory_bytes = parse_number<double>(f, v);
+                     if (!(c.max_memory_bytes >= 0)) throw UsageError(f + ": must be >= 0");
+                   }},
+                  {"max-result-bytes",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_result_bytes = parse_number<double>(f, v);
+                     if (!(c.max_result_bytes > 0)) throw UsageError(f + ": must be > 0");
+                   }},
+                  {"max-body-bytes",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_body_bytes = parse_number<std::uint64_t>(f, v);
+                   }},
+                  {"token-file", [](ServerConfig& c, const std::string&,
+                                    const std::string& v) { c.token_file = v; }},
+                  {"io-threads",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.io_threads = parse_number<int>(f, v);
+                     if (c.io_threads < 1 || c.io_threads > 64)
+                       throw UsageError(f + ": must be in [1, 64]");
+                   }},
+                  {"request-timeout-s",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.request_timeout_s = parse_number<int>(f, v);
+                     if (c.request_timeout_s < 1) throw UsageError(f + ": must be >= 1");
+                   }},
+                  {"retry-after-s",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.retry_after_s = parse_number<int>(f, v);
+                   }},
+                  {"db-progress-interval-s",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.db_progress_interval_s = parse_number<double>(f, v);
+                   }},
+                  {"min-free-bytes",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.min_free_bytes = parse_number<double>(f, v);
+                     if (!(c.min_free_bytes >= 0)) throw UsageError(f + ": must be >= 0");
+                   }},
+                  {"max-connections",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_connections = parse_number<int>(f, v);
+                     if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
+                   }},
+                  {"executor",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     if (v != "local" && v != "slurm")
+                       throw UsageError(f + ": must be local or slurm");
+                     c.executor = v;
+                   }},
+                  {"shared-dir", [](ServerConfig& c, const std::string&,
+                                    const std::string& v) { c.shared_dir = v; }},
+                  {"slurm-partition", [](ServerConfig& c, const std::string&,
+                                         const std::string& v) { c.slurm_partition = v; }},
+                  {"slurm-account", [](ServerConfig& c, const std::string&,
+                                       const std::string& v) { c.slurm_account = v; }},
+                  {"slurm-time-limit", [](ServerConfig& c, const std::string&,
+                                          const std::string& v) { c.slurm_time_limit = v; }},
+                  {"slurm-sbatch-args", [](ServerConfig& c, const std::string&,
+                                           const std::string& v) { c.slurm_sbatch_args = v; }},
+                  {"slurm-binary", [](ServerConfig& c, const std::string&,
+                                      const std::string& v) { c.slurm_binary = v; }},
+                  {"slurm-max-jobs",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.slurm_max_jobs = parse_number<int>(f, v);
+                     if (c.slurm_max_jobs < 1) throw UsageError(f + ": must be >= 1");
+                   }},
+                  {"slurm-poll-interval-s",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.slurm_poll_interval_s = parse_number<double>(f, v);
+                     if (!(c.slurm_poll_interval_s >= 0.05))
+                       throw UsageError(f + ": must be >= 0.05");
+                   }},
+                  {"web-dir", [](ServerConfig& c, const std::string&,
+                                 const std::string& v) { c.web_dir = v; }},
+                  {"integrity-check",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     if (v == "on" || v == "true")
+                       c.integrity_check = true;
+                     else if (v == "off" || v == "false")
+                       c.integrity_check = false;
+                     else
+                       throw UsageError(f + ": must be on or off");
+                   }},
+              };
   return table;
 }
 

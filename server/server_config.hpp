@@ -35,7 +35,7 @@ struct ServerConfig {
   std::string slurm_binary;           // slipfront on the compute nodes ("" = this executable)
   int slurm_max_jobs = 100;           // jobs kept in SLURM at once
   double slurm_poll_interval_s = 2.0; // squeue and progress files
-  std::string web_dir;       // the web view's files; "" = beside the executable (docs/web.md)
+  std::string web_dir; // the web view's files; "" = beside the executable (docs/web.md)
 };
 
 class UsageError : public std::runtime_error {

@@ -14,7 +14,9 @@ namespace slipfront::server {
 namespace {
 
 constexpr int rows = 30, cols = 50;
-double value(int r, int c) { return r * 1000.0 + c + (r == 3 && c == 4 ? NAN : 0.0); }
+double value(int r, int c) {
+  return r * 1000.0 + c + (r == 3 && c == 4 ? NAN : 0.0);
+}
 
 std::string write_file(const testing::TempDir& dir) {
   namespace h5 = api::hdf5;
@@ -97,7 +99,8 @@ TEST(FieldSlice, DecimationKeepsEveryKthValueWithinTheBudget) {
     EXPECT_GE(n, 1u);
     for (std::size_t r = 0; r < s->time.size(); ++r)
       for (std::size_t c = 0; c < s->x1.size(); ++c) {
-        const int fr = static_cast<int>(r * s->row_stride), fc = static_cast<int>(c * s->column_stride);
+        const int fr = static_cast<int>(r * s->row_stride),
+                  fc = static_cast<int>(c * s->column_stride);
         if (fr == 3 && fc == 4) continue;
         EXPECT_EQ(s->values[r * s->x1.size() + c], value(fr, fc));
       }

@@ -10,7 +10,6 @@ answers (304 on If-None-Match) and GET /api/v1/job-defaults.
 import argparse
 import http.client
 import io
-import json
 import os
 import sys
 import unittest
