@@ -1,5 +1,5 @@
 """Faults around a live server (issue 10): a second server on the same data dir, a full disk
-(a small tmpfs as data dir), running out of file descriptors. Each asserts what must hold:
+(a small tmpfs as data dir), a run that fills the disk, running out of file descriptors. Each asserts what must hold:
 no accepted job lost or stuck, no 500, the database intact.
 
     /usr/bin/python3 tests/server/test_faults.py --binary build/slipfront
@@ -159,6 +159,76 @@ class FullDisk(unittest.TestCase):
         finally:
             server.cleanup()
             shutil.rmtree(log_dir, ignore_errors=True)
+
+
+def mount_tmpfs(test, size):
+    """A tmpfs of `size` (e.g. "3m") on a new directory; skips the test unless mount works
+    (root). Unmounted at cleanup."""
+    mount = tempfile.mkdtemp(prefix="slipfront-tmpfs-")
+    r = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", mount],
+                       capture_output=True)
+    if r.returncode != 0:
+        os.rmdir(mount)
+        test.skipTest("cannot mount a tmpfs here (needs root): "
+                      + r.stderr.decode(errors="replace").strip())
+
+    def unmount():
+        subprocess.run(["umount", "-l", mount], capture_output=True)
+        shutil.rmtree(mount, ignore_errors=True)
+    test.addCleanup(unmount)
+    return mount
+
+
+def server_with_log_outside(test, data_dir, args=()):
+    """A Server on `data_dir` whose log is written elsewhere (the data dir may be full or
+    read-only)."""
+    log_dir = tempfile.mkdtemp(prefix="slipfront-fault-log-")
+    test.addCleanup(shutil.rmtree, log_dir, True)
+    server = Server(BINARY, data_dir=data_dir, args=list(args))
+    server.log_path = os.path.join(log_dir, "server.log")
+    return server
+
+
+class RunFillsTheDisk(unittest.TestCase):
+    """Defect 4, second half: a run whose own result file fills the disk. Before, the job
+    failed with "HDF5: writing rows of ... failed", HDF5 kept the file's objects open (the
+    file's blocks stayed allocated until exit, "infinite loop closing library" at exit, and
+    sometimes a SIGSEGV)."""
+
+    def test_run_fails_cleanly_and_frees_the_disk(self):
+        mount = mount_tmpfs(self, "4m")
+        data = os.path.join(mount, "data")
+        server = server_with_log_outside(self, data, ["--workers", "1",
+                                                      "--min-free-bytes", "65536"])
+        server.start()
+        try:
+            # About 4000 interface nodes sampled every step: far more than the 4 MiB disk.
+            big = {"name": "fills-the-disk", "geometry": {"nodes_per_meter": 100, "height": 2.0},
+                   "time": {"duration": 4.0, "stop_on_arrest": False},
+                   "output": {"interval": 1e-4}}
+            r = server.submit(big, params={"fresh": "true"})
+            self.assertEqual(r.status_code, 201, r.text)
+            job = server.wait_status(r.json()["id"], TERMINAL, timeout=120)
+            self.assertEqual(job["status"], "failed", job)
+            self.assertIn("the disk holding " + os.path.join(data, "results") + " is full",
+                          job["error"])
+            self.assertIn("No space left on device", job["error"])
+            self.assertIn("partial file was removed", job["error"])
+            self.assertIsNone(job["result"])
+            self.assertEqual(os.listdir(os.path.join(data, "results")), [])
+            # Its blocks are free at once (before, the open handle kept them until exit).
+            free = shutil.disk_usage(mount).free
+            self.assertGreater(free, 3 * 2**20, f"{free} bytes free after the failed run")
+            # The server goes on: the next job runs and succeeds.
+            r = server.submit(dict(TINY, name="after-the-full-disk"), params={"fresh": "true"})
+            self.assertEqual(r.status_code, 201, r.text)
+            self.assertEqual(server.wait_status(r.json()["id"], TERMINAL)["status"], "succeeded")
+            self.assertEqual(server.terminate(), 0, server.read_log())
+            log = server.read_log()
+            self.assertNotIn("infinite loop closing library", log)
+            self.assertEqual(integrity(data), "ok")
+        finally:
+            server.cleanup()
 
 
 class DescriptorExhaustion(unittest.TestCase):
