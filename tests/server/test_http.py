@@ -95,6 +95,21 @@ class MainServer(unittest.TestCase):
                      "/api/v1/jobs/{id}/result.h5", "/api/v1/jobs/{id}/metrics",
                      "/api/v1/jobs/{id}/front", "/healthz", "/metrics"]:
             self.assertIn(path, doc["paths"])
+        # What holds on every path (issue 10): HEAD beside every GET, and a 503 with
+        # Retry-After on every operation (storage errors, the connection cap).
+        # test_hostile.py checks every status its requests were answered against the document.
+        for path, operations in doc["paths"].items():
+            if "get" in operations:
+                self.assertIn("head", operations, path)
+                self.assertEqual(set(operations["head"]["responses"]),
+                                 set(operations["get"]["responses"]), path)
+            for method, operation in operations.items():
+                unavailable = operation["responses"].get("503")
+                self.assertIsNotNone(unavailable, f"{method} {path}")
+                if "$ref" in unavailable:
+                    unavailable = doc["components"]["responses"][unavailable["$ref"].split("/")[-1]]
+                self.assertIn("Retry-After", unavailable["headers"], f"{method} {path}")
+        self.assertIn("410", doc["paths"]["/api/v1/jobs/{id}/result.h5"]["get"]["responses"])
 
     def test_prometheus_metrics(self):
         self.run_tiny(name="for-metrics")
