@@ -12,6 +12,7 @@ packages=(
   libhdf5-dev hdf5-tools libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-requests
   curl wrk
+  clang libclang-rt-14-dev   # the libFuzzer targets (scripts/fuzz.sh)
 )
 missing=()
 for p in "${packages[@]}"; do
