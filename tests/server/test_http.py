@@ -236,7 +236,7 @@ class MainServer(unittest.TestCase):
     def assertFileSampling(self, job, interval, stride=1):
         """The job's HDF5 file (downloaded over HTTP) says and has this output sampling."""
         r = self.server.get(job["result"]["url"])
-        self.assertEqual(r.status_code, 200, r.text[:300])
+        self.assertEqual(r.status_code, 200, r.content[:300])
         with tempfile.NamedTemporaryFile(suffix=".h5") as f:
             f.write(r.content)
             f.flush()
