@@ -75,7 +75,7 @@ public:
   void append(const void* data, hsize_t rows);
   hid_t id() const { return dataset_.get(); }
   void close() { dataset_.close("closing dataset " + name_); } // throws Error on failure
-  void release() { dataset_.reset(); }                        // error paths
+  void release() { dataset_.reset(); }                         // error paths
 
 private:
   Handle dataset_;

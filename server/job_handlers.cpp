@@ -5,7 +5,6 @@
 #include "server/query_string.hpp"
 #include "server/responses.hpp"
 
-
 namespace slipfront::server {
 
 // The submitting user, or a 401 response when a token file is configured and the request
