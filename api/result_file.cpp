@@ -170,12 +170,13 @@ void ResultFileWriter::Impl::release() {
 
 // After a failed write HDF5 still holds dirty chunks and metadata that it cannot flush. An
 // object whose close fails to flush stays registered in the library (and keeps its file
-// open), so the handles would outlive the job: the file's blocks stay allocated until the
-// process exits, and the library's own clean-up at exit loops over them ("infinite loop
-// closing library") and could crash. So the file's descriptor is first pointed at an
-// anonymous in-memory file: the flushes of the closes below then succeed (into memory, only
-// what is still dirty), every object is released, and the descriptor of the real file is
-// closed. The partial file is unlinked: with its descriptor gone its blocks are free at once.
+// open), so the handles would outlive the job, and the library's own clean-up at exit
+// closed them again and crashed (SIGSEGV in H5F__close_cb under H5_term_library; see
+// docs/reliability.md). So the file's descriptor is first pointed at an anonymous in-memory
+// file: the flushes of the closes below then succeed (into memory, only what is still
+// dirty), every object is released, and the descriptor of the real file is closed. The
+// partial file is unlinked: with its descriptor gone its blocks are free at once. Should
+// memfd_create or dup3 fail (no memory, no descriptor), the closes are tried as they are.
 void ResultFileWriter::Impl::discard_after_error() {
   if (file.valid()) {
     void* handle = nullptr;
