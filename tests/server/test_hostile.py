@@ -184,6 +184,17 @@ class HostileInput(unittest.TestCase):
             with self.subTest(text=text):
                 self.assertRejected(self.post_raw(STUDIES, text), 422, pointer)
 
+    def test_long_non_ascii_values_in_error_messages(self):
+        # Found by the fuzzer: the value quoted in an error is cut to 40 bytes; a cut inside
+        # a UTF-8 character made the message itself fail (500).
+        value = "a" * 39 + "\u00e9" * 5
+        for body, pointer in (({"friction": {"law": value}}, "/friction/law"),
+                              ({"method": value}, "/method")):
+            b = self.assertRejected(self.post_raw(JOBS, json.dumps(body)), 422, pointer)
+            self.assertIn("a" * 39 + '"...', b["errors"][0]["reason"])
+        self.assertRejected(self.post_raw(STUDIES, json.dumps({"base": {"friction": {"law": value}}})),
+                            422)
+
     def test_syntax_errors_are_400_in_our_words(self):
         for path in (JOBS, STUDIES):
             for text in ("{", "[1,]", '{"a" 1}', "nul", '"\\uZZZZ"', "\xff", ""):
