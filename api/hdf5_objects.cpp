@@ -1,6 +1,7 @@
 #include "api/hdf5_objects.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace slipfront::api::hdf5 {
@@ -21,12 +22,71 @@ Handle compressed_layout(int rank, const hsize_t* chunk) {
 
 } // namespace
 
+namespace {
+
+struct Cause {
+  std::string text;
+  int system_errno = 0;
+};
+
+// The innermost entry of this thread's HDF5 error stack: where the failure began. A failed
+// system call is described as "..., errno = 28, error message = 'No space left on device',
+// ...": keep the message and the number.
+Cause innermost_cause() {
+  Cause cause;
+  auto visit = [](unsigned n, const H5E_error2_t* error, void* data) -> herr_t {
+    if (n != 0 || error->desc == nullptr) return 0;
+    auto& c = *static_cast<Cause*>(data);
+    const std::string desc = error->desc;
+    c.text = desc;
+    if (const auto at = desc.find("errno = "); at != std::string::npos)
+      c.system_errno = std::atoi(desc.c_str() + at + 8);
+    const std::string quote = "error message = '";
+    if (const auto at = desc.find(quote); at != std::string::npos) {
+      const auto begin = at + quote.size();
+      c.text = desc.substr(begin, desc.find('\'', begin) - begin);
+    }
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &cause);
+  return cause;
+}
+
+[[noreturn]] void fail(const std::string& what) {
+  const Cause cause = innermost_cause();
+  throw Error("HDF5: " + what + " failed" + (cause.text.empty() ? "" : ": " + cause.text),
+              cause.system_errno);
+}
+
+herr_t close_object(hid_t id) {
+  switch (H5Iget_type(id)) {
+  case H5I_FILE:
+    return H5Fclose(id);
+  case H5I_GROUP:
+    return H5Gclose(id);
+  case H5I_DATASET:
+    return H5Dclose(id);
+  case H5I_DATASPACE:
+    return H5Sclose(id);
+  case H5I_DATATYPE:
+    return H5Tclose(id);
+  case H5I_ATTR:
+    return H5Aclose(id);
+  case H5I_GENPROP_LST:
+    return H5Pclose(id);
+  default:
+    return 0; // not an object of ours (or no longer valid): nothing to close
+  }
+}
+
+} // namespace
+
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
+  if (status < 0) fail(what);
 }
 
 hid_t check_id(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error("HDF5: " + what + " failed");
+  if (id < 0) fail(what);
   return id;
 }
 
@@ -41,31 +101,13 @@ Handle& Handle::operator=(Handle&& other) noexcept {
 
 void Handle::reset() {
   if (id_ < 0) return;
-  switch (H5Iget_type(id_)) {
-  case H5I_FILE:
-    H5Fclose(id_);
-    break;
-  case H5I_GROUP:
-    H5Gclose(id_);
-    break;
-  case H5I_DATASET:
-    H5Dclose(id_);
-    break;
-  case H5I_DATASPACE:
-    H5Sclose(id_);
-    break;
-  case H5I_DATATYPE:
-    H5Tclose(id_);
-    break;
-  case H5I_ATTR:
-    H5Aclose(id_);
-    break;
-  case H5I_GENPROP_LST:
-    H5Pclose(id_);
-    break;
-  default:
-    break;
-  }
+  close_object(id_);
+  id_ = H5I_INVALID_HID;
+}
+
+void Handle::close(const std::string& what) {
+  if (id_ < 0) return;
+  check(close_object(id_), what);
   id_ = H5I_INVALID_HID;
 }
 

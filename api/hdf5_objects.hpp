@@ -6,12 +6,25 @@
 
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace slipfront::api::hdf5 {
 
-// Throws std::runtime_error naming `what` when an HDF5 call failed (negative status).
+// A failed HDF5 call: `what` failed, with the innermost cause HDF5 recorded (for a failed
+// system call, its error message) and its errno (0 when HDF5 did not name one).
+class Error : public std::runtime_error {
+public:
+  Error(const std::string& message, int system_errno)
+      : std::runtime_error(message), system_errno_(system_errno) {}
+  int system_errno() const { return system_errno_; }
+
+private:
+  int system_errno_;
+};
+
+// Throw Error naming `what` when an HDF5 call failed (negative status).
 void check(herr_t status, const std::string& what);
 hid_t check_id(hid_t id, const std::string& what);
 
@@ -28,7 +41,12 @@ public:
 
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
-  void reset(); // closes the object (whatever its kind)
+  // Closes the object (whatever its kind), ignoring a failure: for error paths.
+  void reset();
+  // Closes the object and throws Error naming `what` if HDF5 could not (a file or dataset
+  // close flushes: it fails when the disk does). On failure the handle is kept: HDF5 still
+  // holds the object, and reset() may release it later.
+  void close(const std::string& what);
 
 private:
   hid_t id_ = H5I_INVALID_HID;
@@ -56,7 +74,8 @@ public:
   // Appends `rows` rows stored contiguously (row-major) at `data`.
   void append(const void* data, hsize_t rows);
   hid_t id() const { return dataset_.get(); }
-  void close() { dataset_.reset(); }
+  void close() { dataset_.close("closing dataset " + name_); } // throws Error on failure
+  void release() { dataset_.reset(); }                         // error paths
 
 private:
   Handle dataset_;

@@ -60,12 +60,20 @@ std::string describe_value(const nlohmann::json& value) {
   if (value.is_object()) return "an object";
   if (value.is_array()) return "an array";
   if (value.is_number_float() && !std::isfinite(value.get<double>())) return "a non-finite number";
+  // An error message must not fail: a string is cut at a character boundary (cutting a
+  // UTF-8 sequence made dump() throw, and the request a 500), and anything that still is not
+  // UTF-8 is shown with replacement characters.
+  constexpr auto replace = nlohmann::json::error_handler_t::replace;
   if (value.is_string()) {
     const auto& text = value.get_ref<const std::string&>();
-    constexpr std::size_t shown = 40;
-    if (text.size() > shown) return nlohmann::json(text.substr(0, shown)).dump() + "...";
+    std::size_t shown = 40;
+    if (text.size() > shown) {
+      while (shown > 0 && (static_cast<unsigned char>(text[shown]) & 0xC0) == 0x80)
+        --shown; // text[shown] continues a character: cut before that character
+      return nlohmann::json(text.substr(0, shown)).dump(-1, ' ', false, replace) + "...";
+    }
   }
-  return value.dump();
+  return value.dump(-1, ' ', false, replace);
 }
 
 std::string child_pointer(const std::string& parent, const std::string& key) {

@@ -3,13 +3,18 @@
 #include "api/hdf5_objects.hpp"
 #include "api/job_spec.hpp"
 
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <stdexcept>
 
 namespace slipfront::api {
@@ -67,7 +72,10 @@ struct ResultFileWriter::Impl {
   void create_interface(const InterfaceLayout& layout);
   void flush();
   void write_records(const RunResult& result);
-  void close();
+  void close();   // every flush and close checked: throws hdf5::Error
+  void release(); // error paths: close what can be closed, ignoring failures
+  void discard_after_error();
+  [[noreturn]] void fail(const std::exception& error);
 };
 
 void ResultFileWriter::Impl::open_file() {
@@ -146,8 +154,64 @@ void ResultFileWriter::Impl::close() {
   for (auto& field : fields)
     field.close();
   state.close();
+  interface_group.close("closing group interface");
+  if (file.valid()) hdf5::check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "flushing " + temp_path);
+  file.close("closing " + temp_path);
+}
+
+void ResultFileWriter::Impl::release() {
+  time.release();
+  for (auto& field : fields)
+    field.release();
+  state.release();
   interface_group.reset();
   file.reset();
+}
+
+// After a failed write HDF5 still holds dirty chunks and metadata that it cannot flush. An
+// object whose close fails to flush stays registered in the library (and keeps its file
+// open), so the handles would outlive the job, and the library's own clean-up at exit
+// closed them again and crashed (SIGSEGV in H5F__close_cb under H5_term_library; see
+// docs/reliability.md). So the file's descriptor is first pointed at an anonymous in-memory
+// file: the flushes of the closes below then succeed (into memory, only what is still
+// dirty), every object is released, and the descriptor of the real file is closed. The
+// partial file is unlinked: with its descriptor gone its blocks are free at once. Should
+// memfd_create or dup3 fail (no memory, no descriptor), the closes are tried as they are.
+void ResultFileWriter::Impl::discard_after_error() {
+  if (file.valid()) {
+    void* handle = nullptr;
+    if (H5Fget_vfd_handle(file.get(), H5P_DEFAULT, &handle) >= 0 && handle != nullptr) {
+      const int fd = *static_cast<int*>(handle);
+      const int scratch = ::memfd_create("slipfront-discarded-result", MFD_CLOEXEC);
+      if (scratch >= 0) {
+        ::dup3(scratch, fd, O_CLOEXEC); // closes the real file's descriptor
+        ::close(scratch);
+      }
+    }
+  }
+  std::remove(temp_path.c_str());
+  release();
+  H5Eclear2(H5E_DEFAULT);
+  finished = true; // nothing is left to clean up
+}
+
+// Every error of the file ends here: the writer lets go of the file (above) and throws
+// the error again, saying when it is the disk that is full.
+void ResultFileWriter::Impl::fail(const std::exception& error) {
+  const auto* hdf5_error = dynamic_cast<const hdf5::Error*>(&error);
+  const int code = hdf5_error != nullptr ? hdf5_error->system_errno() : 0;
+  discard_after_error();
+  std::string message = "result file " + final_path + ": ";
+  if (code == ENOSPC || code == EDQUOT) {
+    const auto directory = std::filesystem::path(final_path).parent_path().string();
+    message += "the disk holding " + (directory.empty() ? std::string(".") : directory) +
+               " is full (" + std::strerror(code) + ")";
+  } else {
+    message += error.what();
+  }
+  message += "; the partial file was removed";
+  if (code != 0) message += " [" + std::string(error.what()) + "]";
+  throw std::runtime_error(message);
 }
 
 ResultFileWriter::ResultFileWriter(std::string final_path) : impl_(std::make_unique<Impl>()) {
@@ -160,7 +224,11 @@ ResultFileWriter::~ResultFileWriter() {
 }
 
 void ResultFileWriter::begin(const InterfaceLayout& layout) {
-  impl_->create_interface(layout);
+  try {
+    impl_->create_interface(layout);
+  } catch (const hdf5::Error& e) {
+    impl_->fail(e);
+  }
 }
 
 void ResultFileWriter::write(const InterfaceSample& sample) {
@@ -182,41 +250,54 @@ void ResultFileWriter::write(const InterfaceSample& sample) {
   }
   w.state_buffer.insert(w.state_buffer.end(), sample.state.begin(), sample.state.end());
   w.time_buffer.push_back(sample.time);
-  if (++w.buffered == w.chunk_rows) w.flush();
+  if (++w.buffered == w.chunk_rows) {
+    try {
+      w.flush();
+    } catch (const hdf5::Error& e) {
+      w.fail(e);
+    }
+  }
 }
 
 void ResultFileWriter::finish(const RunResult& result, const nlohmann::json& canonical_spec,
                               const nlohmann::json& metrics) {
   Impl& w = *impl_;
   if (w.finished) throw std::logic_error("ResultFileWriter::finish called twice");
-  if (!w.interface_group.valid()) w.create_interface(InterfaceLayout{});
-  w.flush();
-  w.write_records(result);
+  try {
+    if (!w.interface_group.valid()) w.create_interface(InterfaceLayout{});
+    w.flush();
+    w.write_records(result);
 
-  const hid_t root = w.file.get();
-  hdf5::write_attribute(root, "spec", canonical_text(canonical_spec));
-  hdf5::write_attribute(root, "spec_sha256", spec_hash(canonical_spec));
-  hdf5::write_attribute(root, "metrics", metrics.dump());
-  hdf5::write_attribute(root, "code_version", code_version());
-  for (const char* key : {"method", "method_description"}) {
-    const auto value = metrics.find(key);
-    hdf5::write_attribute(root, key,
-                          value != metrics.end() && value->is_string() ? value->get<std::string>()
-                                                                       : std::string());
+    const hid_t root = w.file.get();
+    hdf5::write_attribute(root, "spec", canonical_text(canonical_spec));
+    hdf5::write_attribute(root, "spec_sha256", spec_hash(canonical_spec));
+    hdf5::write_attribute(root, "metrics", metrics.dump());
+    hdf5::write_attribute(root, "code_version", code_version());
+    for (const char* key : {"method", "method_description"}) {
+      const auto value = metrics.find(key);
+      hdf5::write_attribute(root, key,
+                            value != metrics.end() && value->is_string() ? value->get<std::string>()
+                                                                         : std::string());
+    }
+    hdf5::write_attribute(root, "created", iso_time_now());
+    w.close();
+  } catch (const hdf5::Error& e) {
+    w.fail(e);
   }
-  hdf5::write_attribute(root, "created", iso_time_now());
-  w.close();
 
   if (std::rename(w.temp_path.c_str(), w.final_path.c_str()) != 0) {
-    throw std::runtime_error("cannot rename " + w.temp_path + " to " + w.final_path);
+    const int code = errno;
+    std::remove(w.temp_path.c_str());
+    w.finished = true;
+    throw std::runtime_error("cannot rename " + w.temp_path + " to " + w.final_path + ": " +
+                             std::strerror(code));
   }
   w.finished = true;
 }
 
 void ResultFileWriter::abandon() {
-  impl_->close();
-  std::remove(impl_->temp_path.c_str());
-  impl_->finished = true; // nothing is left to clean up
+  if (impl_->finished) return;
+  impl_->discard_after_error();
 }
 
 } // namespace slipfront::api

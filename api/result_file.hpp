@@ -26,7 +26,9 @@ public:
 
   void finish(const RunResult& result, const nlohmann::json& canonical_spec,
               const nlohmann::json& metrics);
-  void abandon(); // remove the temporary file
+  // Removes the temporary file without flushing what is still buffered (a cancelled or
+  // diverged run; also done by the destructor and after any error of the file).
+  void abandon();
 
 private:
   struct Impl;

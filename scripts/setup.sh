@@ -16,6 +16,7 @@ packages=(
   curl wrk clang-format pyflakes3
   slurm-wlm munge
   chromium chromium-driver python3-selenium
+  clang libclang-rt-14-dev   # the libFuzzer targets (scripts/fuzz.sh)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,9 +2,11 @@
 # The whole test suite, as CI runs it (.ci/run):
 #   1. packages + Release build with -Werror (scripts/setup.sh), the style checks
 #      (scripts/check_style.sh: clang-format, pyflakes), then every test except the `slow` label;
-#   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the same tests (without the
-#      `slow` and `no_sanitizer` labels: the server's crash test kills processes on purpose).
-# Options: SLIPFRONT_SKIP_SANITIZE=1 skips step 2; SLIPFRONT_SLOW=1 adds the `slow` tests.
+#   2. the fuzzers (scripts/fuzz.sh: libFuzzer with clang, 25 s per target, 4 targets);
+#   3. an AddressSanitizer + UndefinedBehaviorSanitizer build of the same tests (without the
+#      `slow` and `no_sanitizer` labels).
+# Options: SLIPFRONT_SKIP_FUZZ=1 skips step 2, SLIPFRONT_SKIP_SANITIZE=1 step 3;
+# SLIPFRONT_SLOW=1 adds the `slow` tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
@@ -16,6 +18,10 @@ if [ "$(id -u)" -eq 0 ]; then export SLIPFRONT_REQUIRE_SLURM=1; fi
 exclude="slow"
 [ "${SLIPFRONT_SLOW:-0}" = "1" ] && exclude="^$"
 ctest --test-dir build --output-on-failure -j2 -LE "$exclude" --timeout 900
+
+if [ "${SLIPFRONT_SKIP_FUZZ:-0}" != "1" ]; then
+  bash scripts/fuzz.sh
+fi
 
 if [ "${SLIPFRONT_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSLIPFRONT_SANITIZE=ON \

@@ -116,7 +116,10 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
   job.study_id = options.study_id;
 
   if (!job.fresh) {
-    auto earlier = store_.find_reusable(spec.sha256, options_.code_version);
+    // A hit needs the same physics, code version and output settings: the file holds the
+    // sampling, so another sampling is another file (docs/server.md, "Result cache").
+    auto earlier = store_.find_reusable(spec.sha256, options_.code_version,
+                                        spec.canonical.value("output", nlohmann::json()));
     if (earlier && !result_file_exists(*earlier)) {
       // Deleted by hand (or lost): never point a new job at it; run the job again.
       log_error("job " + earlier->id + ": result file " + earlier->result.path +

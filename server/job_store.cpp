@@ -430,11 +430,16 @@ std::optional<Job> JobStore::find_by_idempotency_key(const std::string& user,
 }
 
 std::optional<Job> JobStore::find_reusable(const std::string& spec_sha256,
-                                           const std::string& code_version) {
+                                           const std::string& code_version,
+                                           const nlohmann::json& output) {
+  // Both sides of the output comparison are nlohmann dumps (keys sorted, shortest round-trip
+  // numbers) and SQLite's json() keeps number tokens as written, so equal text is equal
+  // settings. A spec without `output` compares as null.
   return query_one("WHERE j.spec_sha256 = ?1 AND j.code_version = ?2 AND j.status = 'succeeded' "
                    "AND j.result_path IS NOT NULL AND m.job_id IS NOT NULL "
+                   "AND ifnull(json_extract(j.spec, '$.output'), 'null') = json(?3) "
                    "ORDER BY j.seq DESC LIMIT 1",
-                   {spec_sha256, code_version});
+                   {spec_sha256, code_version, output.dump()});
 }
 
 bool JobStore::mark_running(const std::string& id, const std::string& started_at,

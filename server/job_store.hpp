@@ -65,8 +65,11 @@ public:
 
   std::optional<Job> get(const std::string& id);
   std::optional<Job> find_by_idempotency_key(const std::string& user, const std::string& key);
-  // The newest succeeded job with this physics hash and code version that has a result.
-  std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version);
+  // The newest succeeded job with this physics hash and code version that has a result
+  // written with these output settings (the spec's `output`, which the hash leaves out: a
+  // result file is reused only when it holds the sampling the new job asks for).
+  std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version,
+                                   const nlohmann::json& output);
 
   // queued -> running (attempts + 1) on `executor` ("local" or "slurm"). False if the job
   // is no longer queued.

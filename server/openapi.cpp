@@ -93,7 +93,10 @@ const char* document = R"json({
     "responses": {
       "Problem": {"description": "Error", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
       "Study": {"description": "The study", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
-      "Job": {"description": "The job", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Job"}}}}
+      "Job": {"description": "The job", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Job"}}}},
+      "Unavailable": {"description": "Service unavailable: the storage refused a write or a read (disk full, I/O error, database busy), the connection cap was reached, or the server is draining; retry after Retry-After seconds",
+        "headers": {"Retry-After": {"schema": {"type": "integer"}}},
+        "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}
     }
   },
   "paths": {
@@ -109,7 +112,7 @@ const char* document = R"json({
           "200": {"$ref": "#/components/responses/Job"},
           "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
           "413": {"$ref": "#/components/responses/Problem"}, "422": {"$ref": "#/components/responses/Problem"},
-          "503": {"description": "Queue full or shutting down (Retry-After)", "headers": {"Retry-After": {"schema": {"type": "integer"}}}}}},
+          "503": {"description": "Queue full, shutting down, storage unavailable (disk full, I/O error) or connection cap reached (Retry-After)", "headers": {"Retry-After": {"schema": {"type": "integer"}}}}}},
       "get": {"summary": "List jobs, newest first",
         "parameters": [
           {"name": "status", "in": "query", "schema": {"type": "string"}, "description": "comma-separated statuses"},
@@ -155,6 +158,7 @@ const char* document = R"json({
           "206": {"description": "One byte range", "content": {"application/x-hdf5": {}}},
           "304": {"description": "Not modified"},
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
+          "410": {"description": "The job succeeded but its result file was deleted from the data dir (an identical new job runs again)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
           "416": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/metrics": {
@@ -193,7 +197,7 @@ const char* document = R"json({
         "responses": {"201": {"description": "Created; Location names the study", "headers": {"Location": {"schema": {"type": "string"}}},
             "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
           "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
-          "422": {"$ref": "#/components/responses/Problem"}, "503": {"$ref": "#/components/responses/Problem"}}},
+          "422": {"$ref": "#/components/responses/Problem"}, "503": {"$ref": "#/components/responses/Unavailable"}}},
       "get": {"summary": "List studies, newest first (summaries)",
         "parameters": [{"name": "status", "in": "query", "schema": {"type": "string", "enum": ["running", "finished", "cancelled"]}},
           {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 50}},
@@ -227,12 +231,16 @@ const char* document = R"json({
     },
     "/api/v1/schema/job.json": {"get": {"summary": "The job schema (JSON Schema 2020-12): every field with its type, range, default, unit, meaning and methods (x-unit, x-methods)", "responses": {"200": {"description": "JSON Schema", "content": {"application/json": {"schema": {"type": "object"}}}}}}},
     "/api/v1/openapi.json": {"get": {"summary": "This document", "responses": {"200": {"description": "OpenAPI 3"}}}},
-    "/healthz": {"get": {"summary": "Liveness and readiness", "responses": {"200": {"description": "ok"}, "503": {"description": "draining or database error"}}}},
+    "/healthz": {"get": {"summary": "Liveness and readiness", "responses": {"200": {"description": "ok"}, "503": {"description": "draining, database error, or degraded: free space below --min-free-bytes or a storage error in the last 60 s (storage: free_bytes, last_error); with Retry-After only when the connection cap answered", "headers": {"Retry-After": {"schema": {"type": "integer"}, "required": false}}}}}},
     "/metrics": {"get": {"summary": "Prometheus metrics: queue depth, running, jobs by status, run durations, HTTP requests", "responses": {"200": {"description": "text/plain; version=0.0.4"}}}}
   }
 })json";
 } // namespace
 
+// What holds for every operation, added here rather than repeated in the text above:
+// - every GET resource also answers HEAD: the same status and headers, no body (router.cpp);
+// - any request may get a 503 with Retry-After: the connection cap (listener.cpp) answers it
+//   before routing, and a storage error in any handler becomes one (router.cpp).
 nlohmann::json openapi_document() {
   nlohmann::json doc = nlohmann::json::parse(document);
   // The job body: the job schema, plus the two submission options the server reads and
@@ -250,6 +258,18 @@ nlohmann::json openapi_document() {
                                    {"default", 0},
                                    {"description", "submission option: higher runs first"}};
   doc["components"]["schemas"]["JobSpec"] = job;
+  const nlohmann::json unavailable = {{"$ref", "#/components/responses/Unavailable"}};
+  for (auto& [path, operations] : doc["paths"].items()) {
+    if (operations.contains("get")) {
+      nlohmann::json head = operations["get"];
+      head["summary"] = "The headers of GET " + path + " (no body)";
+      for (auto& [status, response] : head["responses"].items())
+        if (response.is_object()) response.erase("content");
+      operations["head"] = std::move(head);
+    }
+    for (auto& [method, operation] : operations.items())
+      if (!operation["responses"].contains("503")) operation["responses"]["503"] = unavailable;
+  }
   return doc;
 }
 

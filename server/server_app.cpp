@@ -8,7 +8,10 @@
 #include <boost/asio/ip/address.hpp>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -58,6 +61,15 @@ void ServerApp::start() {
     throw std::runtime_error("cannot create data dir " + config_.data_dir +
                              "/results: " + ec.message());
   config_.data_dir = fs::canonical(config_.data_dir).string();
+  // A read-only data dir (a read-only mount, a directory without write permission) is
+  // refused at once: the database, the lock and every result are written there, and a server
+  // that could only answer reads would accept nothing (docs/reliability.md).
+  for (const auto& dir : {config_.data_dir, config_.data_dir + "/results"})
+    if (::access(dir.c_str(), W_OK) != 0)
+      throw std::runtime_error("data dir " + dir + " is not writable (" + std::strerror(errno) +
+                               "): the server keeps its database, lock and result files there; "
+                               "give it a writable directory (to read the data of a read-only "
+                               "copy, open slipfront.db with sqlite3 and results/ with h5py)");
   if (config_.executor == "slurm") {
     if (config_.shared_dir.empty()) config_.shared_dir = config_.data_dir + "/slurm";
     fs::create_directories(config_.shared_dir, ec);

@@ -163,6 +163,23 @@ TEST(JobValidation, EnumerationsListTheirSpellings) {
                       R"("traction", "absorbing")");
 }
 
+// Found by the fuzzer (tests/fuzz/corpus/job_parser/regression-utf8-cut-in-error-message.json):
+// the value shown in an error is cut to 40 bytes, and a cut inside a UTF-8 character made
+// the message's dump() throw (a 500 from POST /jobs).
+TEST(JobValidation, LongNonAsciiValueInAnErrorIsCutAtACharacter) {
+  const std::string law =
+      std::string(39, 'a') + "\u00e9\u00e9\u00e9"; // byte 40 is inside an e-acute
+  ParseResult result;
+  ASSERT_NO_THROW(result = parse_job({{"friction", {{"law", law}}}}));
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].pointer, "/friction/law");
+  EXPECT_NE(result.errors[0].reason.find("got \"" + std::string(39, 'a') + "\"..."),
+            std::string::npos)
+      << result.errors[0].reason;
+  ASSERT_NO_THROW(result = parse_job(json(law + law)));
+  EXPECT_EQ(result.errors.size(), 1u);
+}
+
 TEST(JobValidation, MaterialRanges) {
   expect_single_error({{"material", {{"density", 0}}}}, "/material/density", "> 0, got 0");
   expect_single_error({{"material", {{"young_modulus", -2.5}}}}, "/material/young_modulus",

@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
+#include <sys/mount.h>
+#include <sys/statvfs.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -297,4 +301,50 @@ TEST_F(ResultFile, SampleOfTheWrongSizeIsRefused) {
 TEST_F(ResultFile, UnwritableDirectoryThrows) {
   slipfront::api::ResultFileWriter writer(path("missing/dir/r.h5"));
   EXPECT_THROW(writer.begin(synthetic_layout(5)), std::runtime_error);
+}
+
+// A disk that fills while the file is written (issue 10): a tmpfs of 256 KiB as the
+// directory, mounted by the test (root only; skipped otherwise). The write fails with the
+// disk named, the partial file is gone, its blocks are free again, and no HDF5 object is
+// left open (before, the failed flush kept the file's objects registered in the library:
+// "infinite loop closing library" at exit, and sometimes a crash).
+TEST_F(ResultFile, FullDiskReleasesTheFileAndSaysSo) {
+  const std::string mount_point = path("tmpfs");
+  fs::create_directories(mount_point);
+  if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, "size=256k") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs (needs root): " << std::strerror(errno);
+  struct Unmount {
+    std::string at;
+    ~Unmount() { ::umount2(at.c_str(), MNT_DETACH); }
+  } unmount{mount_point};
+  auto free_bytes = [&] {
+    struct statvfs s {};
+    ::statvfs(mount_point.c_str(), &s);
+    return static_cast<double>(s.f_bavail) * s.f_frsize;
+  };
+  const double free_before = free_bytes();
+
+  const auto layout = synthetic_layout(4000); // a 32-row chunk of one field is 1 MiB
+  std::string message;
+  {
+    slipfront::api::ResultFileWriter writer(mount_point + "/r.h5");
+    try {
+      writer.begin(layout);
+      for (int k = 0; k < 1000; ++k)
+        writer.write(synthetic_sample(layout, k));
+      writer.finish(synthetic_result(layout), synthetic_spec(), nlohmann::json::object());
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+    ASSERT_FALSE(message.empty()) << "1000 samples of 4000 nodes fitted in 256 KiB";
+    EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0)
+        << "HDF5 objects left open after the failure, before the writer is destroyed";
+  }
+  EXPECT_NE(message.find("the disk holding " + mount_point + " is full"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+  EXPECT_NE(message.find("partial file was removed"), std::string::npos) << message;
+  EXPECT_TRUE(fs::is_empty(mount_point));
+  EXPECT_GE(free_bytes(), free_before) << "the partial file's blocks are free again";
+  EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
 }

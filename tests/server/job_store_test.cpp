@@ -244,19 +244,48 @@ TEST(JobStore, ListFiltersAndPaginatesNewestFirst) {
   EXPECT_EQ(arrested.jobs[0].id, ids[0]);
 }
 
+TEST(JobStore, ReuseNeedsTheSameOutputSettings) {
+  TempDir dir("slipfront-store-");
+  JobStore store(dir.file("db.sqlite"));
+  const nlohmann::json fine = {{"interval", 0.05}, {"space_stride", 1}};
+  const nlohmann::json coarse = {{"interval", 0.2}, {"space_stride", 1}};
+  Job a = make_job("a");
+  a.spec["output"] = fine;
+  store.insert(a);
+  store.mark_running(a.id, "t", "h", "v");
+  store.finish(a.id, success());
+
+  auto same = store.find_reusable(a.spec_sha256, "v", {{"space_stride", 1}, {"interval", 0.05}});
+  ASSERT_TRUE(same) << "same settings, whatever the key order";
+  EXPECT_EQ(same->id, a.id);
+  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "v", coarse)) << "another interval";
+  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "v", {{"interval", 0.05}, {"space_stride", 2}}))
+      << "another stride";
+  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "v", nlohmann::json()));
+
+  Job b = make_job("a"); // same physics hash, coarser sampling, newer
+  b.spec["output"] = coarse;
+  store.insert(b);
+  store.mark_running(b.id, "t", "h", "v");
+  store.finish(b.id, success());
+  EXPECT_EQ(store.find_reusable(a.spec_sha256, "v", fine)->id, a.id);
+  EXPECT_EQ(store.find_reusable(a.spec_sha256, "v", coarse)->id, b.id);
+}
+
 TEST(JobStore, ReuseAndIdempotencyLookups) {
   TempDir dir("slipfront-store-");
   JobStore store(dir.file("db.sqlite"));
   Job a = make_job("a");
   a.idempotency_key = "key-1";
   store.insert(a);
-  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "v")) << "not succeeded yet";
+  const nlohmann::json no_output;
+  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "v", no_output)) << "not succeeded yet";
   store.mark_running(a.id, "t", "h", "v");
   store.finish(a.id, success());
-  auto reusable = store.find_reusable(a.spec_sha256, "v");
+  auto reusable = store.find_reusable(a.spec_sha256, "v", no_output);
   ASSERT_TRUE(reusable);
   EXPECT_EQ(reusable->id, a.id);
-  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "other-version"));
+  EXPECT_FALSE(store.find_reusable(a.spec_sha256, "other-version", no_output));
 
   Job copy = make_job("a");
   copy.status = JobStatus::succeeded;

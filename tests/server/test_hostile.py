@@ -11,6 +11,7 @@ import os
 import re
 import sys
 import unittest
+from urllib.parse import urlparse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from server_harness import TINY, Server  # noqa: E402
@@ -19,6 +20,38 @@ BINARY = None
 JOBS = "/api/v1/jobs"
 STUDIES = "/api/v1/studies"
 LIBRARY_WORDS = ("json.exception", "parse_error", "out_of_range", "type_error", "[json")
+
+
+# Paths of the API with their OpenAPI template: /api/v1/jobs/<anything>/front -> .../{id}/front.
+TEMPLATES = [
+    (re.compile(r"^/api/v1/(jobs|studies)/[^/]+$"), r"/api/v1/\1/{id}"),
+    (re.compile(r"^/api/v1/(jobs|studies)/[^/]+/([^/]+)$"), r"/api/v1/\1/{id}/\2"),
+]
+
+
+def path_template(path):
+    for pattern, template in TEMPLATES:
+        if pattern.match(path):
+            return pattern.sub(template, path)
+    return path
+
+
+def undocumented_answers(document, answers):
+    """The (method, template, status) answered that the OpenAPI document does not list for
+    that operation (an answer of a method that is no operation must be 405)."""
+    missing = set()
+    for method, path, status in answers:
+        operations = document["paths"].get(path)
+        if operations is None:
+            continue  # not a path of the API (e.g. /api/v1/nothing): its 404 is generic
+        operation = operations.get(method.lower())
+        if operation is None:
+            if status != 405:
+                missing.add((method, path, status))
+            continue
+        if str(status) not in operation["responses"]:
+            missing.add((method, path, status))
+    return sorted(missing)
 
 
 def nested(levels, inner="1"):
@@ -37,6 +70,13 @@ class HostileInput(unittest.TestCase):
     def setUpClass(cls):
         cls.server = Server(BINARY, args=["--workers", "1", "--queue-limit", "20",
                                           "--request-timeout-s", "5"]).start()
+        # Every answer of the suite, to hold against the OpenAPI document at the end.
+        cls.answers = set()
+
+        def record(response, *args, **kwargs):
+            path = path_template(urlparse(response.request.url).path)
+            cls.answers.add((response.request.method, path, response.status_code))
+        cls.server.session.hooks["response"].append(record)
         # One real job so that listings and result paths have something to walk.
         r = cls.server.submit(dict(TINY, name="hostile-seed"))
         assert r.status_code == 201, r.text
@@ -53,10 +93,16 @@ class HostileInput(unittest.TestCase):
         client = sum(n for c, n in codes.items() if 400 <= c < 500)
         server = sum(n for c, n in codes.items() if c >= 500)
         print(f"hostile suite: {client} answers 4xx, {server} answers 5xx", file=sys.stderr)
+        # Every status answered on a path of the API is in the OpenAPI document.
+        document = cls.server.get("/api/v1/openapi.json").json()
+        missing = undocumented_answers(document, cls.answers)
+        print(f"hostile suite: {len(cls.answers)} distinct (method, path, status) answers, "
+              f"{len(missing)} not in the OpenAPI document", file=sys.stderr)
         code = cls.server.terminate()
         cls.server.cleanup()
         assert code == 0, f"server exit code {code}"
         assert server == 0, f"{server} answers were 5xx: {codes}"
+        assert not missing, f"answers missing from the OpenAPI document: {missing}"
 
     def counts(self):
         jobs = self.server.get(JOBS, params={"limit": 1000, "fields": "id"}).json()["count"]
@@ -137,6 +183,17 @@ class HostileInput(unittest.TestCase):
         for text, pointer in cases:
             with self.subTest(text=text):
                 self.assertRejected(self.post_raw(STUDIES, text), 422, pointer)
+
+    def test_long_non_ascii_values_in_error_messages(self):
+        # Found by the fuzzer: the value quoted in an error is cut to 40 bytes; a cut inside
+        # a UTF-8 character made the message itself fail (500).
+        value = "a" * 39 + "\u00e9" * 5
+        for body, pointer in (({"friction": {"law": value}}, "/friction/law"),
+                              ({"method": value}, "/method")):
+            b = self.assertRejected(self.post_raw(JOBS, json.dumps(body)), 422, pointer)
+            self.assertIn("a" * 39 + '"...', b["errors"][0]["reason"])
+        self.assertRejected(self.post_raw(STUDIES, json.dumps({"base": {"friction": {"law": value}}})),
+                            422)
 
     def test_syntax_errors_are_400_in_our_words(self):
         for path in (JOBS, STUDIES):

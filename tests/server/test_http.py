@@ -94,6 +94,21 @@ class MainServer(unittest.TestCase):
                      "/api/v1/jobs/{id}/result.h5", "/api/v1/jobs/{id}/metrics",
                      "/api/v1/jobs/{id}/front", "/healthz", "/metrics", "/api/v1/schema/job.json"]:
             self.assertIn(path, doc["paths"])
+        # What holds on every path (issue 10): HEAD beside every GET, and a 503 with
+        # Retry-After on every operation (storage errors, the connection cap).
+        # test_hostile.py checks every status its requests were answered against the document.
+        for path, operations in doc["paths"].items():
+            if "get" in operations:
+                self.assertIn("head", operations, path)
+                self.assertEqual(set(operations["head"]["responses"]),
+                                 set(operations["get"]["responses"]), path)
+            for method, operation in operations.items():
+                unavailable = operation["responses"].get("503")
+                self.assertIsNotNone(unavailable, f"{method} {path}")
+                if "$ref" in unavailable:
+                    unavailable = doc["components"]["responses"][unavailable["$ref"].split("/")[-1]]
+                self.assertIn("Retry-After", unavailable["headers"], f"{method} {path}")
+        self.assertIn("410", doc["paths"]["/api/v1/jobs/{id}/result.h5"]["get"]["responses"])
         # The job body is the job schema, section by section (api/job_schema.hpp).
         job = doc["components"]["schemas"]["JobSpec"]
         L = job["properties"]["friction"]["properties"]["L"]
@@ -233,6 +248,72 @@ class MainServer(unittest.TestCase):
         self.assertFalse(r2.json()["reused"])
         for j in (r.json(), r2.json()):
             self.assertEqual(self.server.wait_status(j["id"], TERMINAL)["status"], "succeeded")
+
+    def assertFileSampling(self, job, interval, stride=1):
+        """The job's HDF5 file (downloaded over HTTP) says and has this output sampling."""
+        r = self.server.get(job["result"]["url"])
+        self.assertEqual(r.status_code, 200, r.content[:300])
+        with tempfile.NamedTemporaryFile(suffix=".h5") as f:
+            f.write(r.content)
+            f.flush()
+            with h5py.File(f.name, "r") as h5:
+                spec = json.loads(h5.attrs["spec"])
+                self.assertEqual(spec["output"]["interval"], interval)
+                self.assertEqual(spec["output"]["space_stride"], stride)
+                group = h5["interface"]
+                self.assertAlmostEqual(float(group.attrs["sample_interval"]), interval,
+                                       delta=0.5 * interval)
+                t = np.asarray(group["time"])
+                self.assertAlmostEqual(float(np.median(np.diff(t))),
+                                       float(group.attrs["sample_interval"]), places=9)
+
+    def test_cache_hit_only_with_the_same_output_settings(self):
+        # Defect 7 (issue 10): output settings are not physics (same spec_sha256), but the
+        # file holds them; a job asking for another sampling must not get another job's file.
+        physics = {"loading": {"shear_stress": 0.01015}}
+        fine = self.run_tiny(name="out-fine", output={"interval": 0.05}, **physics)
+        self.assertEqual(fine["status"], "succeeded", fine)
+        self.assertFileSampling(fine, 0.05)
+
+        r = self.server.submit(tiny(name="out-coarse", output={"interval": 0.2}, **physics))
+        self.assertEqual(r.status_code, 201, r.text)
+        coarse = r.json()
+        self.assertEqual(coarse["spec_sha256"], fine["spec_sha256"])  # same physics
+        self.assertEqual(coarse["cache"], "miss")
+        self.assertFalse(coarse["reused"])
+        self.assertIsNone(coarse["cached_from"])
+        coarse = self.server.wait_status(coarse["id"], TERMINAL)
+        self.assertEqual(coarse["status"], "succeeded", coarse)
+        self.assertIsNone(coarse["cached_from"])
+        self.assertEqual(coarse["spec"]["output"]["interval"], 0.2)
+        self.assertNotEqual(coarse["result"]["sha256"], fine["result"]["sha256"])
+        self.assertFileSampling(coarse, 0.2)
+        # The listing says the same as the job.
+        listed = self.server.get(JOBS, params={"spec_sha256": fine["spec_sha256"],
+                                               "fields": "id,spec,cached_from,result"}).json()
+        by_id = {j["id"]: j for j in listed["jobs"]}
+        self.assertEqual(by_id[coarse["id"]]["spec"]["output"]["interval"], 0.2)
+        self.assertIsNone(by_id[coarse["id"]]["cached_from"])
+        self.assertEqual(by_id[coarse["id"]]["result"]["sha256"], coarse["result"]["sha256"])
+
+        # Same physics and same output (key order, explicit defaults): a hit of that job.
+        for output, source in (({"space_stride": 1, "interval": 0.2}, coarse),
+                               ({"interval": 0.05}, fine)):
+            r = self.server.submit(tiny(name="out-again", output=output, **physics))
+            self.assertEqual(r.status_code, 201, r.text)
+            hit = r.json()
+            self.assertEqual(hit["cache"], "hit")
+            self.assertEqual(hit["cached_from"], source["id"])
+            self.assertEqual(hit["result"]["sha256"], source["result"]["sha256"])
+            self.assertFileSampling(hit, source["spec"]["output"]["interval"])
+        # Another stride is another file too.
+        r = self.server.submit(tiny(name="out-stride", output={"interval": 0.2, "space_stride": 2},
+                                    **physics))
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertEqual(r.json()["cache"], "miss")
+        strided = self.server.wait_status(r.json()["id"], TERMINAL)
+        self.assertEqual(strided["status"], "succeeded", strided)
+        self.assertFileSampling(strided, 0.2, stride=2)
 
     def test_idempotency_key(self):
         spec = tiny(name="idem", loading={"shear_stress": 0.0103})
