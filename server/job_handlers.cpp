@@ -3,9 +3,12 @@
 #include "server/job_id.hpp"
 #include "server/query_string.hpp"
 #include "server/responses.hpp"
+#include "server/run_query.hpp"
+#include "server/run_table.hpp"
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -151,8 +154,9 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   std::vector<api::FieldError> errors;
   const auto& q = rc.query;
   static const std::set<std::string> known = {
-      "status",  "tag",     "name",  "outcome", "submitted_by", "spec_sha256", "L_min",   "L_max",
-      "n_d_min", "n_d_max", "limit", "cursor",  "fields",       "scene_hash",  "study_id"};
+      "status", "tag",        "name",     "outcome", "submitted_by", "spec_sha256",
+      "L_min",  "L_max",      "n_d_min",  "n_d_max", "limit",        "cursor",
+      "fields", "scene_hash", "study_id", "where",   "sort",         "format"};
   for (const auto& [key, value] : q)
     if (!known.count(key)) errors.push_back({"/query/" + key, "unknown query parameter"});
   if (auto it = q.find("status"); it != q.end())
@@ -183,17 +187,43 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   number("L_max", f.L_max);
   number("n_d_min", f.n_d_min);
   number("n_d_max", f.n_d_max);
+  std::string format = "json";
+  if (auto it = q.find("format"); it != q.end()) {
+    format = it->second;
+    if (format != "json" && format != "csv" && format != "ndjson")
+      errors.push_back({"/query/format", "must be json, csv or ndjson, got '" + format + "'"});
+  }
+  const bool table = format == "csv" || format == "ndjson";
+  const long max_limit = table ? 100000 : 1000;
+  if (table) f.limit = 10000;
   if (auto it = q.find("limit"); it != q.end()) {
     auto l = parse_long(it->second);
-    if (!l || *l < 1 || *l > 1000)
-      errors.push_back({"/query/limit", "must be an integer in [1, 1000]"});
+    if (!l || *l < 1 || *l > max_limit)
+      errors.push_back({"/query/limit", "must be an integer in [1, " + std::to_string(max_limit) +
+                                            "] for format=" + format});
     else
       f.limit = static_cast<int>(*l);
   }
+  try {
+    if (auto it = q.find("where"); it != q.end()) f.conditions = parse_where(it->second);
+  } catch (const QueryError& e) {
+    errors.push_back({"/query/" + e.parameter(), e.what()});
+  }
+  try {
+    if (auto it = q.find("sort"); it != q.end()) f.sort = parse_sort(it->second);
+  } catch (const QueryError& e) {
+    errors.push_back({"/query/" + e.parameter(), e.what()});
+  }
   if (auto it = q.find("cursor"); it != q.end()) {
-    auto c = parse_long(it->second);
-    if (!c || *c < 0)
-      errors.push_back({"/query/cursor", "must be a cursor returned as next_cursor"});
+    // Newest-first listings page by seq ("123"), sorted ones by offset ("o50").
+    const std::string& text = it->second;
+    bool sorted = !f.sort.empty();
+    auto c = parse_long(sorted && !text.empty() && text[0] == 'o' ? text.substr(1) : text);
+    if (!c || *c < 0 || (sorted && text[0] != 'o') || (!sorted && text[0] == 'o'))
+      errors.push_back({"/query/cursor", "must be a cursor returned as next_cursor by a listing "
+                                         "with the same sort"});
+    else if (sorted)
+      f.offset = *c;
     else
       f.before_seq = *c;
   }
@@ -203,17 +233,37 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
                             errors);
   JobPage page = ctx.service.list(f);
+  std::optional<std::string> next_cursor;
+  if (page.next_cursor) next_cursor = std::to_string(*page.next_cursor);
+  if (page.next_offset) next_cursor = "o" + std::to_string(*page.next_offset);
+  std::optional<std::string> next;
+  if (next_cursor) {
+    next = prefix + "/jobs?";
+    for (const auto& [key, value] : q)
+      if (key != "cursor") *next += percent_encode(key) + "=" + percent_encode(value) + "&";
+    *next += "cursor=" + *next_cursor;
+  }
+  if (table) {
+    std::vector<nlohmann::ordered_json> rows;
+    for (const auto& job : page.jobs) {
+      auto it = page.convergence_status.find(job.id);
+      rows.push_back(run_row(job, it == page.convergence_status.end() ? "" : it->second));
+    }
+    auto response = format == "csv" ? text_response(rc.request, http::status::ok, runs_csv(rows),
+                                                    "text/csv; charset=utf-8")
+                                    : text_response(rc.request, http::status::ok, runs_ndjson(rows),
+                                                    "application/x-ndjson");
+    if (next) response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
+    return response;
+  }
   nlohmann::json body;
   body["jobs"] = nlohmann::json::array();
   for (const auto& job : page.jobs)
     body["jobs"].push_back(job_to_json(job, fields));
   body["count"] = page.jobs.size();
-  if (page.next_cursor) {
-    body["next_cursor"] = std::to_string(*page.next_cursor);
-    std::string next = prefix + "/jobs?";
-    for (const auto& [key, value] : q)
-      if (key != "cursor") next += percent_encode(key) + "=" + percent_encode(value) + "&";
-    body["next"] = next + "cursor=" + std::to_string(*page.next_cursor);
+  if (next_cursor) {
+    body["next_cursor"] = *next_cursor;
+    body["next"] = *next;
   } else {
     body["next_cursor"] = nullptr;
     body["next"] = nullptr;
