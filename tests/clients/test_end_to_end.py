@@ -214,7 +214,7 @@ class EndToEnd(unittest.TestCase):
         self.assertRegex(r.stdout, r"verdict: (L_c = |no L meets the rule|L_c undetermined)")
         # the cost chart's rows of both studies, each run with its method
         from slipfront_client.commands_plot import study_cost_rows
-        rows = study_cost_rows(self.api, [ids["fe"], ids["spectral_bi"]])
+        rows, _ = study_cost_rows(self.api, [ids["fe"], ids["spectral_bi"]])
         self.assertEqual({r["method"] for r in rows}, {"fe", "spectral_bi"})
         for method in ("fe", "spectral_bi"):
             self.assertGreaterEqual(sum(r["method"] == method for r in rows), 4, rows)
