@@ -350,7 +350,8 @@ std::string condition_sql(const Condition& c, SqlParams& params) {
         ")";
     return c.op == CompareOp::ne ? "NOT " + exists : exists;
   }
-  return field_sql(c.field, params) + " " + op_text(c.op) + " " + params.add(c.value);
+  const std::string field = field_sql(c.field, params); // its JSON path binds first
+  return field + " " + op_text(c.op) + " " + params.add(c.value);
 }
 
 std::string sort_sql(const SortKey& key, SqlParams& params) {

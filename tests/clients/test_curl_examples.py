@@ -88,7 +88,7 @@ class CurlExamples(unittest.TestCase):
         self.assertEqual(self.sh("download-if-changed.sh", job_id, out).strip(), "304")
         self.assertIn("H   D   F", self.sh("range.sh", job_id))
 
-        table = self.sh("export.sh", "tag=curl-example; metrics.outcome=arrested", "csv")
+        table = self.sh("export.sh", "tag=curl-example; status=succeeded", "csv")
         header, first = table.splitlines()[:2]
         self.assertIn("spec.friction.L", header.split(","))
         self.assertIn(job_id, first)
