@@ -41,7 +41,7 @@ def read_config(path=None):
 def resolve(flag_value, env_name, config_key, default=None):
     """(value, where it came from) for one setting."""
     if flag_value:
-        return flag_value, "the --server/--token option"
+        return flag_value, f"--{config_key}"
     if os.environ.get(env_name):
         return os.environ[env_name], env_name
     doc = read_config()

@@ -142,7 +142,7 @@ class InstalledPackageTest(unittest.TestCase):
     def test_5_friendly_message_when_nothing_listens(self):
         r = self.client("list", "--server", "http://127.0.0.1:9")
         self.assertEqual(r.returncode, 1)
-        self.assertIn("nothing answers at http://127.0.0.1:9 (from the --server/--token option)",
+        self.assertIn("nothing answers at http://127.0.0.1:9 (from --server)",
                       r.stderr)
         self.assertNotIn("Traceback", r.stderr)
         config = os.path.join(self.tmp, "client.toml")
