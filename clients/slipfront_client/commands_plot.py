@@ -219,7 +219,7 @@ def study_cost_rows(api, study_ids):
     given, each with its study's method (GET /studies/{id}); errors against the server's
     reference runs ("converged"). When no L of the studies converged the server has no
     reference: the errors are then computed here against the finest run of each L
-    ("finest"), with the same definition."""
+    ("unconverged", labelled so on the chart), with the same definition."""
     docs = [api.get_json(f"/api/v1/studies/{sid}/speed-accuracy") for sid in study_ids]
     rows = None
     for doc in docs:
@@ -244,7 +244,7 @@ def study_cost_rows(api, study_ids):
             by_method.setdefault(r["method"], []).append(r)
         for method_rows in by_method.values():
             finest += analysis.errors_against_finest(method_rows)
-    return finest, "finest"
+    return finest, "unconverged"
 
 
 def cmd_cost(args, ctx):

@@ -354,14 +354,14 @@ class SpeedAccuracyTest(unittest.TestCase):
                              job(40, 11.0, 8.8, 8.0)])
 
         rows, reference = study_cost_rows(FakeApi(), ["S"])
-        self.assertEqual(reference, "finest")
+        self.assertEqual(reference, "unconverged")
         self.assertEqual(sorted(r["n_d"] for r in rows), [10, 20])
         self.assertAlmostEqual(min(r["error"] for r in rows), 0.5 / 11.0)
         fig, data = cost.plot_cost(rows, reference=reference)
         self.assertEqual(data[("fe", 5e-5)]["n_d"], [10, 20])
         footer = fig._supxlabel.get_text()
         self.assertIn("error = max(|d - d_ref| / d_ref, |t - t_ref| / t_ref)", footer)
-        self.assertIn("the finest run of each L (not a converged reference", footer)
+        self.assertIn("no L of the study converged", footer)
 
     def test_cost_chart_has_both_methods_and_a_memory_panel(self):
         rows = analysis.rows_from_speed_accuracy({"across_methods": {"runs": [

@@ -7,8 +7,9 @@ without a positive error, such as a reference run, are left out; `method` defaul
 One definition of the error everywhere (the server's GET /studies/{id}/speed-accuracy and
 every client path): the larger of the relative differences of `propagation_distance` and
 `arrival_time_at_probe` from a reference run of the same L — the finest run of an L that has
-a converged run (`reference="converged"`, the server's), or, for a study where no L
-converged, simply the finest run of each L (`reference="finest"`). The figure states which.
+a converged run (`reference="converged"`, the server's), the finest run of each L when the
+client computes the errors from runs (`"finest"`), or, for a study where no L converged, the
+finest run of each L, labelled as such (`"unconverged"`). The figure states which.
 """
 
 import math
@@ -74,7 +75,9 @@ ERROR_DEFINITION = ("error = max(|d - d_ref| / d_ref, |t - t_ref| / t_ref);  "
                     "d: propagation_distance, t: arrival_time_at_probe")
 REFERENCES = {
     "converged": "reference: the finest run of each L that has a converged run",
-    "finest": "reference: the finest run of each L (not a converged reference: no L converged)",
+    "finest": "reference: the finest run of each L (its convergence not checked)",
+    "unconverged": "reference: the finest run of each L. No L of the study converged:\n"
+                   "these are differences from the finest run, not errors against a converged run",
 }
 
 
