@@ -361,7 +361,7 @@ class SpeedAccuracyTest(unittest.TestCase):
         self.assertEqual(data[("fe", 5e-5)]["n_d"], [10, 20])
         footer = fig._supxlabel.get_text()
         self.assertIn("error = max(|d - d_ref| / d_ref, |t - t_ref| / t_ref)", footer)
-        self.assertIn("no L of the study converged", footer)
+        self.assertIn("No L of the study converged", footer)
 
     def test_cost_chart_has_both_methods_and_a_memory_panel(self):
         rows = analysis.rows_from_speed_accuracy({"across_methods": {"runs": [
