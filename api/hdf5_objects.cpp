@@ -1,5 +1,7 @@
 #include "api/hdf5_objects.hpp"
 
+#include <hdf5_hl.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
@@ -139,6 +141,18 @@ void write_vector(hid_t parent, const std::string& name, const std::vector<doubl
           "writing dataset " + name);
   }
   write_attribute(dataset.get(), "units", units);
+}
+
+Handle open_dataset(hid_t parent, const std::string& name) {
+  return Handle(check_id(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name));
+}
+
+void make_scale(hid_t scale, const std::string& name) {
+  check(H5DSset_scale(scale, name.c_str()), "making " + name + " a dimension scale");
+}
+
+void attach_scale(hid_t dataset, hid_t scale, unsigned dim, const std::string& what) {
+  check(H5DSattach_scale(dataset, scale, dim), "attaching dimension scale: " + what);
 }
 
 void write_attribute(hid_t object, const std::string& name, const std::string& value) {

@@ -59,6 +59,13 @@ Handle create_group(hid_t parent, const std::string& name);
 void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
                   const std::string& units);
 
+Handle open_dataset(hid_t parent, const std::string& name);
+
+// Dimension scales (HDF5 high-level library, H5DS): `scale` becomes a coordinate named
+// `name`, attached to dimension `dim` of `dataset` (xarray, h5py and ParaView read them).
+void make_scale(hid_t scale, const std::string& name);
+void attach_scale(hid_t dataset, hid_t scale, unsigned dim, const std::string& what);
+
 void write_attribute(hid_t object, const std::string& name, const std::string& value); // UTF-8
 void write_attribute(hid_t object, const std::string& name, double value);
 

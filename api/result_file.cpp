@@ -72,6 +72,7 @@ struct ResultFileWriter::Impl {
   void create_interface(const InterfaceLayout& layout);
   void flush();
   void write_records(const RunResult& result);
+  void attach_interface_scales();
   void close();   // every flush and close checked: throws hdf5::Error
   void release(); // error paths: close what can be closed, ignoring failures
   void discard_after_error();
@@ -146,6 +147,40 @@ void ResultFileWriter::Impl::write_records(const RunResult& result) {
     hdf5::write_vector(energy.get(), "strain", e.strain, "J/m");
     hdf5::write_vector(energy.get(), "external_work", e.external_work, "J/m");
     hdf5::write_vector(energy.get(), "dissipated", e.dissipated, "J/m");
+  }
+}
+
+// /interface/time and /interface/x1 become the coordinates of every interface field
+// (dimension 0: time, 1: x1); /front/x1, /probes/time and /energy/time those of their groups.
+void ResultFileWriter::Impl::attach_interface_scales() {
+  const hid_t group = interface_group.get();
+  hdf5::Handle x1 = hdf5::open_dataset(group, "x1");
+  hdf5::make_scale(x1.get(), "x1");
+  hdf5::make_scale(time.id(), "time");
+  for (std::size_t f = 0; f < interface_fields.size(); ++f) {
+    const std::string name = std::string("/interface/") + interface_fields[f].name;
+    hdf5::attach_scale(fields[f].id(), time.id(), 0, "/interface/time to " + name);
+    hdf5::attach_scale(fields[f].id(), x1.get(), 1, "/interface/x1 to " + name);
+  }
+  hdf5::attach_scale(state.id(), time.id(), 0, "/interface/time to /interface/state");
+  hdf5::attach_scale(state.id(), x1.get(), 1, "/interface/x1 to /interface/state");
+  const hid_t root = file.get();
+  const std::pair<const char*, std::vector<const char*>> groups[] = {
+      {"/front/x1", {"/front/arrival_time", "/front/rupture_speed"}},
+      {"/probes/time",
+       {"/probes/slip_velocity_arrival", "/probes/slip_velocity_spectrum",
+        "/probes/strength_spectrum"}},
+      {"/energy/time",
+       {"/energy/kinetic", "/energy/strain", "/energy/external_work", "/energy/dissipated"}},
+  };
+  for (const auto& [scale_path, dataset_paths] : groups) {
+    hdf5::Handle scale = hdf5::open_dataset(root, scale_path);
+    const std::string scale_name(scale_path);
+    hdf5::make_scale(scale.get(), scale_name.substr(scale_name.rfind('/') + 1));
+    for (const char* path : dataset_paths) {
+      hdf5::Handle dataset = hdf5::open_dataset(root, path);
+      hdf5::attach_scale(dataset.get(), scale.get(), 0, scale_name + " to " + path);
+    }
   }
 }
 
@@ -267,6 +302,7 @@ void ResultFileWriter::finish(const RunResult& result, const nlohmann::json& can
     if (!w.interface_group.valid()) w.create_interface(InterfaceLayout{});
     w.flush();
     w.write_records(result);
+    w.attach_interface_scales();
 
     const hid_t root = w.file.get();
     hdf5::write_attribute(root, "spec", canonical_text(canonical_spec));

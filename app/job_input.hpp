@@ -2,6 +2,7 @@
 #pragma once
 
 #include "api/job_spec.hpp"
+#include "api/memory_size.hpp"
 
 #include <iosfwd>
 #include <optional>
@@ -23,8 +24,7 @@ std::optional<api::JobSpec> load_job(const std::string& path,
                                      std::optional<int> threads = std::nullopt,
                                      const api::ValidationLimits& limits = {});
 
-// A memory size for --max-memory: bytes, or a number with the suffix K, M, G or T (powers of
-// 1000), e.g. "8G". Returns nothing if the text is not such a positive size.
-std::optional<double> parse_memory_size(const std::string& text);
+// A memory size for --max-memory (api/memory_size.hpp).
+using api::parse_memory_size;
 
 } // namespace slipfront::app

@@ -39,6 +39,23 @@ std::string format_progress(const Progress& p) {
   return text;
 }
 
+std::string format_final(const Metrics& m, double duration) {
+  char text[320];
+  std::string what = to_string(m.outcome);
+  if (m.outcome == Outcome::arrested && std::isfinite(m.arrest_position)) {
+    char at[64];
+    std::snprintf(at, sizeof at, " at x1 = %.4g m", m.arrest_position);
+    what += at;
+  }
+  const bool early = m.simulated_time < duration * (1.0 - 1e-9);
+  std::snprintf(text, sizeof text,
+                "done: %s; t = %.4g of %.4g s simulated%s; %ld steps; wall %.3g s", what.c_str(),
+                m.simulated_time, duration,
+                early && m.outcome == Outcome::arrested ? " (stopped on arrest)" : "", m.steps,
+                m.wall_time_s);
+  return text;
+}
+
 ProgressDisplay::ProgressDisplay(std::ostream& out, bool terminal)
     : out_(out), terminal_(terminal), last_line_(std::chrono::steady_clock::now()) {}
 

@@ -2,6 +2,7 @@
 // stderr is a terminal, otherwise one plain line every few seconds (logs, pipes).
 #pragma once
 
+#include "solver/metrics.hpp"
 #include "solver/simulation.hpp"
 
 #include <chrono>
@@ -12,6 +13,10 @@ namespace slipfront::app {
 
 // One line: "[#####.....]  42.0%  t = 6.72 / 16 s  1234 steps/s  ETA 0:12".
 std::string format_progress(const Progress& progress);
+
+// The last line of a run, also when it stopped early on arrest: "done: arrested at
+// x1 = 12.5 m; t = 9.41 of 16 s simulated (stopped on arrest); 5123 steps; wall 5.1 s".
+std::string format_final(const Metrics& metrics, double duration);
 
 class ProgressDisplay {
 public:

@@ -5,12 +5,14 @@
 #include "app/progress_display.hpp"
 
 #include "api/run_files.hpp"
+#include "api/result_xdmf.hpp"
 #include "api/run_job.hpp"
 
 #include <unistd.h>
 
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 
@@ -77,7 +79,8 @@ std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
     } else if (arg == "--quiet") {
       options.quiet = true;
     } else if ((arg.starts_with("-") && arg != "-") || have_job) {
-      std::cerr << "slipfront run: unexpected argument \"" << arg << "\" (see slipfront help)\n";
+      std::cerr << "slipfront run: unexpected argument \"" << arg
+                << "\" (see slipfront run --help)\n";
       return std::nullopt;
     } else {
       options.job_path = arg;
@@ -85,7 +88,7 @@ std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
     }
   }
   if (!have_job) {
-    std::cerr << "slipfront run: missing JOB.json (see slipfront help)\n";
+    std::cerr << "slipfront run: missing JOB.json (see slipfront run --help)\n";
     return std::nullopt;
   }
   return options;
@@ -94,6 +97,10 @@ std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
 } // namespace
 
 int run_command(const std::vector<std::string>& args) {
+  if (wants_help(args)) {
+    print_run_usage(std::cout);
+    return exit_code::success;
+  }
   const std::optional<RunOptions> options = parse_options(args);
   if (!options) return exit_code::bad_input;
   const std::optional<api::JobSpec> job =
@@ -127,6 +134,8 @@ int run_command(const std::vector<std::string>& args) {
     return exit_code::failure;
   }
   display.finish();
+  if (!options->quiet && !output.result.cancelled)
+    std::cerr << format_final(output.result.metrics, job->params.time.duration) << std::endl;
 
   if (output.result.cancelled) {
     std::cerr << "slipfront run: interrupted at t = " << output.result.metrics.simulated_time
@@ -146,9 +155,20 @@ int run_command(const std::vector<std::string>& args) {
   nlohmann::json printed = output.metrics;
   printed["spec_sha256"] = job->sha256;
   if (!output.result_path.empty()) {
+    // The XDMF sidecar (ParaView, VisIt) beside the HDF5 file: RESULT.xdmf.
+    const std::string xdmf_path =
+        std::filesystem::path(output.result_path).replace_extension(".xdmf").string();
+    try {
+      api::write_result_xdmf(output.result_path, xdmf_path);
+    } catch (const std::exception& e) {
+      std::cerr << "slipfront run: writing the XDMF sidecar " << xdmf_path << ": " << e.what()
+                << '\n';
+      return exit_code::failure;
+    }
     printed["result_file"] = {{"path", output.result_path},
                               {"bytes", output.result_size},
-                              {"sha256", output.result_sha256}};
+                              {"sha256", output.result_sha256},
+                              {"xdmf", xdmf_path}};
   }
   std::cout << printed.dump() << std::endl;
 

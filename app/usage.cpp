@@ -1,8 +1,55 @@
 #include "app/commands.hpp"
 
+#include <string>
+#include <vector>
+
+#include <algorithm>
 #include <ostream>
 
 namespace slipfront::app {
+
+bool wants_help(const std::vector<std::string>& args) {
+  return std::any_of(args.begin(), args.end(),
+                     [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+void print_run_usage(std::ostream& out) {
+  out << R"(usage: slipfront run JOB.json [--output RESULT.h5] [--threads N] [--max-memory SIZE]
+                     [--quiet]
+
+Run one job in the foreground. JOB.json may be "-" to read the job from standard input.
+Progress goes to stderr (a bar on a terminal, a line every few seconds otherwise, and a
+final line with the outcome, arrest position and wall time); the metrics go to stdout as
+one JSON object.
+
+options:
+  --output RESULT.h5  write the HDF5 result file (docs/hdf5-layout.md) and its XDMF
+                      sidecar RESULT.xdmf (ParaView, VisIt)
+  --threads N         worker threads (overrides the job's "threads"; 0 = all cores)
+  --max-memory SIZE   refuse a job whose memory estimate is above SIZE (bytes, or with a
+                      suffix K, M, G, T; default 8G)
+  --quiet             no progress on stderr
+  -h, --help          this help
+
+exit codes: 0 success, 1 the run failed, 2 invalid job or command line, 3 diverged,
+130 interrupted (SIGINT). The job JSON: docs/api-job-spec.md.
+)";
+}
+
+void print_validate_usage(std::ostream& out) {
+  out << R"(usage: slipfront validate JOB.json [--max-memory SIZE]
+
+Check a job without running it: prints "ok", its spec hash, memory estimate and mesh, or
+every error as "pointer: reason" on stderr. JOB.json may be "-" for standard input.
+
+options:
+  --max-memory SIZE   refuse a job whose memory estimate is above SIZE (bytes, or with a
+                      suffix K, M, G, T; default 8G)
+  -h, --help          this help
+
+exit codes: 0 valid, 2 invalid job or command line. The job JSON: docs/api-job-spec.md.
+)";
+}
 
 void print_usage(std::ostream& out) {
   out << R"(slipfront: frictional interface rupture simulations (Kammer et al. 2014)
@@ -22,8 +69,9 @@ usage:
   slipfront schema [--markdown]
       The job schema: JSON Schema (also served at /api/v1/schema/job.json), or the field
       tables of docs/api-job-spec.md.
-  slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [...]
+  slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [--max-memory SIZE] [...]
       Run the HTTP job server (docs/server.md).
+  slipfront run|validate|serve --help   the options of one command
   slipfront --version
   slipfront help | --help
 

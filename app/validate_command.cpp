@@ -11,6 +11,10 @@
 namespace slipfront::app {
 
 int validate_command(const std::vector<std::string>& args) {
+  if (wants_help(args)) {
+    print_validate_usage(std::cout);
+    return exit_code::success;
+  }
   api::ValidationLimits limits;
   std::vector<std::string> jobs;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -27,7 +31,8 @@ int validate_command(const std::vector<std::string>& args) {
     }
   }
   if (jobs.size() != 1) {
-    std::cerr << "slipfront validate: expects exactly one JOB.json (see slipfront help)\n";
+    std::cerr
+        << "slipfront validate: expects exactly one JOB.json (see slipfront validate --help)\n";
     return exit_code::bad_input;
   }
   const std::optional<api::JobSpec> job = load_job(jobs[0], std::nullopt, limits);

@@ -1,5 +1,7 @@
 #include "server/job_filter_query.hpp"
 
+#include "server/run_query.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <set>
@@ -41,8 +43,9 @@ JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& q) {
   JobFilter& f = result.filter;
   std::vector<api::FieldError>& errors = result.errors;
   static const std::set<std::string> known = {
-      "status",  "tag",     "name",  "outcome", "submitted_by", "spec_sha256", "L_min",   "L_max",
-      "n_d_min", "n_d_max", "limit", "cursor",  "fields",       "scene_hash",  "study_id"};
+      "status", "tag",        "name",     "outcome", "submitted_by", "spec_sha256",
+      "L_min",  "L_max",      "n_d_min",  "n_d_max", "limit",        "cursor",
+      "fields", "scene_hash", "study_id", "where",   "sort",         "format"};
   for (const auto& [key, value] : q)
     if (!known.count(key)) errors.push_back({"/query/" + key, "unknown query parameter"});
   if (auto it = q.find("status"); it != q.end())
@@ -73,17 +76,43 @@ JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& q) {
   number("L_max", f.L_max);
   number("n_d_min", f.n_d_min);
   number("n_d_max", f.n_d_max);
+  std::string& format = result.format;
+  if (auto it = q.find("format"); it != q.end()) {
+    format = it->second;
+    if (format != "json" && format != "csv" && format != "ndjson")
+      errors.push_back({"/query/format", "must be json, csv or ndjson, got '" + format + "'"});
+  }
+  const bool table = format == "csv" || format == "ndjson";
+  const long max_limit = table ? 100000 : 1000;
+  if (table) f.limit = 10000;
   if (auto it = q.find("limit"); it != q.end()) {
     auto l = parse_long(it->second);
-    if (!l || *l < 1 || *l > 1000)
-      errors.push_back({"/query/limit", "must be an integer in [1, 1000]"});
+    if (!l || *l < 1 || *l > max_limit)
+      errors.push_back({"/query/limit", "must be an integer in [1, " + std::to_string(max_limit) +
+                                            "] for format=" + format});
     else
       f.limit = static_cast<int>(*l);
   }
+  try {
+    if (auto it = q.find("where"); it != q.end()) f.conditions = parse_where(it->second);
+  } catch (const QueryError& e) {
+    errors.push_back({"/query/" + e.parameter(), e.what()});
+  }
+  try {
+    if (auto it = q.find("sort"); it != q.end()) f.sort = parse_sort(it->second);
+  } catch (const QueryError& e) {
+    errors.push_back({"/query/" + e.parameter(), e.what()});
+  }
   if (auto it = q.find("cursor"); it != q.end()) {
-    auto c = parse_long(it->second);
-    if (!c || *c < 0)
-      errors.push_back({"/query/cursor", "must be a cursor returned as next_cursor"});
+    // Newest-first listings page by seq ("123"), sorted ones by offset ("o50").
+    const std::string& text = it->second;
+    const bool sorted = !f.sort.empty();
+    auto c = parse_long(sorted && !text.empty() && text[0] == 'o' ? text.substr(1) : text);
+    if (!c || *c < 0 || (sorted && text[0] != 'o') || (!sorted && text[0] == 'o'))
+      errors.push_back({"/query/cursor", "must be a cursor returned as next_cursor by a listing "
+                                         "with the same sort"});
+    else if (sorted)
+      f.offset = *c;
     else
       f.before_seq = *c;
   }

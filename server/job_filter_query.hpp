@@ -25,6 +25,7 @@ std::vector<std::string> split_commas(const std::string& s);
 struct JobFilterQuery {
   JobFilter filter;
   std::vector<std::string> fields; // fields=a,b (empty = every field)
+  std::string format = "json";     // json | csv | ndjson (the run table export)
   std::vector<api::FieldError> errors;
 };
 

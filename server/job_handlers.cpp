@@ -4,6 +4,14 @@
 #include "server/job_id.hpp"
 #include "server/query_string.hpp"
 #include "server/responses.hpp"
+#include "server/run_query.hpp"
+#include "server/run_table.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <sstream>
 
 namespace slipfront::server {
 
@@ -114,22 +122,43 @@ Response get_job(ServerContext& ctx, RequestContext& rc) {
 
 Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   const auto& q = rc.query;
-  auto [f, fields, errors] = parse_job_filter(q);
+  auto [f, fields, errors, format] = parse_job_filter(q);
+  const bool table = format == "csv" || format == "ndjson";
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
                             errors);
   JobPage page = ctx.service.list(f);
+  std::optional<std::string> next_cursor;
+  if (page.next_cursor) next_cursor = std::to_string(*page.next_cursor);
+  if (page.next_offset) next_cursor = "o" + std::to_string(*page.next_offset);
+  std::optional<std::string> next;
+  if (next_cursor) {
+    next = prefix + "/jobs?";
+    for (const auto& [key, value] : q)
+      if (key != "cursor") *next += percent_encode(key) + "=" + percent_encode(value) + "&";
+    *next += "cursor=" + *next_cursor;
+  }
+  if (table) {
+    std::vector<nlohmann::ordered_json> rows;
+    for (const auto& job : page.jobs) {
+      auto it = page.convergence_status.find(job.id);
+      rows.push_back(run_row(job, it == page.convergence_status.end() ? "" : it->second));
+    }
+    auto response = format == "csv" ? text_response(rc.request, http::status::ok, runs_csv(rows),
+                                                    "text/csv; charset=utf-8")
+                                    : text_response(rc.request, http::status::ok, runs_ndjson(rows),
+                                                    "application/x-ndjson");
+    if (next) response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
+    return response;
+  }
   nlohmann::json body;
   body["jobs"] = nlohmann::json::array();
   for (const auto& job : page.jobs)
     body["jobs"].push_back(job_to_json(job, fields));
   body["count"] = page.jobs.size();
-  if (page.next_cursor) {
-    body["next_cursor"] = std::to_string(*page.next_cursor);
-    std::string next = prefix + "/jobs?";
-    for (const auto& [key, value] : q)
-      if (key != "cursor") next += percent_encode(key) + "=" + percent_encode(value) + "&";
-    body["next"] = next + "cursor=" + std::to_string(*page.next_cursor);
+  if (next_cursor) {
+    body["next_cursor"] = *next_cursor;
+    body["next"] = *next;
   } else {
     body["next_cursor"] = nullptr;
     body["next"] = nullptr;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <variant>
 
 namespace slipfront::server {
 
@@ -609,58 +610,66 @@ std::vector<Job> JobStore::queued_jobs() {
 
 JobPage JobStore::list(const JobFilter& f) {
   std::string where = "WHERE 1 = 1";
-  std::vector<std::string> texts;
-  std::vector<std::pair<int, double>> reals;
-  int index = 0;
-  auto text_param = [&](const std::string& value) {
-    texts.push_back(value);
-    std::string placeholder = "?";
-    placeholder += std::to_string(++index);
-    return placeholder;
-  };
+  SqlParams params;
   if (!f.statuses.empty()) {
     where += " AND j.status IN (";
     for (std::size_t i = 0; i < f.statuses.size(); ++i)
-      where += (i ? ", " : "") + text_param(to_string(f.statuses[i]));
+      where += (i ? ", " : "") + params.add(to_string(f.statuses[i]));
     where += ")";
   }
   if (!f.tag.empty())
     where += " AND EXISTS (SELECT 1 FROM json_each(j.tags) WHERE json_each.value = " +
-             text_param(f.tag) + ")";
-  if (!f.name.empty()) where += " AND j.name = " + text_param(f.name);
-  if (!f.outcome.empty()) where += " AND m.outcome = " + text_param(f.outcome);
-  if (!f.submitted_by.empty()) where += " AND j.submitted_by = " + text_param(f.submitted_by);
-  if (!f.spec_sha256.empty()) where += " AND j.spec_sha256 = " + text_param(f.spec_sha256);
-  if (!f.scene_hash.empty()) where += " AND j.scene_hash = " + text_param(f.scene_hash);
-  if (!f.study_id.empty()) where += " AND j.study_id = " + text_param(f.study_id);
+             params.add(f.tag) + ")";
+  auto equal = [&](const char* column, const std::string& value) {
+    if (!value.empty()) where += std::string(" AND ") + column + " = " + params.add(value);
+  };
+  equal("j.name", f.name);
+  equal("m.outcome", f.outcome);
+  equal("j.submitted_by", f.submitted_by);
+  equal("j.spec_sha256", f.spec_sha256);
+  equal("j.scene_hash", f.scene_hash);
+  equal("j.study_id", f.study_id);
   auto range = [&](const char* column, const char* op, const std::optional<double>& v) {
-    if (!v) return;
-    reals.emplace_back(++index, *v);
-    where += std::string(" AND ") + column + " " + op + " ?" + std::to_string(index);
+    if (v) where += std::string(" AND ") + column + " " + op + " " + params.add(*v);
   };
   range("j.L", ">=", f.L_min);
   range("j.L", "<=", f.L_max);
   range("j.n_d", ">=", f.n_d_min);
   range("j.n_d", "<=", f.n_d_max);
-  if (f.before_seq) {
-    reals.emplace_back(++index, static_cast<double>(*f.before_seq));
-    where += " AND j.seq < ?" + std::to_string(index);
+  for (const auto& c : f.conditions)
+    where += " AND " + condition_sql(c, params);
+  std::string order = " ORDER BY ";
+  if (f.sort.empty()) {
+    if (f.before_seq) where += " AND j.seq < " + params.add(static_cast<double>(*f.before_seq));
+  } else {
+    for (const auto& key : f.sort)
+      order += sort_sql(key, params) + ", ";
   }
+  order += "j.seq DESC";
   int limit = std::max(1, f.limit);
+  std::string tail = " LIMIT " + std::to_string(limit + 1);
+  if (!f.sort.empty() && f.offset > 0) tail += " OFFSET " + std::to_string(f.offset);
   std::lock_guard lock(mutex_);
-  auto s = db_.prepare(std::string("SELECT ") + job_columns + job_from + where +
-                       " ORDER BY j.seq DESC LIMIT " + std::to_string(limit + 1));
-  for (std::size_t i = 0; i < texts.size(); ++i)
-    s.bind(static_cast<int>(i + 1), texts[i]);
-  for (auto& [i, v] : reals)
-    s.bind(i, v);
+  auto s = db_.prepare(std::string("SELECT ") + job_columns + job_from + where + order + tail);
+  for (std::size_t i = 0; i < params.values.size(); ++i)
+    std::visit([&](const auto& v) { s.bind(static_cast<int>(i + 1), v); }, params.values[i]);
   JobPage page;
   while (s.step()) {
     if (static_cast<int>(page.jobs.size()) == limit) {
-      page.next_cursor = page.jobs.back().seq;
+      if (f.sort.empty())
+        page.next_cursor = page.jobs.back().seq;
+      else
+        page.next_offset = f.offset + limit;
       break;
     }
     page.jobs.push_back(read_job(s));
+  }
+  auto status = db_.prepare("SELECT convergence_status FROM study_runs WHERE job_id = ?1 "
+                            "ORDER BY rowid DESC LIMIT 1");
+  for (const auto& job : page.jobs) {
+    status.reset();
+    status.bind(1, job.id);
+    if (status.step()) page.convergence_status[job.id] = status.text(0);
   }
   return page;
 }

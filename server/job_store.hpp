@@ -7,6 +7,7 @@
 #pragma once
 
 #include "server/job.hpp"
+#include "server/run_query.hpp"
 #include "server/sqlite_db.hpp"
 
 #include <nlohmann/json.hpp>
@@ -31,12 +32,17 @@ struct JobFilter {
   std::string study_id;
   std::optional<double> L_min, L_max, n_d_min, n_d_max; // inclusive ranges
   std::optional<std::int64_t> before_seq;               // cursor: jobs older than this
+  std::vector<Condition> conditions;                    // `where` (server/run_query.hpp)
+  std::vector<SortKey> sort; // `sort`; empty = newest first (then pages by before_seq)
+  std::int64_t offset = 0;   // with `sort`: rows to skip (the cursor of sorted listings)
   int limit = 50;
 };
 
 struct JobPage {
-  std::vector<Job> jobs; // newest first
-  std::optional<std::int64_t> next_cursor;
+  std::vector<Job> jobs;                   // newest first, or in `sort` order
+  std::optional<std::int64_t> next_cursor; // before_seq of the next page (newest first)
+  std::optional<std::int64_t> next_offset; // offset of the next page (sorted listings)
+  std::map<std::string, std::string> convergence_status; // job id -> status, if in a study
 };
 
 // What a finished run leaves behind.

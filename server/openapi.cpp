@@ -113,8 +113,11 @@ const char* document = R"json({
           "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
           "413": {"$ref": "#/components/responses/Problem"}, "422": {"$ref": "#/components/responses/Problem"},
           "503": {"description": "Queue full, shutting down, storage unavailable (disk full, I/O error) or connection cap reached (Retry-After)", "headers": {"Retry-After": {"schema": {"type": "integer"}}}}}},
-      "get": {"summary": "List jobs, newest first",
+      "get": {"summary": "List, search and export jobs (newest first, or by sort)",
         "parameters": [
+          {"name": "where", "in": "query", "schema": {"type": "string"}, "example": "friction.L<1e-4; metrics.arrest_position>12", "description": "conditions FIELD OP VALUE joined by ';' or 'and'; OP one of = != < <= > >=; FIELD a job column (id, name, status, method, outcome, tag, submitted_by, created_at, started_at, finished_at, study_id, scene_hash, spec_sha256, code_version, convergence_status, wall_time_s, memory_estimate_bytes, attempts, priority, L, n_d), any spec field (friction.L or spec.friction.L) or metrics.NAME (metrics.rupture_speed.max); values are numbers, true/false, or text (quote with ' or \" if it holds spaces or ';'). A run without the field never matches. docs/server.md"},
+          {"name": "sort", "in": "query", "schema": {"type": "string"}, "example": "-metrics.arrest_position,friction.L", "description": "comma-separated fields as in where, '-' for descending; nulls last; then newest first"},
+          {"name": "format", "in": "query", "schema": {"type": "string", "enum": ["json", "csv", "ndjson"], "default": "json"}, "description": "csv or ndjson: the flat run table (job columns, spec.*, metrics.*, convergence_status), limit up to 100000 (default 10000), the next page in the Link header (rel=next)"},
           {"name": "status", "in": "query", "schema": {"type": "string"}, "description": "comma-separated statuses"},
           {"name": "tag", "in": "query", "schema": {"type": "string"}},
           {"name": "name", "in": "query", "schema": {"type": "string"}},
@@ -127,12 +130,14 @@ const char* document = R"json({
           {"name": "L_max", "in": "query", "schema": {"type": "number"}},
           {"name": "n_d_min", "in": "query", "schema": {"type": "number"}},
           {"name": "n_d_max", "in": "query", "schema": {"type": "number"}},
-          {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 50}},
-          {"name": "cursor", "in": "query", "schema": {"type": "string"}, "description": "next_cursor of the previous page"},
+          {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 100000, "default": 50}, "description": "json: 1..1000 (default 50); csv/ndjson: 1..100000 (default 10000)"},
+          {"name": "cursor", "in": "query", "schema": {"type": "string"}, "description": "next_cursor of the previous page (with sort: an offset cursor 'oN')"},
           {"name": "fields", "in": "query", "schema": {"type": "string"}, "description": "comma-separated top-level fields to keep (id is always kept)"}],
-        "responses": {"200": {"description": "A page", "content": {"application/json": {"schema": {"type": "object", "properties": {
+        "responses": {"200": {"description": "A page", "headers": {"Link": {"schema": {"type": "string"}, "description": "csv/ndjson: <next page>; rel=\"next\""}},
+          "content": {"application/json": {"schema": {"type": "object", "properties": {
           "jobs": {"type": "array", "items": {"$ref": "#/components/schemas/Job"}}, "count": {"type": "integer"},
-          "next_cursor": {"type": "string", "nullable": true}, "next": {"type": "string", "nullable": true}}}}}},
+          "next_cursor": {"type": "string", "nullable": true}, "next": {"type": "string", "nullable": true}}}},
+          "text/csv": {"schema": {"type": "string"}}, "application/x-ndjson": {"schema": {"type": "string"}}}},
           "400": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}": {
@@ -160,6 +165,13 @@ const char* document = R"json({
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
           "410": {"description": "The job succeeded but its result file was deleted from the data dir (an identical new job runs again)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
           "416": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/jobs/{id}/result.xdmf": {
+      "get": {"summary": "The XDMF sidecar of the result file: the interface fields on the x1-t plane for ParaView/VisIt; it refers to the HDF5 file as ID.h5 (save both in one directory)",
+        "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "XDMF 3", "content": {"application/xml": {}}},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
+          "410": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/metrics": {
       "get": {"summary": "The metrics of SPEC §2 as JSON", "parameters": [{"$ref": "#/components/parameters/id"}],

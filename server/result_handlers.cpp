@@ -1,5 +1,7 @@
-// GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/metrics, /jobs/{id}/front,
-// /jobs/{id}/fields/{name} (a window of an /interface field as JSON).
+// GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/result.xdmf (its XDMF
+// sidecar), /jobs/{id}/metrics, /jobs/{id}/front, /jobs/{id}/fields/{name} (a window of an
+// /interface field as JSON).
+#include "api/result_xdmf.hpp"
 #include "server/byte_range.hpp"
 #include "server/field_slice.hpp"
 #include "server/handlers.hpp"
@@ -127,6 +129,35 @@ Response download(ServerContext& ctx, RequestContext& rc) {
                             "result file of job " + job.id + ": " + ec.message());
   res.keep_alive(req.keep_alive());
   res.prepare_payload();
+  return res;
+}
+
+// The XDMF sidecar of the result file, generated from it; it names the file "ID.h5" (the
+// download's file name), so both belong in one directory.
+Response xdmf(ServerContext& ctx, RequestContext& rc) {
+  auto found = find_job(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<Job>(found);
+  const auto& req = rc.request;
+  if (!is_final(job.status)) return not_finished(req, job, "result file");
+  if (job.status != JobStatus::succeeded || job.result.path.empty())
+    return problem_response(req, http::status::not_found,
+                            "job " + job.id + " has no result file (" + to_string(job.status) +
+                                ")");
+  const std::string path = ctx.data_dir + "/" + job.result.path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    return problem_response(req, http::status::gone,
+                            "the result file of job " + job.id + " is no longer on the server");
+  std::string text;
+  try {
+    text = api::result_xdmf(path, job.id + ".h5");
+  } catch (const std::exception& e) {
+    return problem_response(req, http::status::internal_server_error,
+                            "XDMF of job " + job.id + ": " + e.what());
+  }
+  auto res = text_response(req, http::status::ok, std::move(text), "application/xml");
+  res.set(http::field::content_disposition, "attachment; filename=\"" + job.id + ".xdmf\"");
   return res;
 }
 
@@ -276,6 +307,8 @@ Response field(ServerContext& ctx, RequestContext& rc) {
 void add_result_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::get, prefix + "/jobs/{id}/result.h5",
              [&ctx](RequestContext& rc) { return download(ctx, rc); });
+  router.add(http::verb::get, prefix + "/jobs/{id}/result.xdmf",
+             [&ctx](RequestContext& rc) { return xdmf(ctx, rc); });
   router.add(http::verb::get, prefix + "/jobs/{id}/metrics",
              [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
   router.add(http::verb::get, prefix + "/jobs/{id}/front",

@@ -1,5 +1,7 @@
 #include "server/server_config.hpp"
 
+#include "api/memory_size.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
@@ -14,7 +16,7 @@ namespace slipfront::server {
 
 std::string usage_text() {
   return "usage: slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR]\n"
-         "         [--workers N] [--queue-limit N] [--max-memory-bytes X]\n"
+         "         [--workers N] [--queue-limit N] [--max-memory SIZE]\n"
          "         [--max-body-bytes N] [--token-file F] [--config F] [--io-threads N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
          "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
@@ -33,6 +35,15 @@ template <class T> T parse_number(const std::string& flag, const std::string& te
   if (ec != std::errc() || end != text.data() + text.size())
     throw UsageError(flag + ": not a number: \"" + text + "\"");
   return value;
+}
+
+double memory_size(const std::string& flag, const std::string& text) {
+  if (text == "0") return 0.0;
+  auto bytes = api::parse_memory_size(text);
+  if (!bytes)
+    throw UsageError(flag + ": needs a size such as 8G or 500M (or 0 = automatic), got \"" + text +
+                     "\"");
+  return *bytes;
 }
 
 using Setter = std::function<void(ServerConfig&, const std::string& flag, const std::string&)>;
@@ -62,11 +73,12 @@ const std::map<std::string, Setter>& setters() {
                    [](ServerConfig& c, const std::string& f, const std::string& v) {
                      c.queue_limit = parse_number<std::size_t>(f, v);
                    }},
-                  {"max-memory-bytes",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_memory_bytes = parse_number<double>(f, v);
-                     if (!(c.max_memory_bytes >= 0)) throw UsageError(f + ": must be >= 0");
-                   }},
+                  // The name `run` and `validate` use; 0 = 3/4 of RAM / workers.
+      {"max-memory", [](ServerConfig& c, const std::string& f,
+                        const std::string& v) { c.max_memory_bytes = memory_size(f, v); }},
+      // The old name, kept so that existing unit files and configs still start.
+      {"max-memory-bytes", [](ServerConfig& c, const std::string& f,
+                              const std::string& v) { c.max_memory_bytes = memory_size(f, v); }},
                   {"max-result-bytes",
                    [](ServerConfig& c, const std::string& f, const std::string& v) {
                      c.max_result_bytes = parse_number<double>(f, v);

@@ -61,8 +61,9 @@ class Api:
     """The server at `base_url`, with an optional bearer `token`."""
 
     def __init__(self, base_url, token=None, timeout=30.0, max_retries=6, max_retry_wait=60.0,
-                 connect_retries=3, sleep=time.sleep):
+                 connect_retries=3, sleep=time.sleep, url_source=None):
         self.base_url = base_url.rstrip("/")
+        self.url_source = url_source  # where the URL came from, for the "nothing listens" hint
         self.token = token
         self.timeout = timeout
         self.max_retries = max_retries
@@ -110,7 +111,7 @@ class Api:
                     self.sleep(backoff)
                     backoff = min(backoff * 2, 8.0)
                     continue
-                raise ServerError(f"cannot reach the server at {self.base_url}: {e}") from e
+                raise ServerError(self.unreachable_message(e)) from e
             if response.status_code in ok:
                 return response
             if response.status_code in (429, 503) and not last:
@@ -121,6 +122,16 @@ class Api:
                 continue
             raise self.error_for(method, path, response)
         raise AssertionError("unreachable")
+
+    def unreachable_message(self, error):
+        """A friendly sentence for a server that does not answer."""
+        source = f" (from {self.url_source})" if self.url_source else ""
+        if isinstance(error, requests.ConnectionError) and not isinstance(
+                error, requests.exceptions.SSLError):
+            return (f"nothing answers at {self.base_url}{source}. Is `slipfront serve` running "
+                    f"there? Set the URL with --server, the SLIPFRONT_SERVER environment "
+                    f"variable or `server = \"...\"` in ~/.config/slipfront/client.toml.")
+        return f"cannot reach the server at {self.base_url}{source}: {error}"
 
     def error_for(self, method, path, response):
         """The exception an error response becomes."""
@@ -179,6 +190,52 @@ class Api:
             if not cursor or not page.get("jobs"):
                 return
             params["cursor"] = cursor
+
+    def export_runs(self, fmt="ndjson", filters=None, limit=None):
+        """The run table (GET /jobs?format=csv|ndjson) as text pages joined: every page
+        the server links (`Link: rel="next"`) until `limit` rows (None: all).
+        For csv, the header of each page after the first is dropped."""
+        params = {k: v for k, v in (filters or {}).items() if v is not None}
+        params["format"] = fmt
+        url, texts, rows = f"{API}/jobs", [], 0
+        while url:
+            want = 100000 if limit is None else min(100000, limit - rows)
+            if want <= 0:
+                break
+            params["limit"] = str(want)
+            response = self.request("GET", url, params=params)
+            lines = response.text.splitlines(keepends=True)
+            if fmt == "csv":
+                if texts:
+                    lines = lines[1:]
+                rows += max(0, len(lines) - (0 if texts else 1))
+            else:
+                rows += len(lines)
+            texts.append("".join(lines))
+            url = response.links.get("next", {}).get("url")
+            params = {}  # the next URL carries every parameter but the page size
+        return "".join(texts)
+
+    def list_studies(self, status=None, limit=None, page_size=100):
+        """Yield study summaries newest first (all of them, or `limit`)."""
+        params = {"status": status} if status else {}
+        count = 0
+        while True:
+            want = page_size if limit is None else min(page_size, limit - count)
+            if want <= 0:
+                return
+            page = self.get_json(f"{API}/studies", params={**params, "limit": str(want)})
+            for study in page.get("studies", []):
+                yield study
+                count += 1
+            cursor = page.get("next_cursor")
+            if not cursor or not page.get("studies"):
+                return
+            params["cursor"] = cursor
+
+    def result_xdmf(self, job_id):
+        """The XDMF sidecar of a job's result file (it names the file ID.h5)."""
+        return self.request("GET", f"{API}/jobs/{job_id}/result.xdmf").text
 
     def metrics(self, job_id):
         return self.get_json(f"{API}/jobs/{job_id}/metrics")

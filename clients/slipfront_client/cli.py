@@ -1,18 +1,15 @@
 """Command line of slipfront-client: options, subcommands, errors and exit codes."""
 
 import argparse
-import os
 import sys
 
-from . import commands_jobs, commands_plot, commands_study
+from . import __version__, commands_jobs, commands_plot, commands_study, config
 from .api import Api
 from .errors import EXIT_INTERRUPTED, EXIT_SERVER, ClientError
 
-DEFAULT_SERVER = "http://127.0.0.1:8080"
-
-EPILOG = """environment:
-  SLIPFRONT_SERVER  server URL (default http://127.0.0.1:8080)
-  SLIPFRONT_TOKEN   bearer token for submit/cancel on servers with --token-file
+EPILOG = """server URL (and token), first found:
+  --server (--token), SLIPFRONT_SERVER (SLIPFRONT_TOKEN), server = "..." (token = "...") in
+  ~/.config/slipfront/client.toml (or $SLIPFRONT_CONFIG), else http://127.0.0.1:8080
 
 exit codes:
   0 ok, 1 server or network error, 2 usage or validation error,
@@ -29,9 +26,9 @@ class Context:
 
     def api(self):
         if self._api is None:
-            server = self.args.server or os.environ.get("SLIPFRONT_SERVER") or DEFAULT_SERVER
-            token = self.args.token or os.environ.get("SLIPFRONT_TOKEN") or None
-            self._api = Api(server, token=token, timeout=self.args.http_timeout)
+            server, source = config.server_url(self.args.server)
+            self._api = Api(server, token=config.token(self.args.token),
+                            timeout=self.args.http_timeout, url_source=source)
         return self._api
 
     def close(self):
@@ -43,7 +40,8 @@ def common_options():
     """Options accepted before or after the subcommand."""
     p = argparse.ArgumentParser(add_help=False)
     s = argparse.SUPPRESS
-    p.add_argument("--server", default=s, help="server URL (env SLIPFRONT_SERVER)")
+    p.add_argument("--server", default=s,
+                   help="server URL (else SLIPFRONT_SERVER, the config file, 127.0.0.1:8080)")
     p.add_argument("--token", default=s, help="bearer token (env SLIPFRONT_TOKEN)")
     p.add_argument("--json", action="store_true", default=s, help="print JSON on stdout")
     p.add_argument("-q", "--quiet", action="store_true", default=s, help="no messages on stderr")
@@ -58,6 +56,8 @@ def build_parser():
         formatter_class=argparse.RawDescriptionHelpFormatter,
         description="Submit, follow and fetch slipfront rupture simulations; draw the paper's "
                     "figures from the results.")
+    parser.add_argument("--version", action="version",
+                        version=f"slipfront-client {__version__}")
     sub = parser.add_subparsers(dest="command", required=True,
                                 metavar="submit|status|list|cancel|download|study|plot")
     commands_jobs.add_parsers(sub, common)
@@ -66,8 +66,21 @@ def build_parser():
     return parser
 
 
+def join_sort_values(argv):
+    """`--sort -friction.L` as `--sort=-friction.L`: argparse would take a value starting
+    with '-' for an option."""
+    out, it = [], iter(argv)
+    for arg in it:
+        if arg == "--sort":
+            value = next(it, None)
+            out.append(arg if value is None else f"--sort={value}")
+        else:
+            out.append(arg)
+    return out
+
+
 def parse_args(argv):
-    args = build_parser().parse_args(argv)
+    args = build_parser().parse_args(join_sort_values(list(argv)))
     for name, default in (("server", None), ("token", None), ("json", False), ("quiet", False),
                           ("http_timeout", 30.0)):
         if not hasattr(args, name):

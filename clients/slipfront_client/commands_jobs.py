@@ -1,6 +1,8 @@
 """The job subcommands: submit, status, list, cancel, download."""
 
+import argparse
 import os
+import sys
 
 from . import jobspec
 from .download import download_result
@@ -33,7 +35,24 @@ def add_parsers(sub, common):
                    help="exit 3 if the job failed or diverged, 4 if it was cancelled")
     p.set_defaults(func=cmd_status)
 
-    p = sub.add_parser("list", parents=[common], help="list jobs, newest first")
+    p = sub.add_parser("list", parents=[common], help="list, search and export runs",
+                       description="List jobs (newest first, or --sort), filtered by --where "
+                                   "conditions on any spec field, metric or job column "
+                                   "(docs/server.md, 'Searching and exporting runs').",
+                       epilog="examples:\n"
+                              "  slipfront-client list --where 'friction.L<1e-4' "
+                              "--where 'metrics.arrest_position>12'\n"
+                              "  slipfront-client list --where method=spectral_bi "
+                              "--sort -friction.L --format csv > runs.csv",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--where", action="append", default=[], metavar="CONDITION",
+                   help="FIELD OP VALUE, e.g. friction.L<1e-4, metrics.outcome=arrested, "
+                        "tag=paper, created_at>=2026-11-01 (repeatable: all must hold)")
+    p.add_argument("--sort", metavar="FIELDS",
+                   help="comma-separated fields, '-' for descending, e.g. -metrics.arrest_position")
+    p.add_argument("--format", choices=["table", "json", "csv", "ndjson"], default=None,
+                   help="table (default), json (the jobs as the API shows them), csv or ndjson "
+                        "(the flat run table: spec fields, metrics, cost, convergence status)")
     p.add_argument("--status", help="comma-separated: queued,running,succeeded,failed,cancelled")
     p.add_argument("--tag")
     p.add_argument("--name")
@@ -44,8 +63,8 @@ def add_parsers(sub, common):
     p.add_argument("--L-max", type=float)
     p.add_argument("--n-d-min", type=float)
     p.add_argument("--n-d-max", type=float)
-    p.add_argument("--limit", type=int, default=50, help="at most this many jobs (0 = all); "
-                   "pages are followed as needed")
+    p.add_argument("--limit", type=int, help="at most this many jobs (0 = all; default 50 for "
+                   "table and json, all for csv and ndjson); pages are followed as needed")
     p.add_argument("--fields", help="comma-separated fields to show (server-side projection)")
     p.set_defaults(func=cmd_list)
 
@@ -57,6 +76,8 @@ def add_parsers(sub, common):
     p = sub.add_parser("download", parents=[common], help="download a job's HDF5 result")
     p.add_argument("id")
     p.add_argument("-o", "--output", help="file to write (default ID.h5)")
+    p.add_argument("--xdmf", action="store_true",
+                   help="also write the XDMF sidecar (ParaView, VisIt) beside it, as FILE.xdmf")
     p.set_defaults(func=cmd_download)
 
 
@@ -119,6 +140,9 @@ LIST_COLUMNS = [
 
 
 def cmd_list(args, ctx):
+    fmt = args.format or ("json" if args.json else "table")
+    if args.limit is None:
+        args.limit = 0 if fmt in ("csv", "ndjson") else 50
     if args.limit < 0:
         raise UsageError("--limit must be >= 0")
     filters = {"status": args.status, "tag": args.tag, "name": args.name, "outcome": args.outcome,
@@ -129,8 +153,16 @@ def cmd_list(args, ctx):
     if fields:
         filters["fields"] = ",".join(fields)
     filters = {k: (repr(v) if isinstance(v, float) else v) for k, v in filters.items()}
+    if args.where:
+        filters["where"] = ";".join(args.where)
+    filters["sort"] = args.sort
+    if fmt in ("csv", "ndjson"):
+        if fields:
+            raise UsageError(f"--fields applies to the table and json formats, not {fmt}")
+        sys.stdout.write(ctx.api().export_runs(fmt, filters, limit=args.limit or None))
+        return 0
     jobs = list(ctx.api().list_jobs(filters, limit=args.limit or None))
-    if args.json:
+    if fmt == "json":
         print_json(jobs)
     elif fields:
         cols = [("id", lambda j: j.get("id"))] + [(f, (lambda j, f=f: j.get(f))) for f in fields
@@ -164,4 +196,12 @@ def cmd_download(args, ctx):
     if not args.quiet:
         log(f"{path}: {'up to date' if fetched == 0 else f'{fetched} bytes fetched'}, sha256 {sha}")
     print(path)
+    if args.xdmf:
+        xdmf = os.path.splitext(path)[0] + ".xdmf"
+        text = ctx.api().result_xdmf(args.id)
+        # The server names the file ID.h5; point the sidecar at the name it was saved under.
+        text = text.replace(f"{args.id}.h5", os.path.basename(path))
+        with open(xdmf, "w", encoding="utf-8") as f:
+            f.write(text)
+        print(xdmf)
     return 0

@@ -50,11 +50,16 @@ def add_parsers(sub, common_parent):
     m.add_argument("sources", nargs="+", help="HDF5 files or job ids (one figure each)")
     m.add_argument("--probes", default="6,10", help="x1 of the vertical lines (default 6,10)")
     m.add_argument("--vmax", type=float, help="upper end of the grey scale [m/s]")
+    m.add_argument("--scale", choices=["log", "linear"], default="log",
+                   help="colour scale: log over four decades below the peak (default), or "
+                        "linear clipped at the 99th percentile (or --vmax)")
     m.set_defaults(func=cmd_map)
 
     v = psub.add_parser("velocity", parents=parents, help="(b) |V| against time at given x1")
     v.add_argument("sources", nargs="+")
     v.add_argument("--x1", default="6,10", help="positions [m] (default 6,10)")
+    v.add_argument("--no-zoom", action="store_true",
+                   help="show the whole run (default: zoom each panel to the signal)")
     v.set_defaults(func=cmd_velocity)
 
     s = psub.add_parser("speed", parents=parents, help="(c) rupture speed against x1")
@@ -131,7 +136,7 @@ def cmd_map(args, ctx):
     formats = common.parse_formats(args.format)
     probes = floats(args.probes, "--probes")
     for source, result in zip(args.sources, _results(args, ctx)):
-        fig, _ = plots("slip_map").plot_map(result, probes, args.vmax, args.title)
+        fig, _ = plots("slip_map").plot_map(result, probes, args.vmax, args.title, args.scale)
         stem = args.stem if args.stem and len(args.sources) == 1 else None
         stem = stem or "map_" + os.path.splitext(os.path.basename(source))[0]
         for path in common.save_figure(fig, args.output_dir, stem, formats):
@@ -141,7 +146,8 @@ def cmd_map(args, ctx):
 
 def cmd_velocity(args, ctx):
     positions = floats(args.x1, "--x1")
-    fig, _ = plots("velocity").plot_velocity(_results(args, ctx), positions, args.title)
+    fig, _ = plots("velocity").plot_velocity(_results(args, ctx), positions, args.title,
+                                             zoom=not args.no_zoom)
     _save(fig, args, "velocity")
     return 0
 
@@ -208,27 +214,48 @@ def cmd_filter(args, ctx):
 
 
 def study_cost_rows(api, study_ids):
-    """Cost rows of the studies: `across_methods` of the first study whose speed-accuracy
-    has it (every run of both methods' scenes), else the runs of every study given, each
-    with its study's method (GET /studies/{id})."""
+    """(rows, reference) of the studies: `across_methods` of the first study whose
+    speed-accuracy has it (every run of both methods' scenes), else the runs of every study
+    given, each with its study's method (GET /studies/{id}); errors against the server's
+    reference runs ("converged"). When no L of the studies converged the server has no
+    reference: the errors are then computed here against the finest run of each L
+    ("unconverged", labelled so on the chart), with the same definition."""
     docs = [api.get_json(f"/api/v1/studies/{sid}/speed-accuracy") for sid in study_ids]
+    rows = None
     for doc in docs:
         if analysis.has_across_methods(doc):
-            return analysis.rows_from_speed_accuracy(doc)
-    lists = []
-    for sid, doc in zip(study_ids, docs):
-        method = (doc.get("method") if isinstance(doc, dict) else None) or api.study(sid).get("method")
-        lists.append(analysis.rows_from_speed_accuracy(doc, method))
-    return analysis.merge_rows(*lists)
+            rows = analysis.rows_from_speed_accuracy(doc)
+            break
+    if rows is None:
+        lists = []
+        for sid, doc in zip(study_ids, docs):
+            method = (doc.get("method") if isinstance(doc, dict) else None) or api.study(sid).get("method")
+            lists.append(analysis.rows_from_speed_accuracy(doc, method))
+        rows = analysis.merge_rows(*lists)
+    if any(plots("cost").usable(r) for r in rows):
+        return rows, "converged"
+    finest = []
+    for sid in study_ids:
+        jobs = list(api.list_jobs({"study_id": sid}, limit=None))
+        base = [dict(results().row_from_job(j), method=(j.get("spec") or {}).get("method") or "fe")
+                for j in jobs]
+        by_method = {}
+        for r in base:
+            by_method.setdefault(r["method"], []).append(r)
+        for method_rows in by_method.values():
+            finest += analysis.errors_against_finest(method_rows)
+    return finest, "unconverged"
 
 
 def cmd_cost(args, ctx):
     inputs = sum(bool(x) for x in (args.sources, args.data, args.tag, args.study))
     if inputs != 1:
         raise UsageError("plot cost: give exactly one of SOURCES, --data, --tag, --study")
+    reference = "finest"
     if args.study:
-        rows = study_cost_rows(ctx.api(), args.study)
+        rows, reference = study_cost_rows(ctx.api(), args.study)
     elif args.data:
+        reference = "converged"
         rows = _load_json(args.data)
         if isinstance(rows, dict):
             rows = rows.get("runs") or rows.get("points") or []
@@ -238,6 +265,6 @@ def cmd_cost(args, ctx):
         base = (_server_rows(ctx, args.tag) if args.tag
                 else [results().row_from_result(r) for r in _results(args, ctx)])
         rows = analysis.errors_against_finest(base)
-    fig, _ = plots("cost").plot_cost(rows, args.title)
+    fig, _ = plots("cost").plot_cost(rows, args.title, reference=reference)
     _save(fig, args, "cost")
     return 0

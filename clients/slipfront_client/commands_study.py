@@ -2,7 +2,7 @@
 
 from . import jobspec, studies
 from .errors import ServerError, UsageError
-from .output import log, print_json
+from .output import log, print_json, table
 
 
 def floats(text, option):
@@ -16,10 +16,15 @@ def floats(text, option):
 
 
 def add_parsers(sub, common):
-    p = sub.add_parser("study", parents=[common], help="studies: create, wait, show, cancel",
+    p = sub.add_parser("study", parents=[common], help="studies: create, list, wait, show, cancel",
                        description="Studies over L x n_d (needs the server's studies API).")
-    ssub = p.add_subparsers(dest="study_command", metavar="create|wait|show|cancel",
+    ssub = p.add_subparsers(dest="study_command", metavar="create|list|wait|show|cancel",
                             required=True)
+
+    ls = ssub.add_parser("list", parents=[common], help="list studies, newest first")
+    ls.add_argument("--status", choices=["running", "finished", "cancelled"])
+    ls.add_argument("--limit", type=int, default=50, help="at most this many (0 = all)")
+    ls.set_defaults(func=cmd_list)
 
     c = ssub.add_parser("create", parents=[common], help="create a study")
     c.add_argument("file", nargs="?", help="a study JSON sent as is (else build one from --base)")
@@ -90,6 +95,30 @@ def cmd_create(args, ctx):
         show(study, args)
     else:
         print_json(study) if args.json else print(study_id)
+    return 0
+
+
+STUDY_COLUMNS = [
+    ("id", lambda s: s.get("id")),
+    ("status", lambda s: s.get("status")),
+    ("kind", lambda s: s.get("kind")),
+    ("method", lambda s: s.get("method")),
+    ("runs", lambda s: "{}/{}".format((s.get("progress") or {}).get("done", "?"),
+                                      (s.get("progress") or {}).get("total", "?"))),
+    ("L_c", lambda s: s.get("L_c")),
+    ("created_at", lambda s: s.get("created_at")),
+    ("name", lambda s: s.get("name")),
+]
+
+
+def cmd_list(args, ctx):
+    if args.limit < 0:
+        raise UsageError("--limit must be >= 0")
+    found = list(ctx.api().list_studies(status=args.status, limit=args.limit or None))
+    if args.json:
+        print_json(found)
+    else:
+        print("\n".join(table(found, STUDY_COLUMNS)))
     return 0
 
 

@@ -88,6 +88,16 @@ class CurlExamples(unittest.TestCase):
         self.assertEqual(self.sh("download-if-changed.sh", job_id, out).strip(), "304")
         self.assertIn("H   D   F", self.sh("range.sh", job_id))
 
+        table = self.sh("export.sh", "tag=curl-example; status=succeeded", "csv")
+        header, first = table.splitlines()[:2]
+        self.assertIn("spec.friction.L", header.split(","))
+        self.assertIn(job_id, first)
+        ndjson = self.sh("export.sh", "tag=curl-example", "ndjson", "-created_at")
+        self.assertIn(job_id, [json.loads(line)["id"] for line in ndjson.splitlines()])
+        self.assertEqual(self.sh("xdmf.sh", job_id).strip(), f"{job_id}.xdmf")
+        with open(os.path.join(self.tmp, f"{job_id}.xdmf")) as f:
+            self.assertIn(f"{job_id}.h5:/interface/slip_velocity", f.read())
+
         # A finished job cannot be cancelled: the script prints the 409 problem.
         self.assertIn("already finished", json.loads(self.sh("cancel.sh", job_id))["detail"])
 

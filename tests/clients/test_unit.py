@@ -323,10 +323,47 @@ class SpeedAccuracyTest(unittest.TestCase):
                 return {"id": sid, "method": "spectral_bi" if sid == "B" else "fe"}
 
         old = FakeApi({"F": {"runs": [strip(fe)]}, "B": {"runs": [strip(bi)]}})
-        self.assertEqual([r["method"] for r in study_cost_rows(old, ["F", "B"])],
-                         ["fe", "spectral_bi"])
+        rows, reference = study_cost_rows(old, ["F", "B"])
+        self.assertEqual([r["method"] for r in rows], ["fe", "spectral_bi"])
+        self.assertEqual(reference, "converged")
         new = FakeApi({"F": {"runs": [fe], "across_methods": {"runs": [fe, bi]}}})
-        self.assertEqual([r["method"] for r in study_cost_rows(new, ["F"])], ["fe", "spectral_bi"])
+        rows, reference = study_cost_rows(new, ["F"])
+        self.assertEqual([r["method"] for r in rows], ["fe", "spectral_bi"])
+
+    def test_cost_chart_of_a_study_with_no_converged_L(self):
+        """The server has no reference (errors null): the chart still draws, with errors
+        against the finest run of each L, and says so on the figure."""
+        from slipfront_client.commands_plot import study_cost_rows
+        unconverged = self.run_("fe", 5e-5, 10, 0.5, 2e7, 0.0)
+        unconverged["errors"] = {"propagation_distance": None, "arrival_time": None}
+
+        def job(n_d, distance, arrival, wall):
+            return {"id": f"j{n_d}", "status": "succeeded", "wall_time_s": wall,
+                    "spec": {"friction": {"L": 5e-5}, "geometry": {"nodes_per_meter": n_d}},
+                    "metrics": {"outcome": "arrested", "propagation_distance": distance,
+                                "arrival_time_at_probe": arrival, "wall_time_s": wall}}
+
+        class FakeApi:
+            def get_json(self, path):
+                return {"runs": [unconverged]}
+
+            def study(self, sid):
+                return {"id": sid, "method": "fe"}
+
+            def list_jobs(self, filters, limit=None):
+                assert filters == {"study_id": "S"}
+                return iter([job(10, 10.0, 8.0, 0.5), job(20, 10.5, 8.4, 2.0),
+                             job(40, 11.0, 8.8, 8.0)])
+
+        rows, reference = study_cost_rows(FakeApi(), ["S"])
+        self.assertEqual(reference, "unconverged")
+        self.assertEqual(sorted(r["n_d"] for r in rows), [10, 20])
+        self.assertAlmostEqual(min(r["error"] for r in rows), 0.5 / 11.0)
+        fig, data = cost.plot_cost(rows, reference=reference)
+        self.assertEqual(data[("fe", 5e-5)]["n_d"], [10, 20])
+        footer = fig._supxlabel.get_text()
+        self.assertIn("error = max(|d - d_ref| / d_ref, |t - t_ref| / t_ref)", footer)
+        self.assertIn("No L of the study converged", footer)
 
     def test_cost_chart_has_both_methods_and_a_memory_panel(self):
         rows = analysis.rows_from_speed_accuracy({"across_methods": {"runs": [

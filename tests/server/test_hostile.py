@@ -351,7 +351,7 @@ class HostileInput(unittest.TestCase):
             (JOBS, {"limit": "0"}, "/query/limit"), (JOBS, {"limit": "1001"}, "/query/limit"),
             (JOBS, {"limit": "abc"}, "/query/limit"), (JOBS, {"limit": "1e3"}, "/query/limit"),
             (JOBS, {"cursor": "-5"}, "/query/cursor"), (JOBS, {"cursor": "x"}, "/query/cursor"),
-            (JOBS, {"status": "bogus"}, "/query/status"), (JOBS, {"sort": "id"}, "/query/sort"),
+            (JOBS, {"status": "bogus"}, "/query/status"), (JOBS, {"order_by": "id"}, "/query/order_by"),
             (JOBS, {"L_min": "1,2"}, "/query/L_min"), (JOBS, {"n_d_max": ""}, "/query/n_d_max"),
             (STUDIES, {"limit": "0"}, "/query/limit"), (STUDIES, {"cursor": "-1"}, "/query/cursor"),
             (STUDIES, {"x": "1"}, "/query/x"),

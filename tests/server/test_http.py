@@ -56,7 +56,7 @@ class MainServer(unittest.TestCase):
         cls.server = Server(BINARY, args=["--workers", "2", "--queue-limit", "50",
                                           "--max-body-bytes", "65536",
                                           "--request-timeout-s", "2",
-                                          "--max-memory-bytes", "2e9"]).start()
+                                          "--max-memory", "2G"]).start()
 
     @classmethod
     def tearDownClass(cls):

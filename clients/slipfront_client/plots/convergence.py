@@ -55,28 +55,47 @@ def points_from_json(doc, where="convergence map"):
     return [_point(item, f"{where}[{i}]") for i, item in enumerate(items)]
 
 
+def length_text(L):
+    """1e-4 -> "1e-4", 5e-05 -> "5e-5", 0.5 -> "0.5": one style for every tick."""
+    if L <= 0 or 1e-2 <= L < 1e3:
+        return f"{L:g}"
+    mantissa, exponent = f"{L:.3e}".split("e")
+    return f"{float(mantissa):g}e{int(exponent)}"
+
+
 def plot_convergence(points, critical_length=None, title=None):
-    """Markers by status on log L (vertical) against n_d (horizontal, log)."""
+    """Markers by status on log L (vertical) against n_d (horizontal, log); ticks at the
+    meshes and lengths run, every marker inside the frame, the legend beside the axes."""
     if not points:
         raise UsageError("convergence map: no runs to draw")
-    fig, ax = new_figure()
+    fig, ax = new_figure(7.2, 4.4)
     data = {s: [] for s in MARKERS}
     for p in points:
         data[p["status"]].append((p["n_d"], p["L"]))
     for status, xy in data.items():
         if xy:
             xs, ys = zip(*xy)
-            ax.plot(xs, ys, ls="none", ms=8, label=status.replace("_", " "), **MARKERS[status])
-    if critical_length and math.isfinite(critical_length):
-        ax.axhline(critical_length, color="black", ls=":", lw=1)
-        ax.text(ax.get_xlim()[1], critical_length, "L_c ", ha="right", va="bottom")
+            ax.plot(xs, ys, ls="none", ms=8, label=status.replace("_", " "), **MARKERS[status],
+                    clip_on=False)
     ax.set_xscale("log")
     ax.set_yscale("log")
     meshes = sorted({float(p["n_d"]) for p in points})  # ticks at the meshes run, as numbers
+    lengths = sorted({float(p["L"]) for p in points})
+    # Half a mesh step (a factor 2 ladder: sqrt 2) of margin around the outer markers.
+    ax.set_xlim(meshes[0] / 1.45, meshes[-1] * 1.45)
+    ax.set_ylim(lengths[0] / 1.6, lengths[-1] * 1.6)
     ax.set_xticks(meshes, [f"{n:g}" for n in meshes])
     ax.set_xticks([], minor=True)
+    ax.set_yticks(lengths, [length_text(L) for L in lengths])
+    ax.set_yticks([], minor=True)
+    ax.grid(True, which="major", color="0.9", lw=0.6)
+    ax.set_axisbelow(True)
+    if critical_length and math.isfinite(critical_length):
+        ax.axhline(critical_length, color="black", ls=":", lw=1,
+                   label=f"L_c = {length_text(critical_length)} m")
     ax.set_xlabel("n_d [nodes/m]")
     ax.set_ylabel("L [m]")
     ax.set_title(title or "Convergence map")
-    ax.legend(fontsize="small", loc="best")
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+    data["meshes"], data["lengths"] = meshes, lengths
     return fig, data

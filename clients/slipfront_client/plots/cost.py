@@ -2,7 +2,15 @@
 `memory_bytes`, against memory in a second panel), one curve per L and method: colour = L,
 marker and line style = method (FE ● solid, spectral BI ■ dashed), each point labelled with
 its n_d. Input rows: {L, n_d, wall_time_s, error[, method, memory_bytes]} (error > 0; rows
-without a positive error, such as a reference run, are left out; `method` defaults to "fe")."""
+without a positive error, such as a reference run, are left out; `method` defaults to "fe").
+
+One definition of the error everywhere (the server's GET /studies/{id}/speed-accuracy and
+every client path): the larger of the relative differences of `propagation_distance` and
+`arrival_time_at_probe` from a reference run of the same L — the finest run of an L that has
+a converged run (`reference="converged"`, the server's), the finest run of each L when the
+client computes the errors from runs (`"finest"`), or, for a study where no L converged, the
+finest run of each L, labelled as such (`"unconverged"`). The figure states which.
+"""
 
 import math
 
@@ -63,7 +71,17 @@ def method(row):
     return row.get("method") or "fe"
 
 
-def plot_cost(rows, title=None):
+ERROR_DEFINITION = ("error = max(|d - d_ref| / d_ref, |t - t_ref| / t_ref);  "
+                    "d: propagation_distance, t: arrival_time_at_probe")
+REFERENCES = {
+    "converged": "reference: the finest run of each L that has a converged run",
+    "finest": "reference: the finest run of each L (its convergence not checked)",
+    "unconverged": "reference: the finest run of each L. No L of the study converged:\n"
+                   "these are differences from the finest run, not errors against a converged run",
+}
+
+
+def plot_cost(rows, title=None, reference="converged"):
     rows = [r for r in rows if usable(r)]
     if not rows:
         raise UsageError("cost chart: no rows with a positive error and wall_time_s")
@@ -96,12 +114,13 @@ def plot_cost(rows, title=None):
                             xytext=LABEL_OFFSET.get(m, (4, 3)), fontsize="x-small",
                             color=colour_of[L])
         ax.set_xscale("log")
+        ax.margins(x=0.08, y=0.12)  # markers and their n_d labels inside the frame
         ax.set_yscale("log")
         drawn = [v for (m, L), d in data.items() if key in d for v in d[key]]
         readable_log_axis(ax.xaxis, [v / scale for v in drawn])
         readable_log_axis(ax.yaxis, [v for d in data.values() if key in d for v in d["error"]])
         ax.set_xlabel(xlabel)
-        ax.set_ylabel("relative error (vs reference run of the L)")
+        ax.set_ylabel("relative error")
         ax.grid(True, which="major", alpha=0.3)
     handles = [Line2D([], [], color=colour_of[L], linewidth=3, label=f"L = {length_label(L)}") for L in lengths]
     handles += [Line2D([], [], color="0.3", marker=STYLE.get(m, OTHER)["marker"],
@@ -110,5 +129,8 @@ def plot_cost(rows, title=None):
                        label=STYLE.get(m, {}).get("label", m)) for m in methods]
     axes[-1].legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0),
                     fontsize="small", borderaxespad=0.0)
+    if reference not in REFERENCES:
+        raise UsageError(f"cost chart: reference {reference!r}: choose from {', '.join(REFERENCES)}")
     fig.suptitle(title or "Speed and accuracy (point labels: n_d)")
+    fig.supxlabel(f"{ERROR_DEFINITION}\n{REFERENCES[reference]}", fontsize="small", color="0.25")
     return fig, data

@@ -1,9 +1,22 @@
-"""(a) The slip velocity |V| in the x1–t plane as a grey scale (darker = faster), with the
-slip front (first time |V| exceeds the threshold) as a dark line — the paper's Fig. 2a."""
+"""(a) The slip velocity |V| in the x1–t plane (darker = faster), with the slip front (first
+time |V| exceeds the threshold) as a dark line and the probe positions of figure (b) — the
+paper's Fig. 2a.
+
+The colour scale must show the whole pulse, its tip and tail as well as its peak: by default
+it is logarithmic over four decades below the largest |V| (`scale="log"`); `scale="linear"`
+clips at the 90th percentile of the slipping nodes' |V| (the rare peak values are shown as
+the darkest colour and the colour bar says so) unless `vmax` is given.
+"""
 
 import numpy as np
+from matplotlib.colors import LogNorm, Normalize
 
+from ..errors import UsageError
 from .common import new_figure
+
+SCALES = ("log", "linear")
+LOG_DECADES = 4
+CLIP_PERCENTILE = 90  # linear scale: the top of the scale, percentile of the slipping |V|
 
 
 def map_data(result):
@@ -18,23 +31,56 @@ def map_data(result):
     }
 
 
-def plot_map(result, probes=(6.0, 10.0), vmax=None, title=None):
-    """Figure (a) of one run; `probes` draws vertical lines where figure (b) samples V."""
+def colour_norm(v, scale, vmax=None):
+    """(norm, clipped): the colour normalisation of |V| values `v` (any units) and whether
+    values above its top are clipped."""
+    finite = v[np.isfinite(v)]
+    peak = float(finite.max()) if finite.size else 1.0
+    peak = peak if peak > 0 else 1.0
+    if scale == "log":
+        top = vmax or peak
+        return LogNorm(vmin=top * 10.0 ** -LOG_DECADES, vmax=top, clip=True), top < peak
+    if scale == "linear":
+        if vmax:
+            top = vmax
+        else:
+            moving = finite[finite > peak * 1e-3]
+            top = float(np.percentile(moving, CLIP_PERCENTILE)) if moving.size else peak
+        return Normalize(vmin=0.0, vmax=top, clip=True), top < peak
+    raise UsageError(f"colour scale {scale!r}: choose from {', '.join(SCALES)}")
+
+
+def plot_map(result, probes=(6.0, 10.0), vmax=None, title=None, scale="log"):
+    """Figure (a) of one run; `probes` draws vertical lines where figure (b) samples V.
+    `scale`: "log" (default) or "linear" (clipped); `vmax` [m/s] sets the top of the scale."""
     data = map_data(result)
     fig, ax = new_figure(6.4, 4.8)
     v = data["abs_slip_velocity"] * 1e3  # mm/s
-    mesh = ax.pcolormesh(data["x1"], data["time"], v, cmap="Greys", shading="nearest",
-                         vmin=0.0, vmax=vmax * 1e3 if vmax else None, rasterized=True)
-    fig.colorbar(mesh, ax=ax, label="|V| [mm/s]")
+    norm, clipped = colour_norm(v, scale, vmax * 1e3 if vmax else None)
+    shown = np.where(v > 0, v, np.nan) if scale == "log" else v
+    cmap = "Greys"
+    mesh = ax.pcolormesh(data["x1"], data["time"], shown, cmap=cmap, norm=norm,
+                         shading="nearest", rasterized=True)
+    label = "|V| [mm/s]" + (" (log scale)" if scale == "log" else "")
+    if clipped:
+        label += ", clipped at top"
+    bar = fig.colorbar(mesh, ax=ax, label=label, extend="max" if clipped else "neither")
+    if scale == "log":
+        bar.ax.set_facecolor("white")  # |V| below the scale's bottom: no slip
+    data.update(scale=scale, vmin=float(norm.vmin), vmax=float(norm.vmax), clipped=clipped)
     if data["front_x1"].size:
         order = np.argsort(data["front_x1"])
-        ax.plot(data["front_x1"][order], data["front_time"][order], color="black", lw=1.2,
+        ax.plot(data["front_x1"][order], data["front_time"][order], color="tab:orange", lw=1.4,
                 label="slip front")
-        ax.legend(loc="upper left", fontsize="small")
     lo, hi = float(data["x1"].min()), float(data["x1"].max())
-    for x in probes:
+    drawn = []
+    for x, style in zip(probes, ["--", ":", "-.", (0, (5, 2, 1, 2))]):
         if lo <= x <= hi:
-            ax.axvline(x, color="tab:red", ls="--", lw=0.8)
+            ax.axvline(x, color="tab:red", ls=style, lw=1.0, label=f"probe x1 = {x:g} m")
+            drawn.append(x)
+    data["probes"] = drawn
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="upper left", fontsize="small", framealpha=0.9)
     ax.set_xlabel("x1 [m]")
     ax.set_ylabel("t [s]")
     ax.set_title(title or f"Slip velocity, {result.label()}")

@@ -1,14 +1,33 @@
 """(c) Rupture speed V_r = dx1/dt_front against x1 (paper Fig. 2c, 3b, 4b), with the
-shear and dilatational wave speeds c_s and c_p as horizontal lines."""
+shear and dilatational wave speeds c_s and c_p as horizontal lines and the nucleation
+patch shaded: inside it the nucleation, not the rupture, sets the front (the metrics
+`rupture_speed.max` and `.mean` leave it out; docs/metrics.md)."""
+
+import math
 
 import numpy as np
 
 from .common import colours, new_figure
 
 
+def nucleation_patch(spec):
+    """(lo, hi) [m] of the x1 interval the nucleation ellipse covers (solver/nucleation.cpp:
+    0 to sqrt(a^2 + b^2)), or None when nucleation is disabled."""
+    n = (spec or {}).get("nucleation") or {}
+    if n.get("enabled", True) is False:
+        return None
+    a, b = n.get("a", 0.6), n.get("b", 3.6)
+    return 0.0, math.hypot(a, b)
+
+
 def plot_speed(results, title=None):
     fig, ax = new_figure()
     data = {}
+    patch = nucleation_patch(results[0].spec) if results else None
+    if patch:
+        ax.axvspan(*patch, color="tab:orange", alpha=0.15, lw=0,
+                   label=f"nucleation patch ({patch[0]:g} to {patch[1]:.2f} m)")
+        data["nucleation_patch"] = patch
     for colour, result in zip(colours(len(results)), results):
         ok = np.isfinite(result.rupture_speed)
         x, v = result.front_x1[ok], result.rupture_speed[ok]
@@ -18,13 +37,13 @@ def plot_speed(results, title=None):
         c_s, c_p = results[0].wave_speeds()
         ax.axhline(c_s, color="grey", ls="--", lw=0.8)
         ax.axhline(c_p, color="grey", ls="-.", lw=0.8)
-        ax.text(ax.get_xlim()[0], c_s, r" $c_s$", va="bottom", color="grey")
-        ax.text(ax.get_xlim()[0], c_p, r" $c_p$", va="bottom", color="grey")
+        ax.text(ax.get_xlim()[1], c_s, r"$c_s$ ", va="bottom", ha="right", color="grey")
+        ax.text(ax.get_xlim()[1], c_p, r"$c_p$ ", va="bottom", ha="right", color="grey")
         data["c_s"], data["c_p"] = c_s, c_p
         ax.set_ylim(0, 1.1 * c_p)
     ax.set_xlabel("x1 [m]")
     ax.set_ylabel(r"$V_r$ [m/s]")
     ax.set_title(title or "Rupture speed")
-    if ax.lines:
-        ax.legend(fontsize="small")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize="small", loc="lower left")  # the arrest drops to the lower right
     return fig, data

@@ -1,10 +1,14 @@
 """(b) Slip velocity |V| against time at given positions x1 (paper Fig. 2b, 3a, 4a),
-several runs overlaid and labelled by L and n_d."""
+several runs overlaid and labelled by L and n_d. Each panel's time axis is zoomed to the
+signal: from a little before the first run's |V| exceeds 1 % of the panel's peak to a little
+after the last run's falls below it (`zoom=False` shows the whole run)."""
 
 import numpy as np
 import matplotlib.pyplot as plt
 
 from .common import colours
+
+SIGNAL_FRACTION = 0.01
 
 
 def velocity_at(result, x1):
@@ -15,27 +19,53 @@ def velocity_at(result, x1):
     return float(result.x1[node]), result.time, np.abs(result.slip_velocity[:, node])
 
 
-def plot_velocity(results, positions=(6.0, 10.0), title=None):
+def signal_window(samples, fraction=SIGNAL_FRACTION, pad=0.15):
+    """(t0, t1) covering every sample's |V| above `fraction` of the largest, padded by
+    `pad` of the width on each side; None if there is no signal."""
+    peak = max((float(np.nanmax(v)) for _, v in samples if v.size), default=0.0)
+    if not peak > 0:
+        return None
+    starts, ends = [], []
+    for t, v in samples:
+        above = np.nonzero(v > fraction * peak)[0]
+        if above.size:
+            starts.append(t[above[0]])
+            ends.append(t[above[-1]])
+    t0, t1 = min(starts), max(ends)
+    width = max(t1 - t0, 1e-9)
+    first = min(float(t[0]) for t, _ in samples)
+    last = max(float(t[-1]) for t, _ in samples)
+    return max(first, t0 - pad * width), min(last, t1 + pad * width)
+
+
+def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True):
     """One panel per position; one line per run. Positions outside a run are skipped."""
     fig, axes = plt.subplots(len(positions), 1, figsize=(6.4, 2.6 * len(positions) + 0.6),
-                             sharex=True, squeeze=False, constrained_layout=True)
+                             squeeze=False, constrained_layout=True)
     data = {}
     palette = colours(len(results))
     for ax, x in zip(axes[:, 0], positions):
+        samples = []
         for colour, result in zip(palette, results):
             sample = velocity_at(result, x)
             if sample is None:
                 continue
             node_x, t, v = sample
+            samples.append((t, v))
             data.setdefault(result.label(), {})[x] = {"node_x1": node_x, "time": t, "abs_v": v}
             ax.plot(t, v * 1e3, color=colour, lw=1.0, label=result.label())
         ax.set_ylabel("|V| [mm/s]")
-        ax.set_title(f"x1 = {x:g} m", fontsize="medium")
+        window = signal_window(samples) if zoom and samples else None
+        if window:
+            ax.set_xlim(*window)
+            data.setdefault("windows", {})[x] = window
+        ax.set_title(f"x1 = {x:g} m" + (" (zoomed to the signal)" if window else ""),
+                     fontsize="medium")
+        ax.set_xlabel("t [s]")
         if ax.lines:
             ax.legend(fontsize="small")
         else:
             ax.text(0.5, 0.5, "outside every run's domain", transform=ax.transAxes, ha="center")
-    axes[-1, 0].set_xlabel("t [s]")
     if title:
         fig.suptitle(title)
     return fig, data

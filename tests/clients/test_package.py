@@ -1,0 +1,190 @@
+"""The client as an installable package (docs/python-api.md): it installs offline into a
+venv with Debian's pip and setuptools, its console script runs, its version is the
+server's (project VERSION in CMakeLists.txt and `slipfront --version`), the notebook-style
+example runs against a live loopback server with the installed package, and the command
+line lists, filters and exports runs, lists studies, and explains a server that does not
+answer.
+
+    /usr/bin/python3 tests/clients/test_package.py --binary build/slipfront
+"""
+
+import csv
+import io
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+from unittest import mock
+
+from harness import CLIENTS, REPO, Server, binary_from_argv
+
+BINARY = None
+
+
+def cmake_version():
+    with open(os.path.join(REPO, "CMakeLists.txt")) as f:
+        match = re.search(r"project\(slipfront VERSION ([0-9.]+)", f.read())
+    assert match, "no project(slipfront VERSION ...) in CMakeLists.txt"
+    return match.group(1)
+
+
+class InstalledPackageTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="slipfront-venv-")
+        # Build from a copy: setuptools writes build/ and *.egg-info beside the sources.
+        source = os.path.join(cls.tmp, "clients")
+        shutil.copytree(CLIENTS, source, ignore=shutil.ignore_patterns(
+            "__pycache__", "build", "*.egg-info"))
+        venv = os.path.join(cls.tmp, "venv")
+        subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", venv],
+                       check=True, timeout=120)
+        install = subprocess.run(
+            [os.path.join(venv, "bin", "pip"), "install", "--no-build-isolation", "--no-index",
+             "--disable-pip-version-check", source],
+            capture_output=True, text=True, timeout=300)
+        if install.returncode != 0:
+            raise AssertionError(f"pip install failed:\n{install.stdout}\n{install.stderr}")
+        cls.python = os.path.join(venv, "bin", "python")
+        cls.script = os.path.join(venv, "bin", "slipfront-client")
+        cls.server = Server(BINARY).start()
+        cls.env = {k: v for k, v in os.environ.items()
+                   if k not in ("SLIPFRONT_SERVER", "SLIPFRONT_TOKEN", "PYTHONPATH")}
+        cls.env["SLIPFRONT_CONFIG"] = os.path.join(cls.tmp, "no-such-config.toml")
+        cls.env["XDG_CACHE_HOME"] = os.path.join(cls.tmp, "cache")
+        cls.env["MPLBACKEND"] = "Agg"
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.server.stop()
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def client(self, *args, env=None, timeout=120):
+        e = dict(self.env, SLIPFRONT_SERVER=self.server.base)
+        e.update(env or {})
+        return subprocess.run([self.script, *args], capture_output=True, text=True, env=e,
+                              timeout=timeout, cwd=self.tmp)
+
+    def test_1_installed_outside_the_checkout(self):
+        where = subprocess.run(
+            [self.python, "-c", "import slipfront_client, sys; print(slipfront_client.__file__)"],
+            capture_output=True, text=True, env=self.env, cwd=self.tmp, check=True)
+        self.assertIn(os.path.join(self.tmp, "venv"), where.stdout)
+
+    def test_2_version_is_the_servers(self):
+        r = self.client("--version")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        client_version = r.stdout.strip().split()[-1]
+        self.assertEqual(client_version, cmake_version(),
+                         "clients/slipfront_client/__init__.py __version__ differs from the "
+                         "project VERSION in CMakeLists.txt")
+        server = subprocess.run([BINARY, "--version"], capture_output=True, text=True, check=True)
+        self.assertEqual(server.stdout.split()[1].split("+")[0], client_version)
+        metadata = subprocess.run(
+            [self.python, "-c", "import importlib.metadata as m; print(m.version('slipfront-client'))"],
+            capture_output=True, text=True, env=self.env, cwd=self.tmp, check=True)
+        self.assertEqual(metadata.stdout.strip(), client_version)
+
+    def test_3_notebook_example_runs_against_the_server(self):
+        out = os.path.join(self.tmp, "tour")
+        example = os.path.join(CLIENTS, "examples", "notebook_tour.py")
+        r = subprocess.run([self.python, example, "--server", self.server.base, "--out", out],
+                           capture_output=True, text=True, env=self.env, timeout=600,
+                           cwd=self.tmp)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn(os.path.join(self.tmp, "venv"), subprocess.run(
+            [self.python, "-c", "import slipfront_client; print(slipfront_client.__file__)"],
+            capture_output=True, text=True, env=self.env, cwd=self.tmp).stdout)
+        for name in ("map.png", "velocity.png", "speed.png"):
+            self.assertGreater(os.path.getsize(os.path.join(out, name)), 10000, name)
+        self.assertRegex(r.stdout, r"job [0-9a-f]{32}: arrested, arrest at")
+        self.assertRegex(r.stdout, r"slip velocity \(\d+, \d+\)")
+        self.assertRegex(r.stdout, r"study [0-9a-f]{32}: finished")
+        self.assertRegex(r.stdout, r"\d+ of 6 runs arrested")
+        self.assertIn("convergence_status", r.stdout)
+
+    def test_4_list_filters_and_exports(self):
+        r = self.client("submit", "--wait", "--quiet", "--tag", "pkg",
+                        "--set", "method=spectral_bi", "--set", "friction.L=1e-4",
+                        "--set", "time.duration=3")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        job_id = r.stdout.strip()
+        r = self.client("list", "--where", "tag=pkg", "--where", "friction.L>=1e-4",
+                        "--format", "csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = list(csv.DictReader(io.StringIO(r.stdout)))
+        self.assertEqual([row["id"] for row in rows], [job_id])
+        self.assertEqual(float(rows[0]["spec.friction.L"]), 1e-4)
+        self.assertIn("metrics.arrest_position", rows[0])
+        r = self.client("list", "--where", "tag=pkg", "--format", "json")
+        self.assertEqual([j["id"] for j in json.loads(r.stdout)], [job_id])
+        r = self.client("list", "--where", "method=spectral_bi", "--sort", "-friction.L")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(job_id, r.stdout)
+        r = self.client("list", "--where", "friction.L<lots")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("/query/where: friction.L is a number; 'lots' is not a finite number",
+                      r.stderr)
+        r = self.client("download", job_id, "-o", os.path.join(self.tmp, "pkg.h5"), "--xdmf")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(self.tmp, "pkg.xdmf")) as f:
+            sidecar = f.read()
+        self.assertIn(">pkg.h5:/interface/slip_velocity<", sidecar)
+        self.assertNotIn(f"{job_id}.h5", sidecar)
+        r = self.client("study", "list")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout.splitlines()[0], r"^id\s+status\s+kind\s+method\s+runs")
+
+    def test_5_friendly_message_when_nothing_listens(self):
+        r = self.client("list", "--server", "http://127.0.0.1:9")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("nothing answers at http://127.0.0.1:9 (from --server)",
+                      r.stderr)
+        self.assertNotIn("Traceback", r.stderr)
+        config = os.path.join(self.tmp, "client.toml")
+        with open(config, "w") as f:
+            f.write('server = "http://127.0.0.1:9"\n')
+        env = dict(self.env, SLIPFRONT_CONFIG=config)
+        env.pop("SLIPFRONT_SERVER", None)
+        r = subprocess.run([self.script, "list"], capture_output=True, text=True, env=env,
+                           timeout=60, cwd=self.tmp)
+        self.assertIn(f"nothing answers at http://127.0.0.1:9 (from {config})", r.stderr)
+
+
+class RunsDataframeTest(unittest.TestCase):
+    """runs_dataframe: a DataFrame with pandas, plain records without it."""
+
+    class FakeApi:
+        def export_runs(self, fmt, filters, limit=None):
+            assert fmt == "ndjson" and filters["where"] == "outcome=arrested"
+            return ('{"id": "a", "spec.friction.L": 1e-4, "outcome": "arrested", '
+                    '"created_at": "2026-11-23T17:00:00Z"}\n'
+                    '{"id": "b", "spec.friction.L": 5e-5, "outcome": "arrested", '
+                    '"created_at": "2026-11-23T18:00:00Z"}\n')
+
+    def test_records_without_pandas(self):
+        sys.path.insert(0, CLIENTS)
+        from slipfront_client.workflow import runs_dataframe
+        with mock.patch.dict(sys.modules, {"pandas": None}):
+            records = runs_dataframe(self.FakeApi(), where="outcome=arrested")
+        self.assertEqual([r["id"] for r in records], ["a", "b"])
+
+    def test_dataframe_with_pandas(self):
+        import pandas
+        sys.path.insert(0, CLIENTS)
+        from slipfront_client.workflow import runs_dataframe
+        frame = runs_dataframe(self.FakeApi(), where="outcome=arrested")
+        self.assertIsInstance(frame, pandas.DataFrame)
+        self.assertEqual(list(frame.index), ["a", "b"])
+        self.assertEqual(frame.loc["b", "spec.friction.L"], 5e-5)
+        self.assertEqual(str(frame["created_at"].dtype), "datetime64[ns, UTC]")
+
+
+if __name__ == "__main__":
+    BINARY, rest = binary_from_argv(sys.argv[1:])
+    BINARY = os.path.abspath(BINARY)
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
