@@ -4,8 +4,8 @@
 #include "app/job_input.hpp"
 #include "app/progress_display.hpp"
 
-#include "api/run_files.hpp"
 #include "api/result_xdmf.hpp"
+#include "api/run_files.hpp"
 #include "api/run_job.hpp"
 
 #include <unistd.h>

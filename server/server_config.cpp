@@ -74,11 +74,15 @@ const std::map<std::string, Setter>& setters() {
                      c.queue_limit = parse_number<std::size_t>(f, v);
                    }},
                   // The name `run` and `validate` use; 0 = 3/4 of RAM / workers.
-      {"max-memory", [](ServerConfig& c, const std::string& f,
-                        const std::string& v) { c.max_memory_bytes = memory_size(f, v); }},
-      // The old name, kept so that existing unit files and configs still start.
-      {"max-memory-bytes", [](ServerConfig& c, const std::string& f,
-                              const std::string& v) { c.max_memory_bytes = memory_size(f, v); }},
+                  {"max-memory",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_memory_bytes = memory_size(f, v);
+                   }},
+                  // The old name, kept so that existing unit files and configs still start.
+                  {"max-memory-bytes",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_memory_bytes = memory_size(f, v);
+                   }},
                   {"max-result-bytes",
                    [](ServerConfig& c, const std::string& f, const std::string& v) {
                      c.max_result_bytes = parse_number<double>(f, v);
@@ -135,8 +139,9 @@ const std::map<std::string, Setter>& setters() {
                                           const std::string& v) { c.slurm_time_limit = v; }},
                   {"slurm-sbatch-args", [](ServerConfig& c, const std::string&,
                                            const std::string& v) { c.slurm_sbatch_args = v; }},
-                  {"slurm-binary", [](ServerConfig& c, const std::string&,
-                                      const std::string& v) { c.slurm_binary = v; }},
+                  {"slurm-binary",
+                   [](ServerConfig& c, const std::string&,
+                      const std::string& v) { c.slurm_binary = v; }},
                   {"slurm-max-jobs",
                    [](ServerConfig& c, const std::string& f, const std::string& v) {
                      c.slurm_max_jobs = parse_number<int>(f, v);
