@@ -122,7 +122,7 @@ Response get_job(ServerContext& ctx, RequestContext& rc) {
 
 Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   const auto& q = rc.query;
-  auto [f, fields, errors, format] = parse_job_filter(q);
+  auto [f, fields, format, errors] = parse_job_filter(q);
   const bool table = format == "csv" || format == "ndjson";
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
