@@ -264,7 +264,10 @@ private:
 
 std::string SqlParams::add(std::variant<double, std::string> value) {
   values.push_back(std::move(value));
-  return "?" + std::to_string(values.size());
+  // (append, not "?" + string: GCC 12's -Wrestrict misfires on that with -O2, PR 105651)
+  std::string placeholder = "?";
+  placeholder += std::to_string(values.size());
+  return placeholder;
 }
 
 RunField resolve_field(std::string_view name_view, const std::string& parameter) {

@@ -87,8 +87,10 @@ std::string runs_csv(const std::vector<nlohmann::ordered_json>& rows) {
     return ga != 0 && a < b;
   });
   std::string out;
-  for (std::size_t i = 0; i < header.size(); ++i)
-    out += (i ? "," : "") + csv_cell(header[i]);
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) out += ',';
+    out += csv_cell(header[i]);
+  }
   out += "\r\n";
   for (const auto& row : rows) {
     for (std::size_t i = 0; i < header.size(); ++i) {
