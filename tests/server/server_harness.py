@@ -125,8 +125,9 @@ class Server:
             shutil.rmtree(self.data_dir, ignore_errors=True)
 
 
-def wait_study(server, study_id, timeout=90.0):
-    """GET /api/v1/studies/{id} until it is finished (bounded by `timeout`)."""
+def wait_study(server, study_id, timeout=240.0):
+    """GET /api/v1/studies/{id} until it is finished (bounded by `timeout`: FE runs under the
+    sanitizers on a loaded 2-core machine took more than 90 s)."""
     deadline = time.monotonic() + timeout
     study = None
     while time.monotonic() < deadline:
