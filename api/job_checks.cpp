@@ -1,10 +1,10 @@
 #include "api/job_checks.hpp"
 
+#include "api/number_text.hpp"
 #include "solver/simulation.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace slipfront::api {
 
@@ -25,11 +25,9 @@ bool any_error(const std::vector<FieldError>& errors, std::initializer_list<cons
                      [&](const char* pointer) { return has_error(errors, pointer); });
 }
 
+// Twelve significant digits: a spec's numbers are echoed back as given.
 std::string text(double value) {
-  std::ostringstream out;
-  out.precision(12);
-  out << value;
-  return out.str();
+  return number_text(value, 12);
 }
 
 // "length * nodes_per_meter" must be a whole number of elements.

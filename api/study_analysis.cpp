@@ -4,6 +4,7 @@
 
 #include "api/job_spec.hpp"
 #include "api/json_number.hpp"
+#include "api/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,12 +36,6 @@ std::vector<double> unique_sorted(std::vector<double> values) {
   for (double value : values)
     if (unique.empty() || !same_value(unique.back(), value)) unique.push_back(value);
   return unique;
-}
-
-std::string text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
 }
 
 std::string percent(double fraction) {
@@ -197,7 +192,7 @@ RunConvergence status_of(const std::vector<StudyRun>& runs, const StudyRun& run,
   }
   out.partner_id = partner->id;
   out.partner_n_d = partner->n_d;
-  const std::string against = "against n_d = " + text(partner->n_d) + ": ";
+  const std::string against = "against n_d = " + number_text(partner->n_d) + ": ";
   if (state_of(*partner) == RunState::pending) {
     out.status = ConvergenceStatus::unknown;
     out.reason = against + "job " + partner->status;
@@ -309,8 +304,8 @@ std::string describe_steps(const json& steps) {
       const json& v = step["changes"][key];
       return v.is_number() ? percent(v.get<double>()) : std::string("n/a");
     };
-    out += (out.empty() ? "" : "; ") + text(step["from_L"].get<double>()) + " -> " +
-           text(step["to_L"].get<double>()) + ": " + change(distance_key) + " / " +
+    out += (out.empty() ? "" : "; ") + number_text(step["from_L"].get<double>()) + " -> " +
+           number_text(step["to_L"].get<double>()) + ": " + change(distance_key) + " / " +
            change("arrival_time");
   }
   return out;
@@ -328,24 +323,25 @@ void explain_critical_length(json& result, const std::vector<Reference>& refs, s
     result["next_larger_L"] = refs[1].L;
     const bool none_agree = std::none_of(result["steps_in_L"].begin(), result["steps_in_L"].end(),
                                          [](const json& step) { return step["agree"] == true; });
-    result["reason"] = (none_agree ? std::string("no L meets the rule: ") : std::string()) +
-                       "the two smallest mesh-converged L (" + text(refs[0].L) + ", " +
-                       text(refs[1].L) + ") already disagree, so L_c is below " + text(refs[1].L) +
-                       " if it exists for this slip event; change of propagation_distance / "
-                       "arrival_time_at_probe from each L to the next: " +
-                       describe_steps(result["steps_in_L"]) +
-                       "; add smaller L (or plain Coulomb friction)";
+    result["reason"] =
+        (none_agree ? std::string("no L meets the rule: ") : std::string()) +
+        "the two smallest mesh-converged L (" + number_text(refs[0].L) + ", " +
+        number_text(refs[1].L) + ") already disagree, so L_c is below " + number_text(refs[1].L) +
+        " if it exists for this slip event; change of propagation_distance / "
+        "arrival_time_at_probe from each L to the next: " +
+        describe_steps(result["steps_in_L"]) + "; add smaller L (or plain Coulomb friction)";
     return;
   }
   result["L_c"] = refs[prefix - 1].L;
   if (prefix == refs.size()) {
     result["reason"] = "every mesh-converged L agrees with every smaller one: L_c is at least " +
-                       text(refs.back().L) + "; add larger L to bound it";
+                       number_text(refs.back().L) + "; add larger L to bound it";
     return;
   }
   result["next_larger_L"] = refs[prefix].L;
-  result["reason"] = "L = " + text(refs[prefix].L) + " disagrees with a smaller L: L_c lies in [" +
-                     text(refs[prefix - 1].L) + ", " + text(refs[prefix].L) + ")";
+  result["reason"] = "L = " + number_text(refs[prefix].L) +
+                     " disagrees with a smaller L: L_c lies in [" +
+                     number_text(refs[prefix - 1].L) + ", " + number_text(refs[prefix].L) + ")";
 }
 
 void check_samples(const std::vector<double>& t, const std::vector<double>& v, const char* name) {
@@ -671,14 +667,14 @@ RefinementPlan refinement_plan(double L, const std::vector<StudyRun>& runs,
       plan.converged_n_d = s.n_d;
     if (s.status == ConvergenceStatus::pending) {
       plan.state = RefinementPlan::State::waiting;
-      plan.reason = "n_d = " + text(s.n_d) + " is " + of_L[i].status + "; wait for it";
+      plan.reason = "n_d = " + number_text(s.n_d) + " is " + of_L[i].status + "; wait for it";
     } else if (!(s.n_d <= finest_tried)) {
       finest_tried = s.n_d; // failed and cancelled runs count as tried: no endless retries
     }
   }
   if (std::isfinite(plan.converged_n_d)) {
     plan.state = RefinementPlan::State::converged;
-    plan.reason = "mesh-converged at n_d = " + text(plan.converged_n_d);
+    plan.reason = "mesh-converged at n_d = " + number_text(plan.converged_n_d);
     return plan;
   }
   if (plan.state == RefinementPlan::State::waiting) return plan;
@@ -686,17 +682,18 @@ RefinementPlan refinement_plan(double L, const std::vector<StudyRun>& runs,
     if (std::isfinite(finest_tried) && !finer(n_d, finest_tried)) continue;
     if (finer(n_d, cap)) break;
     plan.next_n_d = n_d;
-    plan.reason = std::isfinite(finest_tried)
-                      ? "no two successive meshes up to n_d = " + text(finest_tried) + " agree"
-                      : "no run of this L yet";
+    plan.reason =
+        std::isfinite(finest_tried)
+            ? "no two successive meshes up to n_d = " + number_text(finest_tried) + " agree"
+            : "no run of this L yet";
     return plan;
   }
   plan.state = RefinementPlan::State::not_converged_at_cap;
-  plan.reason =
-      std::isfinite(finest_tried)
-          ? "not converged at cap: no two successive meshes up to n_d = " + text(finest_tried) +
-                " agree and the ladder has no finer n_d <= " + text(cap)
-          : "not converged at cap: the ladder has no n_d <= " + text(cap);
+  plan.reason = std::isfinite(finest_tried)
+                    ? "not converged at cap: no two successive meshes up to n_d = " +
+                          number_text(finest_tried) +
+                          " agree and the ladder has no finer n_d <= " + number_text(cap)
+                    : "not converged at cap: the ladder has no n_d <= " + number_text(cap);
   return plan;
 }
 

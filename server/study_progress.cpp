@@ -1,12 +1,12 @@
 #include "server/study_progress.hpp"
 
 #include "api/json_number.hpp"
+#include "api/number_text.hpp"
 #include "server/failure_regimes.hpp"
 #include "server/job.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 
 namespace slipfront::server {
@@ -15,11 +15,7 @@ using nlohmann::json;
 
 namespace {
 
-std::string text(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
+using api::number_text;
 
 std::string outcome_of(const StudyRunRow& row) {
   if (row.metrics.is_object() && row.metrics.contains("outcome") &&
@@ -69,9 +65,9 @@ std::string finding(const std::vector<StudyRunRow*>& rows) {
   if (no_rupture == n)
     return "no rupture on any mesh: the meshes agree on 'nothing happens' (converged), so this "
            "run neither exercises nor detects an instability";
-  if (converged > 0) return "mesh-converged at n_d = " + text(converged_n_d);
+  if (converged > 0) return "mesh-converged at n_d = " + number_text(converged_n_d);
   if (failed == n) return "every run failed without a result";
-  return "no mesh convergence up to n_d = " + text(finest) +
+  return "no mesh convergence up to n_d = " + number_text(finest) +
          " (not_converged/unknown): nothing flagged the run itself";
 }
 

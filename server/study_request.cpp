@@ -1,8 +1,9 @@
 #include "server/study_request.hpp"
 
+#include "api/number_text.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <set>
 
 namespace slipfront::server {
@@ -202,13 +203,7 @@ StudyRequestParse parse_study_request(const json& body) {
   return out;
 }
 
-namespace {
-std::string number_text(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-} // namespace
+using api::number_text;
 
 json run_document(const StudyRequest& request, const std::string& study_id, const json& overrides,
                   const std::string& regime, double L, double n_d) {

@@ -4,7 +4,7 @@
 #include "server/log.hpp"
 #include "server/study_progress.hpp"
 
-#include <cstdio>
+#include "api/number_text.hpp"
 
 namespace slipfront::server {
 
@@ -113,11 +113,7 @@ void StudySupervisor::loop() {
 
 namespace {
 
-std::string text(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
+using api::number_text;
 
 // The last plan of a cancelled convergence study, each L that was waiting marked cancelled.
 json cancelled_refinement(const json& result) {
@@ -177,13 +173,13 @@ void StudySupervisor::step_locked(const std::string& study_id) {
             submitted = true;
             plans_open = true;
             entry["state"] = "waiting";
-            entry["reason"] = "submitted n_d = " + text(plan.next_n_d) + " (job " + r.job->id +
-                              "): " + plan.reason;
-            log_info("study " + study_id + ": L = " + text(L) +
-                     ": submitted n_d = " + text(plan.next_n_d) + " as job " + r.job->id);
+            entry["reason"] = "submitted n_d = " + number_text(plan.next_n_d) + " (job " +
+                              r.job->id + "): " + plan.reason;
+            log_info("study " + study_id + ": L = " + number_text(L) +
+                     ": submitted n_d = " + number_text(plan.next_n_d) + " as job " + r.job->id);
           } else {
             entry["state"] = "submission_failed";
-            entry["reason"] = "n_d = " + text(plan.next_n_d) + " refused: " +
+            entry["reason"] = "n_d = " + number_text(plan.next_n_d) + " refused: " +
                               (r.errors.empty() ? std::string("queue")
                                                 : r.errors[0].pointer + " " + r.errors[0].reason);
             log_error("study " + study_id + ": " + entry["reason"].get<std::string>());
