@@ -61,6 +61,16 @@ nlohmann::json physics_canonical(const nlohmann::json& canonical);
 // SHA-256 (lower-case hex) of the canonical text of physics_canonical(canonical).
 std::string spec_hash(const nlohmann::json& canonical);
 
+// SHA-256 of the canonical spec without friction.L, geometry.nodes_per_meter, output, name,
+// tags and threads: runs with the same scene hash belong to one convergence map.
+std::string scene_hash(const nlohmann::json& canonical);
+
+// The scene of the same physics by the other method: the spec with "method" swapped and the
+// fields only one method has dropped (FE: geometry.height, geometry.top_boundary,
+// time.safety_factor and the "fe" section; BI: the "spectral_bi" section). Empty if the
+// swapped spec is not valid.
+std::string counterpart_scene_hash(const nlohmann::json& canonical);
+
 // SHA-256 of arbitrary bytes / of a file's content (lower-case hex).
 std::string sha256_hex(const std::string& bytes);
 std::string sha256_file(const std::string& path);

@@ -363,34 +363,6 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& v, d
 
 } // namespace
 
-// Scene of SPEC §2 "Critical length": everything but L and n_d (and what never changes
-// the metrics, as in spec_hash).
-std::string scene_hash(const nlohmann::json& canonical) {
-  json scene = physics_canonical(canonical); // so the method separates scenes
-  if (scene.contains("friction") && scene["friction"].is_object()) scene["friction"].erase("L");
-  if (scene.contains("geometry") && scene["geometry"].is_object())
-    scene["geometry"].erase("nodes_per_meter");
-  return sha256_hex(canonical_text(scene));
-}
-
-std::string counterpart_scene_hash(const nlohmann::json& canonical) {
-  json other = canonical;
-  if (other.value("method", "fe") == "spectral_bi") {
-    other["method"] = "fe";
-    other.erase("spectral_bi");
-  } else {
-    other["method"] = "spectral_bi";
-    other.erase("fe");
-    if (other.contains("geometry") && other["geometry"].is_object()) {
-      other["geometry"].erase("height");
-      other["geometry"].erase("top_boundary");
-    }
-    if (other.contains("time") && other["time"].is_object()) other["time"].erase("safety_factor");
-  }
-  const ParseResult parsed = parse_job(other);
-  return parsed.ok() ? scene_hash(parsed.spec->canonical) : std::string();
-}
-
 std::string to_string(ConvergenceStatus status) {
   switch (status) {
   case ConvergenceStatus::converged:

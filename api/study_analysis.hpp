@@ -15,16 +15,6 @@
 
 namespace slipfront::api {
 
-// SHA-256 of the canonical spec without friction.L, geometry.nodes_per_meter, output, name,
-// tags and threads: runs with the same scene hash belong to one convergence map.
-std::string scene_hash(const nlohmann::json& canonical);
-
-// The scene of the same physics by the other method: the spec with "method" swapped and the
-// fields only one method has dropped (FE: geometry.height, geometry.top_boundary,
-// time.safety_factor and the "fe" section; BI: the "spectral_bi" section). Empty if the
-// swapped spec is not valid.
-std::string counterpart_scene_hash(const nlohmann::json& canonical);
-
 // One run of a study, as the server knows it.
 struct StudyRun {
   std::string id;

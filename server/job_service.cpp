@@ -4,8 +4,8 @@
 #include "server/job_id.hpp"
 #include "server/log.hpp"
 
+#include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
-#include "api/study_analysis.hpp"
 
 #include <filesystem>
 

@@ -1,6 +1,6 @@
 #include "server/job_store.hpp"
 
-#include "api/study_analysis.hpp"
+#include "api/job_spec.hpp"
 
 #include <cmath>
 #include <filesystem>

@@ -7,6 +7,7 @@
 #include "server/log.hpp"
 #include "server/study_progress.hpp"
 
+#include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
 #include "api/study_analysis.hpp"
 
