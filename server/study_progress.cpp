@@ -1,8 +1,7 @@
 #include "server/study_progress.hpp"
 
 #include "api/json_number.hpp"
-#include "api/number_text.hpp"
-#include "server/failure_regimes.hpp"
+#include "api/study/failure_regimes.hpp"
 #include "server/job.hpp"
 
 #include <algorithm>
@@ -15,8 +14,6 @@ using nlohmann::json;
 
 namespace {
 
-using api::number_text;
-
 std::string outcome_of(const StudyRunRow& row) {
   if (row.metrics.is_object() && row.metrics.contains("outcome") &&
       row.metrics["outcome"].is_string())
@@ -26,8 +23,7 @@ std::string outcome_of(const StudyRunRow& row) {
 
 // Convergence statuses of one regime's runs, written into the rows.
 void assign_statuses(const std::vector<StudyRunRow*>& rows,
-                     const std::vector<api::StudyRun>& runs) {
-  auto statuses = api::convergence_statuses(runs);
+                     const std::vector<api::RunConvergence>& statuses) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& s = statuses[i];
     rows[i]->convergence_status = api::to_string(s.status);
@@ -36,39 +32,6 @@ void assign_statuses(const std::vector<StudyRunRow*>& rows,
     rows[i]->arrival_time_change = s.arrival_time_change;
     rows[i]->reason = s.reason;
   }
-}
-
-// What the runs of one failure regime show, in one sentence, from the data only.
-std::string finding(const std::vector<StudyRunRow*>& rows) {
-  int diverged = 0, converged = 0, pending = 0, failed = 0, measured = 0;
-  double finest = 0.0, converged_n_d = 0.0;
-  for (const auto* r : rows) {
-    const auto& st = r->convergence_status;
-    if (st == "diverged") ++diverged;
-    if (st == "pending") ++pending;
-    if (st == "failed") ++failed;
-    if (st == "converged" && (converged_n_d == 0.0 || r->n_d < converged_n_d))
-      converged_n_d = r->n_d;
-    if (st == "converged") ++converged;
-    if (st == "converged" || st == "not_converged" || st == "unknown") ++measured;
-    finest = std::max(finest, r->n_d);
-  }
-  const int n = static_cast<int>(rows.size());
-  if (pending > 0) return std::to_string(pending) + " of " + std::to_string(n) + " runs pending";
-  if (diverged == n)
-    return "detected: every run diverged (outcome diverged, job failed, no result file)";
-  if (diverged > 0)
-    return "detected: " + std::to_string(diverged) + " of " + std::to_string(n) + " runs diverged";
-  int no_rupture = 0;
-  for (const auto* r : rows)
-    no_rupture += outcome_of(*r) == "no_rupture" ? 1 : 0;
-  if (no_rupture == n)
-    return "no rupture on any mesh: the meshes agree on 'nothing happens' (converged), so this "
-           "run neither exercises nor detects an instability";
-  if (converged > 0) return "mesh-converged at n_d = " + number_text(converged_n_d);
-  if (failed == n) return "every run failed without a result";
-  return "no mesh convergence up to n_d = " + number_text(finest) +
-         " (not_converged/unknown): nothing flagged the run itself";
 }
 
 json group_json(const std::vector<StudyRunRow*>& rows, const std::vector<api::StudyRun>& runs) {
@@ -104,7 +67,8 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& rows, const jso
     std::vector<api::StudyRun> runs;
     for (const auto* r : members)
       runs.push_back(to_study_run(*r));
-    assign_statuses(members, runs);
+    const auto statuses = api::convergence_statuses(runs);
+    assign_statuses(members, statuses);
     json g = group_json(members, runs);
     if (regime == primary) {
       result["convergence_map"] = g["convergence_map"];
@@ -112,12 +76,12 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& rows, const jso
     }
     if (!regime.empty()) {
       g["regime"] = regime;
-      for (const auto& known : failure_regimes())
+      for (const auto& known : api::failure_regimes())
         if (known.name == regime) {
           g["description"] = known.description;
           g["expected"] = known.expected;
         }
-      g["finding"] = finding(members);
+      g["finding"] = api::regime_finding(runs, statuses);
       regimes.push_back(std::move(g));
     }
     for (const auto* r : members) {

@@ -2,13 +2,13 @@
 
 #include "api/json_number.hpp"
 #include "server/clock.hpp"
-#include "server/failure_regimes.hpp"
 #include "server/job_id.hpp"
 #include "server/log.hpp"
 #include "server/study_progress.hpp"
 
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
+#include "api/study/failure_regimes.hpp"
 #include "api/study_analysis.hpp"
 
 #include <cmath>
@@ -48,7 +48,7 @@ std::vector<Planned> plan_runs(const StudyRequest& r) {
     }
     break;
   case StudyKind::failure_regimes:
-    for (const auto& regime : failure_regimes())
+    for (const auto& regime : api::failure_regimes())
       for (double n_d : regime.n_d)
         out.push_back({regime.name, regime.overrides, regime.L, n_d, true});
     break;

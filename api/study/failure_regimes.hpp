@@ -3,12 +3,15 @@
 // the service detects and what it does not.
 #pragma once
 
+#include "api/study/convergence.hpp"
+#include "api/study/study_run.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
 
-namespace slipfront::server {
+namespace slipfront::api {
 
 struct Regime {
   std::string name;         // "regularised", "coulomb", ...
@@ -23,4 +26,9 @@ struct Regime {
 // n_d 10/20), unstable_time_step (safety factor 1.2, n_d 10/20), mu_1.2 (n_d 10/20).
 const std::vector<Regime>& failure_regimes();
 
-} // namespace slipfront::server
+// What the runs of one regime show, in one sentence, from the data only: `statuses` are
+// convergence_statuses(runs), in the same order.
+std::string regime_finding(const std::vector<StudyRun>& runs,
+                           const std::vector<RunConvergence>& statuses);
+
+} // namespace slipfront::api

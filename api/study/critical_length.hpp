@@ -1,0 +1,25 @@
+// SPEC §2 "Critical length L_c" of a study, and the same L by both methods: comparisons of
+// the reference runs of mesh-converged L (rules: docs/studies.md). Pure functions.
+#pragma once
+
+#include "api/study/study_run.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <vector>
+
+namespace slipfront::api {
+
+// L_c of the study (SPEC §2) with the per-L reference runs, the comparison table and the
+// spectral estimate of the smallest mesh-converged L.
+nlohmann::json critical_length(const std::vector<StudyRun>& runs,
+                               const ConvergenceTolerances& tol = {});
+
+// The same L by both methods: the reference (finest, mesh-converged) run of each, its
+// metrics, and the relative differences (fe - spectral_bi) / spectral_bi. One row per L of
+// either set; a side is null where that method has no mesh-converged run of the L.
+nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
+                                  const std::vector<StudyRun>& bi_runs,
+                                  const ConvergenceTolerances& tol = {});
+
+} // namespace slipfront::api

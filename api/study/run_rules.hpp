@@ -1,0 +1,81 @@
+// The rules the study analyses share (docs/studies.md): what a run contributes, which run
+// stands for an (L, n_d) cell, how two runs compare under the SPEC §2 criterion, and the
+// reference run of an L. Used by api/study/*.cpp only; the server calls the analyses.
+#pragma once
+
+#include "api/study/convergence.hpp"
+#include "api/study/study_run.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace slipfront::api::study_rules {
+
+constexpr const char* distance_key = "propagation_distance";
+constexpr const char* arrival_key = "arrival_time_at_probe";
+
+// L and n_d come from JSON numbers: equal up to round-off means the same value.
+bool same_value(double a, double b);
+// n_d is finer than `than` (and not the same value).
+bool finer(double n_d, double than);
+// Sorted, each value once (up to same_value).
+std::vector<double> unique_sorted(std::vector<double> values);
+// "2.8 %": a fraction in percent, three significant digits.
+std::string percent(double fraction);
+
+// The metrics' outcome ("" without metrics) and a metric of SPEC §2 (NaN when absent or null).
+std::string outcome_of(const StudyRun& run);
+double metric(const StudyRun& run, const char* key);
+
+// What a run contributes. The server stores a diverged run as job status "failed" with
+// metrics outcome "diverged" (server/job_runner.cpp): it is a result, not a void run.
+enum class RunState { measured, diverged, pending, void_run };
+RunState state_of(const StudyRun& run);
+bool has_result(RunState state);
+
+// The run that stands for an (L, n_d) cell: a result before a pending run before a void
+// one; among equals the smallest id (deterministic for duplicate submissions).
+const StudyRun* pick_run(const std::vector<StudyRun>& runs, double L, double n_d);
+
+// |value - reference| / |reference|; NaN if either is undefined.
+double relative_change(double value, double reference);
+
+struct Comparison {
+  bool agree = false;
+  double distance_change = not_available;
+  double arrival_change = not_available;
+  std::string reason;
+};
+
+// SPEC §2 criterion between a run and its reference (the finer mesh, or the smaller L).
+Comparison compare(const StudyRun& run, const StudyRun& reference,
+                   const ConvergenceTolerances& tol);
+
+// The distinct values of one field (L or n_d) over the runs, sorted.
+std::vector<double> study_values(const std::vector<StudyRun>& runs, double StudyRun::*field);
+
+// The reference run of an L: its finest run with a non-diverged result, provided the L has
+// at least one mesh-converged run; otherwise none.
+const StudyRun* reference_run(const std::vector<StudyRun>& runs,
+                              const std::vector<RunConvergence>& statuses, double L);
+
+// {"propagation_distance": change, "arrival_time": change}, null where undefined.
+nlohmann::json changes_json(double distance_change, double arrival_change);
+
+// The runs of one scene by both methods, with each method's reference run of an L.
+struct TwoMethods {
+  const std::vector<StudyRun>& fe_runs;
+  const std::vector<StudyRun>& bi_runs;
+  std::vector<RunConvergence> fe_statuses, bi_statuses;
+
+  TwoMethods(const std::vector<StudyRun>& fe, const std::vector<StudyRun>& bi,
+             const ConvergenceTolerances& tol)
+      : fe_runs(fe), bi_runs(bi), fe_statuses(convergence_statuses(fe, tol)),
+        bi_statuses(convergence_statuses(bi, tol)) {}
+  const StudyRun* fe_reference(double L) const { return reference_run(fe_runs, fe_statuses, L); }
+  const StudyRun* bi_reference(double L) const { return reference_run(bi_runs, bi_statuses, L); }
+};
+
+} // namespace slipfront::api::study_rules

@@ -1,0 +1,33 @@
+// The runs a study analyses (SPEC §2): one job of a study as the server knows it, and the
+// tolerances of the mesh-convergence criterion.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace slipfront::api {
+
+// One run of a study, as the server knows it.
+struct StudyRun {
+  std::string id;
+  double L = 0.0;     // friction.L (m)
+  double n_d = 0.0;   // geometry.nodes_per_meter
+  std::string status; // job status: queued | running | succeeded | failed | cancelled
+  std::optional<nlohmann::json> metrics; // the metrics JSON of SPEC §2, when the run has one
+  double wall_time_s = 0.0;
+  double memory_bytes = 0.0;
+};
+
+// SPEC §2 / paper §3.1: refining the mesh changes propagation_distance by < 0.5 % and
+// arrival_time_at_probe by < 0.1 %. Relative changes, strict inequalities.
+struct ConvergenceTolerances {
+  double propagation_distance = 0.005;
+  double arrival_time = 0.001;
+};
+
+constexpr double not_available = std::numeric_limits<double>::quiet_NaN();
+
+} // namespace slipfront::api
