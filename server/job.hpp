@@ -1,6 +1,8 @@
 // The job record the server keeps for every submission, its states and their transitions.
 #pragma once
 
+#include "api/job_status.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -11,14 +13,11 @@
 
 namespace slipfront::server {
 
-// queued -> running -> succeeded | failed | cancelled; queued -> cancelled.
-// Never backwards, with one exception: running -> queued when the server drains on SIGTERM
-// or recovers after a crash (the run is restarted from the beginning).
-enum class JobStatus { queued, running, succeeded, failed, cancelled };
-
-const char* to_string(JobStatus status);
-std::optional<JobStatus> parse_status(std::string_view text);
-bool is_final(JobStatus status);
+// The job statuses and their names (api/job_status.hpp), shared with the study analysis.
+using api::is_final;
+using api::JobStatus;
+using api::parse_status;
+using api::to_string;
 
 enum class TransitionKind { normal, recovery };
 bool transition_allowed(JobStatus from, JobStatus to, TransitionKind kind = TransitionKind::normal);

@@ -80,7 +80,7 @@ api::StudyRun to_study_run(const StudyRunRow& row) {
   run.id = row.job_id;
   run.L = row.L;
   run.n_d = row.n_d;
-  run.status = row.job_status;
+  run.status = api::parse_status(row.job_status).value_or(api::JobStatus::failed);
   if (!row.metrics.is_null()) run.metrics = row.metrics;
   run.wall_time_s = row.wall_time_s;
   if (row.metrics.is_object() && row.metrics.contains("wall_time_s") &&

@@ -39,11 +39,11 @@ RunConvergence status_of(const std::vector<StudyRun>& runs, const StudyRun& run,
   switch (state_of(run)) {
   case RunState::pending:
     out.status = ConvergenceStatus::pending;
-    out.reason = "job " + run.status;
+    out.reason = std::string("job ") + to_string(run.status);
     return out;
   case RunState::void_run:
     out.status = ConvergenceStatus::failed;
-    out.reason = "job " + run.status + " without a result";
+    out.reason = std::string("job ") + to_string(run.status) + " without a result";
     return out;
   case RunState::diverged:
     out.status = ConvergenceStatus::diverged;
@@ -63,7 +63,7 @@ RunConvergence status_of(const std::vector<StudyRun>& runs, const StudyRun& run,
   const std::string against = "against n_d = " + number_text(partner->n_d) + ": ";
   if (state_of(*partner) == RunState::pending) {
     out.status = ConvergenceStatus::unknown;
-    out.reason = against + "job " + partner->status;
+    out.reason = against + "job " + to_string(partner->status);
     return out;
   }
   const Comparison c = compare(run, *partner, tol);
@@ -172,7 +172,8 @@ RefinementPlan refinement_plan(double L, const std::vector<StudyRun>& runs,
       plan.converged_n_d = s.n_d;
     if (s.status == ConvergenceStatus::pending) {
       plan.state = RefinementPlan::State::waiting;
-      plan.reason = "n_d = " + number_text(s.n_d) + " is " + of_L[i].status + "; wait for it";
+      plan.reason =
+          "n_d = " + number_text(s.n_d) + " is " + to_string(of_L[i].status) + "; wait for it";
     } else if (!(s.n_d <= finest_tried)) {
       finest_tried = s.n_d; // failed and cancelled runs count as tried: no endless retries
     }

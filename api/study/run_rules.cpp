@@ -50,11 +50,11 @@ double metric(const StudyRun& run, const char* key) {
 }
 
 RunState state_of(const StudyRun& run) {
-  if (run.status == "queued" || run.status == "running") return RunState::pending;
-  if (run.status == "cancelled") return RunState::void_run;
+  if (run.status == JobStatus::queued || run.status == JobStatus::running) return RunState::pending;
+  if (run.status == JobStatus::cancelled) return RunState::void_run;
   const std::string outcome = outcome_of(run);
   if (outcome == "diverged") return RunState::diverged;
-  if (run.status == "succeeded" && !outcome.empty()) return RunState::measured;
+  if (run.status == JobStatus::succeeded && !outcome.empty()) return RunState::measured;
   return RunState::void_run;
 }
 

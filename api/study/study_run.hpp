@@ -2,6 +2,8 @@
 // tolerances of the mesh-convergence criterion.
 #pragma once
 
+#include "api/job_status.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <limits>
@@ -13,9 +15,9 @@ namespace slipfront::api {
 // One run of a study, as the server knows it.
 struct StudyRun {
   std::string id;
-  double L = 0.0;     // friction.L (m)
-  double n_d = 0.0;   // geometry.nodes_per_meter
-  std::string status; // job status: queued | running | succeeded | failed | cancelled
+  double L = 0.0;   // friction.L (m)
+  double n_d = 0.0; // geometry.nodes_per_meter
+  JobStatus status = JobStatus::queued;
   std::optional<nlohmann::json> metrics; // the metrics JSON of SPEC §2, when the run has one
   double wall_time_s = 0.0;
   double memory_bytes = 0.0;

@@ -23,17 +23,17 @@ StudyRun finished(const std::string& id, double L, double n_d, double distance, 
                   {"arrival_time_at_probe", nullptr},
                   {"spectral_critical_length", nullptr}};
   if (std::isfinite(arrival)) metrics["arrival_time_at_probe"] = arrival;
-  return {id, L, n_d, "succeeded", metrics, 10.0 * n_d, 1e6 * n_d};
+  return {id, L, n_d, JobStatus::succeeded, metrics, 10.0 * n_d, 1e6 * n_d};
 }
 
 StudyRun without_result(const std::string& id, double L, double n_d, const std::string& status) {
-  return {id, L, n_d, status, std::nullopt, 0.0, 0.0};
+  return {id, L, n_d, parse_status(status).value(), std::nullopt, 0.0, 0.0};
 }
 
 // As the server stores it: job failed, metrics with outcome "diverged".
 StudyRun diverged(const std::string& id, double L, double n_d) {
   StudyRun run = finished(id, L, n_d, never, never, "diverged");
-  run.status = "failed";
+  run.status = JobStatus::failed;
   return run;
 }
 
