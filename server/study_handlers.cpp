@@ -167,7 +167,8 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
 }
 
 // speed_accuracy of each regime, with the relative L2 error of the slip-velocity record at
-// the spectrum probe against the reference run's record (read from the result files).
+// the spectrum probe against the reference run's record (api/study/speed_accuracy.hpp);
+// the records are read from the result files here.
 Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
   const auto& id = rc.path_params.at("id");
   if (!is_valid_job_id(id)) return not_found_study(rc.request, id);
@@ -175,69 +176,24 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
   auto study = ctx.studies.store().get(id);
   if (!study) return not_found_study(rc.request, id);
   auto rows = ctx.studies.store().runs(id);
-  std::map<std::string, std::vector<const StudyRunRow*>> groups;
   std::map<std::string, const StudyRunRow*> by_id;
+  std::vector<api::RegimeRun> runs;
   for (const auto& r : rows) {
-    groups[r.regime].push_back(&r);
+    runs.push_back({r.regime, to_study_run(r)});
     by_id[r.job_id] = &r;
   }
-  std::map<std::string, std::optional<ProbeRecord>> records; // read each file once
-  std::map<std::string, std::string> record_errors;
-  auto record_of = [&](const std::string& job_id) -> const std::optional<ProbeRecord>& {
-    auto it = records.find(job_id);
-    if (it != records.end()) return it->second;
+  // The slip-velocity record at the spectrum probe, from the run's result file.
+  api::SlipVelocityErrors l2([&](const std::string& job_id, std::string& why) {
     const auto* row = by_id.at(job_id);
-    std::string why;
-    std::optional<ProbeRecord> rec;
-    if (row->result_path.empty())
+    std::optional<api::ProbeSeries> series;
+    if (row->result_path.empty()) {
       why = "no result file (job " + row->job_status + ")";
-    else
-      rec = read_probe_record(ctx.data_dir + "/" + row->result_path, why);
-    record_errors[job_id] = why;
-    return records.emplace(job_id, std::move(rec)).first->second;
-  };
-  double probe_x1 = api::not_available;
-  // The relative L2 error of the probe record against the reference run's, or why not.
-  auto add_l2 = [&](json& entry) {
-    const std::string run_id = entry["id"].get<std::string>();
-    entry["job_id"] = run_id;
-    json l2 = nullptr;
-    std::string why;
-    if (entry["reference_run_id"].is_string()) {
-      const std::string ref_id = entry["reference_run_id"].get<std::string>();
-      const auto& mine = record_of(run_id);
-      const auto& ref = record_of(ref_id);
-      if (mine && ref) {
-        try {
-          l2 = api::json_number(api::relative_l2_error(mine->time, mine->slip_velocity, ref->time,
-                                                       ref->slip_velocity));
-          probe_x1 = ref->x1;
-          if (l2.is_null())
-            why = "undefined: the reference record is zero over the common time range (no "
-                  "slip at the probe) or fewer than two samples overlap";
-        } catch (const std::exception& e) {
-          why = e.what();
-        }
-      } else {
-        why = !mine ? record_errors[run_id] : "reference: " + record_errors[ref_id];
-      }
-    } else {
-      why = "no reference run (this L has no mesh-converged run)";
+    } else if (auto rec = read_probe_record(ctx.data_dir + "/" + row->result_path, why)) {
+      series = api::ProbeSeries{std::move(rec->time), std::move(rec->slip_velocity), rec->x1};
     }
-    entry["errors"]["slip_velocity_l2"] = l2;
-    if (l2.is_null()) entry["slip_velocity_l2_unavailable"] = why;
-  };
-  json list = json::array();
-  for (const auto& [regime, members] : groups) {
-    std::vector<api::StudyRun> runs;
-    for (const auto* r : members)
-      runs.push_back(to_study_run(*r));
-    for (auto entry : api::speed_accuracy(runs)) {
-      if (!regime.empty()) entry["regime"] = regime;
-      add_l2(entry);
-      list.push_back(std::move(entry));
-    }
-  }
+    return series;
+  });
+  json list = api::speed_accuracy_by_regime(runs, l2);
   // Both methods on one chart: every run of the study's scene and of its counterpart.
   json across = nullptr;
   std::vector<StudyRunRow> scene_rows;
@@ -252,11 +208,11 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
       by_id.emplace(scene_rows[k].job_id, &scene_rows[k]);
       (k < own ? mine : theirs).push_back(to_study_run(scene_rows[k]));
     }
-    json runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
-                              : api::speed_accuracy_across_methods(theirs, mine);
-    for (auto& entry : runs)
-      add_l2(entry);
-    across = {{"runs", runs},
+    json across_runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
+                                     : api::speed_accuracy_across_methods(theirs, mine);
+    for (auto& entry : across_runs)
+      l2.add_to(entry);
+    across = {{"runs", across_runs},
               {"reference", "the finest reference run of the same L by either method "
                             "(spectral_bi on a tie), from every run of the two scenes"}};
   }
@@ -264,7 +220,7 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
                {"runs", list},
                {"probe",
                 {{"dataset", "/probes/slip_velocity_spectrum"},
-                 {"x1", api::json_number(probe_x1)},
+                 {"x1", api::json_number(l2.probe_x1())},
                  {"description", "relative L2 error over time of the slip velocity at the "
                                  "spectrum probe (probe.spectrum_x1, default 6 m)"}}},
                {"reference", "the finest non-diverged run of the same L, when that L has a "

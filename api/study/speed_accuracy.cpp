@@ -120,4 +120,58 @@ double relative_l2_error(const std::vector<double>& t_a, const std::vector<doubl
   return std::sqrt(error / norm);
 }
 
+const std::optional<ProbeSeries>& SlipVelocityErrors::record_of(const std::string& run_id) {
+  const auto it = records_.find(run_id);
+  if (it != records_.end()) return it->second;
+  std::string why;
+  std::optional<ProbeSeries> record = read_(run_id, why);
+  why_[run_id] = why;
+  return records_.emplace(run_id, std::move(record)).first->second;
+}
+
+void SlipVelocityErrors::add_to(nlohmann::json& entry) {
+  const std::string run_id = entry["id"].get<std::string>();
+  entry["job_id"] = run_id;
+  json l2 = nullptr;
+  std::string why;
+  if (entry["reference_run_id"].is_string()) {
+    const std::string ref_id = entry["reference_run_id"].get<std::string>();
+    const auto& mine = record_of(run_id);
+    const auto& ref = record_of(ref_id);
+    if (mine && ref) {
+      try {
+        l2 = json_number(
+            relative_l2_error(mine->time, mine->slip_velocity, ref->time, ref->slip_velocity));
+        probe_x1_ = ref->x1;
+        if (l2.is_null())
+          why = "undefined: the reference record is zero over the common time range (no "
+                "slip at the probe) or fewer than two samples overlap";
+      } catch (const std::exception& e) {
+        why = e.what();
+      }
+    } else {
+      why = !mine ? why_[run_id] : "reference: " + why_[ref_id];
+    }
+  } else {
+    why = "no reference run (this L has no mesh-converged run)";
+  }
+  entry["errors"]["slip_velocity_l2"] = l2;
+  if (l2.is_null()) entry["slip_velocity_l2_unavailable"] = why;
+}
+
+nlohmann::json speed_accuracy_by_regime(const std::vector<RegimeRun>& runs,
+                                        SlipVelocityErrors& errors) {
+  std::map<std::string, std::vector<StudyRun>> groups;
+  for (const RegimeRun& r : runs)
+    groups[r.regime].push_back(r.run);
+  json list = json::array();
+  for (const auto& [regime, members] : groups)
+    for (auto entry : speed_accuracy(members)) {
+      if (!regime.empty()) entry["regime"] = regime;
+      errors.add_to(entry);
+      list.push_back(std::move(entry));
+    }
+  return list;
+}
+
 } // namespace slipfront::api

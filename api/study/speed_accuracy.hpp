@@ -7,6 +7,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace slipfront::api {
@@ -28,5 +32,48 @@ nlohmann::json speed_accuracy_across_methods(const std::vector<StudyRun>& fe_run
 // Throws std::invalid_argument on size mismatch or times that do not increase.
 double relative_l2_error(const std::vector<double>& t_a, const std::vector<double>& v_a,
                          const std::vector<double>& t_ref, const std::vector<double>& v_ref);
+
+// The slip-velocity record of a run at the spectrum probe (/probes/slip_velocity_spectrum;
+// the server reads it from the result file).
+struct ProbeSeries {
+  std::vector<double> time;
+  std::vector<double> slip_velocity;
+  double x1 = 0.0; // the probe node's x1
+};
+
+// The probe record of a run by id; nullopt with the reason in `why` when it has none.
+using ProbeSeriesReader =
+    std::function<std::optional<ProbeSeries>(const std::string& run_id, std::string& why)>;
+
+// Adds to speed_accuracy entries the relative L2 error of the run's slip-velocity record
+// against its reference run's record: errors.slip_velocity_l2, null when undefined with the
+// reason in slip_velocity_l2_unavailable; and job_id (the entry's id). Each run's record is
+// read once, however many entries need it.
+class SlipVelocityErrors {
+public:
+  explicit SlipVelocityErrors(ProbeSeriesReader read) : read_(std::move(read)) {}
+  void add_to(nlohmann::json& entry);
+  // x1 of the probe of the last reference record compared; NaN before the first.
+  double probe_x1() const { return probe_x1_; }
+
+private:
+  const std::optional<ProbeSeries>& record_of(const std::string& run_id);
+
+  ProbeSeriesReader read_;
+  std::map<std::string, std::optional<ProbeSeries>> records_;
+  std::map<std::string, std::string> why_;
+  double probe_x1_ = not_available;
+};
+
+// One run of a study with its failure regime ("" outside the preset).
+struct RegimeRun {
+  std::string regime;
+  StudyRun run;
+};
+
+// speed_accuracy of each regime's runs (regimes sorted by name, runs in the given order),
+// each entry with "regime" (unless "") and its slip-velocity L2 error from `errors`.
+nlohmann::json speed_accuracy_by_regime(const std::vector<RegimeRun>& runs,
+                                        SlipVelocityErrors& errors);
 
 } // namespace slipfront::api
