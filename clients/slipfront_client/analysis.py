@@ -1,22 +1,136 @@
 """Client-side convergence and error estimates from run summaries (rows of
-`results.run_row`: L, n_d, status, outcome, propagation_distance, arrival_time_at_probe,
-wall_time_s).
+`results.run_row`: id, L, n_d, status, outcome, propagation_distance,
+arrival_time_at_probe, wall_time_s).
 
-Convergence (SPEC §2, the paper's criterion): a run is `converged` when the next finer n_d
-with the same L changes `propagation_distance` by < 0.5 % and `arrival_time_at_probe` by
-< 0.1 %; `not_converged` otherwise; `unknown` without a finer partner; `pending` while the
-job is queued or running; `diverged` when it diverged. Runs are grouped by L only: give it
-runs that differ in nothing else.
+Convergence: the server's rules, one for one (docs/studies.md, "Convergence status of a
+run"; api/study/convergence.cpp), so that a local plot colours a run as the server's
+map does. Both are tested against the same cases (tests/study/convergence_cases.json).
+A row without a status (a local result file) counts as succeeded. Runs are grouped by
+L only: give it runs that differ in nothing else. Where the server has a study or a
+scene, ask it instead (`plot convergence --from-server`, `--study`).
 """
 
 import math
 
 DISTANCE_TOL = 0.005
 ARRIVAL_TOL = 0.001
-STATUSES = ("converged", "not_converged", "diverged", "pending", "unknown")
+STATUSES = ("converged", "not_converged", "diverged", "pending", "unknown", "failed")
+
+# What a run contributes, in the order a cell prefers them (a result first).
+_MEASURED, _DIVERGED, _PENDING, _VOID = range(4)
+
+
+def _same(a, b):
+    """L and n_d come from JSON numbers: equal up to round-off means the same value."""
+    return abs(a - b) <= 1e-9 * max(abs(a), abs(b))
+
+
+def _finer(n_d, than):
+    return n_d > than and not _same(n_d, than)
+
+
+def _metric(row, key):
+    """A metric as a float; NaN when absent, null or not a number."""
+    value = row.get(key)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return math.nan
+    return float(value)
+
+
+def _outcome(row):
+    outcome = row.get("outcome")
+    return outcome if isinstance(outcome, str) else ""
+
+
+def _state(row):
+    status = row.get("status") or "succeeded"
+    if status in ("queued", "running"):
+        return _PENDING
+    if status == "cancelled":
+        return _VOID
+    if _outcome(row) == "diverged":
+        return _DIVERGED  # the server keeps a diverged run as job status "failed"
+    if status == "succeeded" and _outcome(row):
+        return _MEASURED
+    return _VOID
 
 
 def _relative_change(value, reference):
+    """|value - reference| / |reference|; NaN if either is undefined."""
+    if not (math.isfinite(value) and math.isfinite(reference)):
+        return math.nan
+    if reference == 0:
+        return 0.0 if value == 0 else math.inf
+    return abs(value - reference) / abs(reference)
+
+
+def _agree(row, ref):
+    """SPEC §2 criterion between a run and its partner (the next finer mesh)."""
+    mine, theirs = _outcome(row), _outcome(ref)
+    if theirs == "diverged" or mine != theirs:
+        return False
+    if mine == "no_rupture":
+        return True
+    distance = _relative_change(_metric(row, "propagation_distance"),
+                                _metric(ref, "propagation_distance"))
+    if math.isnan(distance):
+        return False
+    arrived = math.isfinite(_metric(row, "arrival_time_at_probe"))
+    if arrived != math.isfinite(_metric(ref, "arrival_time_at_probe")):
+        return False
+    arrival = _relative_change(_metric(row, "arrival_time_at_probe"),
+                               _metric(ref, "arrival_time_at_probe"))
+    return distance < DISTANCE_TOL and (not arrived or arrival < ARRIVAL_TOL)
+
+
+def _pick(rows, L, n_d):
+    """The run that stands for an (L, n_d) cell: a result before a pending run before a
+    void one; among equals the smallest id."""
+    cell = [r for r in rows if _same(r["L"], L) and _same(r["n_d"], n_d)]
+    return min(cell, key=lambda r: (_state(r), str(r.get("id") or "")), default=None)
+
+
+def _partner(rows, row):
+    """The run of the same L at the next finer n_d present; meshes whose runs all failed
+    or were cancelled are skipped."""
+    finer = [r["n_d"] for r in rows if _same(r["L"], row["L"]) and
+             _finer(r["n_d"], row["n_d"]) and _state(r) != _VOID]
+    return _pick(rows, row["L"], min(finer)) if finer else None
+
+
+def convergence_status(rows, row):
+    """The convergence status of `row` among `rows` (see the module docstring)."""
+    state = _state(row)
+    if state == _PENDING:
+        return "pending"
+    if state == _VOID:
+        return "failed"
+    if state == _DIVERGED:
+        return "diverged"
+    partner = _partner(rows, row)
+    if partner is None or _state(partner) == _PENDING:
+        return "unknown"
+    return "converged" if _agree(row, partner) else "not_converged"
+
+
+def convergence_statuses(rows):
+    """A copy of `rows`, each with `convergence` set (see the module docstring); rows
+    without L or n_d get "unknown"."""
+    out = [dict(r) for r in rows]
+    def placed(r):
+        return all(isinstance(r.get(k), (int, float)) and not isinstance(r.get(k), bool)
+                   for k in ("L", "n_d"))
+    runs = [r for r in out if placed(r)]
+    for r in out:
+        r["convergence"] = convergence_status(runs, r) if placed(r) else "unknown"
+    return out
+
+
+def _finished(row):
+    return row.get("status") in (None, "succeeded") and row.get("outcome") != "diverged"
+
+
+def _error_change(value, reference):
     """|value - reference| / |reference|; 0 when both are missing; inf when one is."""
     missing = [v is None or (isinstance(v, float) and math.isnan(v)) for v in (value, reference)]
     if all(missing):
@@ -26,48 +140,6 @@ def _relative_change(value, reference):
     if reference == 0:
         return 0.0 if value == 0 else math.inf
     return abs(value - reference) / abs(reference)
-
-
-def _finished(row):
-    return row.get("status") in (None, "succeeded") and row.get("outcome") != "diverged"
-
-
-def own_status(row):
-    """The status a run has on its own: pending, diverged, or None (needs a partner)."""
-    status = row.get("status")
-    if status in ("queued", "running"):
-        return "pending"
-    if row.get("outcome") == "diverged" or status == "failed":
-        return "diverged"
-    if status == "cancelled":
-        return "unknown"
-    return None
-
-
-def convergence_statuses(rows):
-    """A copy of `rows`, each with `convergence` set (see the module docstring)."""
-    out = [dict(r) for r in rows]
-    by_L = {}
-    for r in out:
-        by_L.setdefault(r.get("L"), []).append(r)
-    for runs in by_L.values():
-        finished = sorted((r for r in runs if _finished(r) and r.get("n_d") is not None),
-                          key=lambda r: r["n_d"])
-        for r in runs:
-            status = own_status(r)
-            if status is None:
-                finer = [p for p in finished if p["n_d"] > r["n_d"]]
-                if not finer:
-                    status = "unknown"
-                else:
-                    p = finer[0]
-                    ok = (_relative_change(r.get("propagation_distance"),
-                                           p.get("propagation_distance")) < DISTANCE_TOL and
-                          _relative_change(r.get("arrival_time_at_probe"),
-                                           p.get("arrival_time_at_probe")) < ARRIVAL_TOL)
-                    status = "converged" if ok else "not_converged"
-            r["convergence"] = status
-    return out
 
 
 def errors_against_finest(rows):
@@ -83,8 +155,8 @@ def errors_against_finest(rows):
         runs.sort(key=lambda r: r["n_d"])
         ref = runs[-1]
         for r in runs[:-1]:
-            error = max(_relative_change(r.get("propagation_distance"), ref.get("propagation_distance")),
-                        _relative_change(r.get("arrival_time_at_probe"), ref.get("arrival_time_at_probe")))
+            error = max(_error_change(r.get("propagation_distance"), ref.get("propagation_distance")),
+                        _error_change(r.get("arrival_time_at_probe"), ref.get("arrival_time_at_probe")))
             out.append({**r, "error": error, "reference_n_d": ref["n_d"]})
     return out
 

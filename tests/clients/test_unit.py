@@ -168,6 +168,27 @@ class AnalysisTest(unittest.TestCase):
                                (1e-5, 20): "unknown", (1e-5, 40): "pending",
                                (1e-6, 10): "diverged"})
 
+    def test_shared_convergence_cases_as_the_server(self):
+        # The cases api/study/convergence.cpp is tested against (study.ConvergenceCases.*).
+        path = os.path.join(os.path.dirname(__file__), "..", "study", "convergence_cases.json")
+        with open(path) as f:
+            cases = json.load(f)["cases"]
+        self.assertGreater(len(cases), 10)
+        for case in cases:
+            rows = [{"id": r["id"], "L": r["L"], "n_d": r["n_d"], "status": r["status"],
+                     **{k: (r["metrics"] or {}).get(k) for k in
+                        ("outcome", "propagation_distance", "arrival_time_at_probe")}}
+                    for r in case["runs"]]
+            got = {r["id"]: r["convergence"] for r in analysis.convergence_statuses(rows)}
+            self.assertEqual(got, case["expected"], case["name"])
+
+    def test_a_local_result_without_status_counts_as_succeeded(self):
+        rows = [{"L": 1e-4, "n_d": n_d, "status": None, "outcome": "arrested",
+                 "propagation_distance": 12.0, "arrival_time_at_probe": 8.0}
+                for n_d in (10, 20)]
+        self.assertEqual([r["convergence"] for r in analysis.convergence_statuses(rows)],
+                         ["converged", "unknown"])
+
     def test_errors_against_finest(self):
         rows = analysis.errors_against_finest(self.rows())
         e = {(r["L"], r["n_d"]): r["error"] for r in rows}
