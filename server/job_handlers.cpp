@@ -67,9 +67,10 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
     return problem_response(req, http::status::unprocessable_entity,
                             r.errors.empty() ? "Idempotency-Key conflict" : r.errors[0].reason);
   case Kind::queue_full: {
-    auto res = problem_response(req, http::status::service_unavailable,
-                                "the queue is full (" + std::to_string(ctx.queue.limit()) +
-                                    " jobs); retry later");
+    auto res =
+        problem_response(req, http::status::service_unavailable,
+                         "the queue is full (" + std::to_string(ctx.service.load().queue_limit) +
+                             " jobs); retry later");
     res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
     return res;
   }
