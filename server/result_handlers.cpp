@@ -289,12 +289,14 @@ Response field(ServerContext& ctx, RequestContext& rc) {
 void add_result_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::get, prefix + "/jobs/{id}/result.h5",
              [&ctx](RequestContext& rc) { return download(ctx, rc); });
-  router.add(http::verb::get, prefix + "/jobs/{id}/result.xdmf",
-             [&ctx](RequestContext& rc) { return xdmf(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs/{id}/result.xdmf",
+      [&ctx](RequestContext& rc) { return xdmf(ctx, rc); }, true);
   router.add(http::verb::get, prefix + "/jobs/{id}/metrics",
              [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
-  router.add(http::verb::get, prefix + "/jobs/{id}/front",
-             [&ctx](RequestContext& rc) { return front(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs/{id}/front",
+      [&ctx](RequestContext& rc) { return front(ctx, rc); }, true);
   router.add(
       http::verb::get, prefix + "/jobs/{id}/fields/{name}",
       [&ctx](RequestContext& rc) { return field(ctx, rc); }, true);

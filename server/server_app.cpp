@@ -247,7 +247,7 @@ void ServerApp::shutdown() {
   for (auto& t : io_threads_)
     if (t.joinable()) t.join();
   io_threads_.clear();
-  if (offload_pool_) offload_pool_->join(); // listings in flight finish; their answers are dropped
+  if (offload_pool_) offload_pool_->join(); // handlers in flight finish; their answers are dropped
   executor_.reset();
   studies_.reset();
   supervisor_.reset();
