@@ -82,8 +82,11 @@ def main(argv=None):
             binary = args.binary or default_binary()
             data_dir = args.data_dir or tempfile.mkdtemp(prefix="slipfront-repro-data-")
             tmp = data_dir if not args.data_dir else None
-            server = Server(binary, data_dir, args.workers).start()
+            os.makedirs(data_dir, exist_ok=True)
+            server = Server(binary, data_dir, ["--workers", str(args.workers)],
+                            startup_timeout=30).start()
             url = server.url
+            log(f"server {url} (pid {server.proc.pid}, data {data_dir})")
         api = Api(url, token=args.token, timeout=60)
         studies = {}
         for method, given in (("fe", args.study_id), ("spectral_bi", args.bi_study_id)):

@@ -1,6 +1,8 @@
 #include "server/auth.hpp"
 
 #include "api/job_spec.hpp"
+#include "server/responses.hpp"
+#include "server/server_context.hpp"
 
 #include <fstream>
 #include <stdexcept>
@@ -84,6 +86,25 @@ std::optional<std::string> TokenTable::user_for_header(std::string_view authoriz
   }
   if (!found) return std::nullopt;
   return *found;
+}
+
+std::optional<Response> authenticate(const ServerContext& ctx, RequestContext& rc) {
+  if (!ctx.tokens) {
+    rc.user = "anonymous";
+    return std::nullopt;
+  }
+  auto header = rc.request[http::field::authorization];
+  auto user = ctx.tokens->user_for_header(header);
+  if (!user) {
+    auto res = problem_response(rc.request, http::status::unauthorized,
+                                header.empty() ? "this server needs a bearer token "
+                                                 "(Authorization: Bearer <token>)"
+                                               : "unknown bearer token");
+    res.set(http::field::www_authenticate, "Bearer realm=\"slipfront\"");
+    return Response(std::move(res));
+  }
+  rc.user = *user;
+  return std::nullopt;
 }
 
 } // namespace slipfront::server

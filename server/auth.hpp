@@ -1,6 +1,9 @@
 // Bearer tokens of a shared server: a token file of "user:token" lines ('#' comments and
 // blank lines allowed). Without a token file, every request is the user "anonymous".
+// authenticate(): what a handler asks before a request that acts for a user.
 #pragma once
+
+#include "server/http_types.hpp"
 
 #include <map>
 #include <memory>
@@ -40,5 +43,11 @@ private:
   mutable std::mutex mutex_;
   std::shared_ptr<const Digests> digests_;
 };
+
+struct ServerContext;
+
+// Sets rc.user; a 401 response when a token file is configured and the request carries no
+// valid bearer token.
+std::optional<Response> authenticate(const ServerContext& ctx, RequestContext& rc);
 
 } // namespace slipfront::server

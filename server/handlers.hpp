@@ -1,12 +1,11 @@
 // Route tables of the API (SPEC §4, under /api/v1) and of the operations endpoints.
 #pragma once
 
+#include "server/auth.hpp" // authenticate()
 #include "server/router.hpp"
 #include "server/server_context.hpp"
 
 #include <nlohmann/json.hpp>
-
-#include <optional>
 
 namespace slipfront::server {
 
@@ -14,10 +13,6 @@ void add_job_routes(Router& router, ServerContext& ctx);    // job_handlers.cpp
 void add_result_routes(Router& router, ServerContext& ctx); // result_handlers.cpp
 void add_ops_routes(Router& router, ServerContext& ctx);    // ops_handlers.cpp
 void add_study_routes(Router& router, ServerContext& ctx);  // study_handlers.cpp
-
-// Sets rc.user; a 401 response when a token file is configured and the request carries no
-// valid bearer token (job_handlers.cpp).
-std::optional<Response> authenticate(ServerContext& ctx, RequestContext& rc);
 
 // The OpenAPI 3 description of every endpoint (openapi.cpp).
 nlohmann::json openapi_document();

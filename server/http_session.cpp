@@ -105,7 +105,8 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
   if (ec) return reject(http::status::bad_request, "malformed request: " + ec.message());
   Request req = parser_->release();
   if (limits_.offload_pool && router_.offloaded(req)) {
-    // A long handler: the I/O thread goes back to other connections meanwhile.
+    // A handler that may block: the I/O thread goes back to other connections meanwhile;
+    // the answer is sent from the session's strand.
     net::post(*limits_.offload_pool, [self = shared_from_this(), req = std::move(req)] {
       auto response = std::make_shared<Response>(self->router_.dispatch(req));
       net::post(self->stream_.get_executor(),

@@ -15,27 +15,6 @@
 
 namespace slipfront::server {
 
-// The submitting user, or a 401 response when a token file is configured and the request
-// carries no valid bearer token.
-std::optional<Response> authenticate(ServerContext& ctx, RequestContext& rc) {
-  if (!ctx.tokens) {
-    rc.user = "anonymous";
-    return std::nullopt;
-  }
-  auto header = rc.request[http::field::authorization];
-  auto user = ctx.tokens->user_for_header(header);
-  if (!user) {
-    auto res = problem_response(rc.request, http::status::unauthorized,
-                                header.empty() ? "this server needs a bearer token "
-                                                 "(Authorization: Bearer <token>)"
-                                               : "unknown bearer token");
-    res.set(http::field::www_authenticate, "Bearer realm=\"slipfront\"");
-    return Response(std::move(res));
-  }
-  rc.user = *user;
-  return std::nullopt;
-}
-
 namespace {
 
 const std::string prefix = "/api/v1";
@@ -88,9 +67,10 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
     return problem_response(req, http::status::unprocessable_entity,
                             r.errors.empty() ? "Idempotency-Key conflict" : r.errors[0].reason);
   case Kind::queue_full: {
-    auto res = problem_response(req, http::status::service_unavailable,
-                                "the queue is full (" + std::to_string(ctx.queue.limit()) +
-                                    " jobs); retry later");
+    auto res =
+        problem_response(req, http::status::service_unavailable,
+                         "the queue is full (" + std::to_string(ctx.service.load().queue_limit) +
+                             " jobs); retry later");
     res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
     return res;
   }

@@ -15,6 +15,10 @@ JobService::JobService(ServiceOptions options, JobStore& store, JobQueue& queue,
                        RunningJobs& running)
     : options_(std::move(options)), store_(store), queue_(queue), running_(running) {}
 
+ServiceLoad JobService::load() const {
+  return {running_.size(), queue_.size(), queue_.limit()};
+}
+
 namespace {
 
 using Kind = SubmitResult::Kind;

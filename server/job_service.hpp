@@ -7,7 +7,9 @@
 #include "server/job_store.hpp"
 #include "server/running_jobs.hpp"
 
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -53,6 +55,13 @@ struct ServiceOptions {
   std::string data_dir;
 };
 
+// The queue and the executor now, for /healthz and /metrics.
+struct ServiceLoad {
+  std::size_t running = 0;     // jobs running
+  std::size_t queued = 0;      // jobs waiting in the run queue
+  std::size_t queue_limit = 0; // queue size above which submissions get 503
+};
+
 class JobService {
 public:
   JobService(ServiceOptions options, JobStore& store, JobQueue& queue, RunningJobs& running);
@@ -65,6 +74,15 @@ public:
   std::optional<Job> get(const std::string& id); // with live progress if running
   JobPage list(const JobFilter& filter);
   CancelResult cancel(const std::string& id, const std::string& user);
+  // The stored rupture front of a job (null json if none); nullopt for an unknown job.
+  std::optional<nlohmann::json> front(const std::string& id) { return store_.front(id); }
+
+  ServiceLoad load() const;
+  // The number of jobs in the database by status.
+  std::map<std::string, std::int64_t> count_by_status() { return store_.count_by_status(); }
+  // Throws when the database does not answer a trivial query.
+  void check_database() { store_.user_version(); }
+
   bool auth_enabled() const { return options_.auth_enabled; }
   // Called after a queued job was cancelled (a running one reports through the workers).
   void set_on_cancelled(std::function<void(const std::string& id)> f) {

@@ -40,16 +40,17 @@ nlohmann::json storage_health(ServerContext& ctx, bool& degraded) {
 }
 
 Response healthz(ServerContext& ctx, RequestContext& rc) {
+  const ServiceLoad load = ctx.service.load();
   nlohmann::json body = {{"status", ctx.draining ? "draining" : "ok"},
                          {"code_version", ctx.service.options().code_version},
                          {"executor", ctx.executor},
                          {"workers", ctx.workers},
-                         {"running", ctx.running.size()},
-                         {"queue_depth", ctx.queue.size()},
-                         {"queue_limit", ctx.queue.limit()},
+                         {"running", load.running},
+                         {"queue_depth", load.queued},
+                         {"queue_limit", load.queue_limit},
                          {"auth", ctx.tokens.has_value()}};
   try {
-    ctx.store.user_version(); // the database answers
+    ctx.service.check_database();
     body["database"] = "ok";
   } catch (const std::exception& e) {
     body["status"] = "error";
@@ -63,22 +64,23 @@ Response healthz(ServerContext& ctx, RequestContext& rc) {
 }
 
 Response prometheus(ServerContext& ctx, RequestContext& rc) {
+  const ServiceLoad load = ctx.service.load();
   std::ostringstream out;
   out << "# HELP slipfront_queue_depth Jobs waiting in the run queue.\n"
       << "# TYPE slipfront_queue_depth gauge\n"
-      << "slipfront_queue_depth " << ctx.queue.size() << "\n"
+      << "slipfront_queue_depth " << load.queued << "\n"
       << "# HELP slipfront_queue_limit Queue size above which submissions get 503.\n"
       << "# TYPE slipfront_queue_limit gauge\n"
-      << "slipfront_queue_limit " << ctx.queue.limit() << "\n"
+      << "slipfront_queue_limit " << load.queue_limit << "\n"
       << "# HELP slipfront_jobs_running Jobs running now.\n"
       << "# TYPE slipfront_jobs_running gauge\n"
-      << "slipfront_jobs_running " << ctx.running.size() << "\n"
+      << "slipfront_jobs_running " << load.running << "\n"
       << "# HELP slipfront_workers Worker threads.\n"
       << "# TYPE slipfront_workers gauge\n"
       << "slipfront_workers " << ctx.workers << "\n"
       << "# HELP slipfront_jobs Jobs in the database, by status.\n"
       << "# TYPE slipfront_jobs gauge\n";
-  for (const auto& [status, n] : ctx.store.count_by_status())
+  for (const auto& [status, n] : ctx.service.count_by_status())
     out << "slipfront_jobs{status=\"" << status << "\"} " << n << "\n";
   out << ctx.stats.prometheus_text();
   return text_response(rc.request, http::status::ok, out.str(),

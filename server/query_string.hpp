@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace slipfront::server {
 
@@ -13,6 +14,11 @@ std::optional<std::string> percent_decode(std::string_view text, bool plus_is_sp
 
 // Percent-encoding of a query value (unreserved characters are kept).
 std::string percent_encode(std::string_view text);
+
+// The items of a comma-separated list (a query value such as sort=a,-b, or a header such as
+// If-None-Match), each with the whitespace around it trimmed. Empty items are kept: "a,,b"
+// is {"a", "", "b"} and "" is {""}. The views point into `text`.
+std::vector<std::string_view> split_list(std::string_view text);
 
 struct Target {
   std::string path;                         // decoded

@@ -1,5 +1,7 @@
 #include "server/responses.hpp"
 
+#include "server/query_string.hpp"
+
 #include <cstdint>
 #include <cstdio>
 
@@ -30,25 +32,14 @@ std::string weak_etag(const std::string& body) {
   return std::string("W/\"") + hex + "\"";
 }
 
-bool if_none_match(std::string_view header, const std::string& etag) {
-  // Weak comparison (RFC 9110 §13.1.2): W/ prefixes are ignored on both sides.
-  const std::string_view tag = std::string_view(etag).substr(2);
-  std::size_t start = 0;
-  while (start < header.size()) {
-    auto comma = header.find(',', start);
-    if (comma == std::string_view::npos) comma = header.size();
-    auto item = header.substr(start, comma - start);
-    while (!item.empty() && item.front() == ' ')
-      item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ')
-      item.remove_suffix(1);
-    if (item.substr(0, 2) == "W/") item.remove_prefix(2);
-    if (item == tag || item == "*") return true;
-    start = comma + 1;
-  }
+} // namespace
+
+bool etag_list_matches(std::string_view if_none_match, std::string_view etag) {
+  auto opaque = [](std::string_view tag) { return tag.substr(0, 2) == "W/" ? tag.substr(2) : tag; };
+  for (std::string_view item : split_list(if_none_match))
+    if (item == "*" || opaque(item) == opaque(etag)) return true;
   return false;
 }
-} // namespace
 
 http::response<http::string_body> json_response(const Request& req, http::status status,
                                                 const nlohmann::json& body) {
@@ -62,7 +53,7 @@ http::response<http::string_body> json_response(const Request& req, http::status
     const std::string etag = weak_etag(res.body());
     res.set(http::field::etag, etag);
     if (req.count(http::field::if_none_match) &&
-        if_none_match(req[http::field::if_none_match], etag)) {
+        etag_list_matches(req[http::field::if_none_match], etag)) {
       res.result(http::status::not_modified);
       res.body().clear();
       res.prepare_payload();

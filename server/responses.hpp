@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace slipfront::server {
@@ -16,6 +17,10 @@ http::response<http::string_body> json_response(const Request& req, http::status
                                                 const nlohmann::json& body);
 http::response<http::string_body> text_response(const Request& req, http::status status,
                                                 std::string body, const std::string& content_type);
+// Whether an If-None-Match header value matches `etag`: "*", or a list of entity tags one of
+// which equals it under the weak comparison of RFC 9110 §8.8.3.2 (W/ prefixes ignored on both
+// sides).
+bool etag_list_matches(std::string_view if_none_match, std::string_view etag);
 // errors: [{"pointer": ..., "reason": ...}]
 http::response<http::string_body> problem_response(const Request& req, http::status status,
                                                    const std::string& detail,

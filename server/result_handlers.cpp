@@ -40,24 +40,6 @@ Response not_finished(const Request& req, const Job& job, const std::string& wha
                               " yet");
 }
 
-bool etag_matches(std::string_view header, const std::string& etag) {
-  if (header == "*") return true;
-  std::size_t start = 0;
-  while (start < header.size()) {
-    auto comma = header.find(',', start);
-    if (comma == std::string_view::npos) comma = header.size();
-    auto item = header.substr(start, comma - start);
-    while (!item.empty() && item.front() == ' ')
-      item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ')
-      item.remove_suffix(1);
-    if (item.substr(0, 2) == "W/") item.remove_prefix(2);
-    if (item == etag) return true;
-    start = comma + 1;
-  }
-  return false;
-}
-
 Response download(ServerContext& ctx, RequestContext& rc) {
   auto found = find_job(ctx, rc);
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
@@ -70,7 +52,7 @@ Response download(ServerContext& ctx, RequestContext& rc) {
                                 (job.error.empty() ? "" : ": " + job.error) + ")");
   const std::string etag = "\"" + job.result.sha256 + "\"";
   if (req.count(http::field::if_none_match) &&
-      etag_matches(req[http::field::if_none_match], etag)) {
+      etag_list_matches(req[http::field::if_none_match], etag)) {
     http::response<http::empty_body> res{http::status::not_modified, req.version()};
     res.set(http::field::server, "slipfront");
     res.set(http::field::etag, etag);
@@ -307,12 +289,14 @@ Response field(ServerContext& ctx, RequestContext& rc) {
 void add_result_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::get, prefix + "/jobs/{id}/result.h5",
              [&ctx](RequestContext& rc) { return download(ctx, rc); });
-  router.add(http::verb::get, prefix + "/jobs/{id}/result.xdmf",
-             [&ctx](RequestContext& rc) { return xdmf(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs/{id}/result.xdmf",
+      [&ctx](RequestContext& rc) { return xdmf(ctx, rc); }, true);
   router.add(http::verb::get, prefix + "/jobs/{id}/metrics",
              [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
-  router.add(http::verb::get, prefix + "/jobs/{id}/front",
-             [&ctx](RequestContext& rc) { return front(ctx, rc); });
+  router.add(
+      http::verb::get, prefix + "/jobs/{id}/front",
+      [&ctx](RequestContext& rc) { return front(ctx, rc); }, true);
   router.add(
       http::verb::get, prefix + "/jobs/{id}/fields/{name}",
       [&ctx](RequestContext& rc) { return field(ctx, rc); }, true);

@@ -35,7 +35,8 @@ bool match(const std::vector<std::string>& pattern, const std::vector<std::strin
 } // namespace
 
 void Router::add(http::verb method, const std::string& pattern, Handler handler, bool offload) {
-  routes_.push_back({method, pattern, split_path(pattern), std::move(handler), offload});
+  routes_.push_back({method, pattern, split_path(pattern), std::move(handler),
+                     offload || method != http::verb::get});
 }
 
 bool Router::offloaded(const Request& request) const {

@@ -14,8 +14,10 @@ using Handler = std::function<Response(RequestContext&)>;
 
 class Router {
 public:
-  // offload: a handler that may take long (listings over many rows) runs on the offload
-  // pool, not on an I/O thread, so that health checks and status reads stay quick.
+  // offload: a handler that may block (listings over many rows, HDF5 reads) runs on the
+  // blocking-work pool, not on an I/O thread, so that health checks and status reads stay
+  // quick (docs/server.md, "Threads"). Every route of another method than GET is offloaded
+  // whatever the flag: it writes to the database.
   void add(http::verb method, const std::string& pattern, Handler handler, bool offload = false);
   bool offloaded(const Request& request) const;
   // Runs the matching handler; errors it throws become a 500 problem (logged with context),

@@ -2,6 +2,7 @@
 
 #include "api/job_spec.hpp"
 #include "api/run_job.hpp"
+#include "server/query_string.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -314,15 +315,7 @@ std::vector<Condition> parse_where(std::string_view text) {
 
 std::vector<SortKey> parse_sort(std::string_view text) {
   std::vector<SortKey> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    std::size_t comma = text.find(',', start);
-    if (comma == std::string_view::npos) comma = text.size();
-    std::string_view item = text.substr(start, comma - start);
-    while (!item.empty() && std::isspace(static_cast<unsigned char>(item.front())))
-      item.remove_prefix(1);
-    while (!item.empty() && std::isspace(static_cast<unsigned char>(item.back())))
-      item.remove_suffix(1);
+  for (std::string_view item : split_list(text)) {
     SortKey key;
     if (!item.empty() && (item.front() == '-' || item.front() == '+')) {
       key.descending = item.front() == '-';
@@ -334,7 +327,6 @@ std::vector<SortKey> parse_sort(std::string_view text) {
     key.field = resolve_field(item, "sort");
     if (key.field.type == FieldType::tag) throw QueryError("sort", "cannot sort by tag");
     out.push_back(std::move(key));
-    start = comma + 1;
   }
   return out;
 }

@@ -122,9 +122,9 @@ void ServerApp::start() {
   else
     executor_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
 
-  context_.reset(new ServerContext{
-      *service_, *store_, *queue_, running_, stats_, tokens_, config_.data_dir, executor_->slots(),
-      config_.retry_after_s, draining_, *studies_, config_.min_free_bytes, executor_->name()});
+  context_.reset(new ServerContext{*service_, *store_, *queue_, stats_, tokens_, config_.data_dir,
+                                   executor_->slots(), config_.retry_after_s, draining_, *studies_,
+                                   config_.min_free_bytes, executor_->name()});
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
     stats_.record_storage_error(what);
   });
@@ -247,7 +247,7 @@ void ServerApp::shutdown() {
   for (auto& t : io_threads_)
     if (t.joinable()) t.join();
   io_threads_.clear();
-  if (offload_pool_) offload_pool_->join(); // listings in flight finish; their answers are dropped
+  if (offload_pool_) offload_pool_->join(); // handlers in flight finish; their answers are dropped
   executor_.reset();
   studies_.reset();
   supervisor_.reset();

@@ -83,7 +83,8 @@ private:
   std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> work_;
   std::shared_ptr<Listener> listener_;
   std::vector<std::thread> io_threads_;
-  std::unique_ptr<boost::asio::thread_pool> offload_pool_; // listings (Router::offloaded)
+  // Blocking work of the routes (Router::offloaded): writes, listings, HDF5 reads.
+  std::unique_ptr<boost::asio::thread_pool> offload_pool_;
   std::mutex stop_mutex_;
   std::condition_variable stop_cv_;
   bool stop_requested_ = false;

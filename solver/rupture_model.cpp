@@ -1,6 +1,7 @@
 #include "solver/rupture_model.hpp"
 
 #include "solver/element_stiffness.hpp"
+#include "solver/lumped_mass.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/nucleation.hpp"
 #include "solver/stable_time_step.hpp"
@@ -123,8 +124,7 @@ void RuptureModel::store_row_energy(int j, const double* kin, const double* str)
 }
 
 double RuptureModel::node_mass(int j) const {
-  const double full = params_.material.density * dx_ * dx_;
-  return (j == 0 || j == ny_ - 1) ? 0.5 * full : full;
+  return lumped_node_mass(j, ny_, dx_, params_.material.density);
 }
 
 void RuptureModel::step(ThreadTeam& team, bool compute_energy) {

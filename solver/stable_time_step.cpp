@@ -1,5 +1,7 @@
 #include "solver/stable_time_step.hpp"
 
+#include "solver/lumped_mass.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -7,13 +9,6 @@
 namespace slipfront {
 
 namespace {
-
-// Lumped mass per unit thickness: rho dx^2 in the bulk, half of it on the bottom and top
-// rows (each of their nodes touches two elements instead of four).
-double lumped_mass(int j, int ny, double dx, double density) {
-  const double full = density * dx * dx;
-  return (j == 0 || j == ny - 1) ? 0.5 * full : full;
-}
 
 double dot(const VectorField& a, const VectorField& b) {
   double s = 0;
@@ -41,7 +36,7 @@ EigenEstimate largest_eigenvalue(const MeshStencils& stencils, int nx, int ny, d
     // Normalise x; then Kw = M^-1/2 K M^-1/2 x, computed as K applied to w = M^-1/2 x.
     const double norm = std::sqrt(dot(x, x));
     for (int j = 0; j < ny; ++j) {
-      const double inv_sqrt_m = 1.0 / std::sqrt(lumped_mass(j, ny, dx, density));
+      const double inv_sqrt_m = 1.0 / std::sqrt(lumped_node_mass(j, ny, dx, density));
       for (int i = 0; i < nx; ++i) {
         x.x.at(i, j) /= norm;
         x.y.at(i, j) /= norm;
@@ -53,7 +48,7 @@ EigenEstimate largest_eigenvalue(const MeshStencils& stencils, int nx, int ny, d
     }
     apply_stiffness(stencils, w, Kw);
     for (int j = 0; j < ny; ++j) {
-      const double inv_sqrt_m = 1.0 / std::sqrt(lumped_mass(j, ny, dx, density));
+      const double inv_sqrt_m = 1.0 / std::sqrt(lumped_node_mass(j, ny, dx, density));
       for (int i = 0; i < nx; ++i) {
         Kw.x.at(i, j) *= inv_sqrt_m;
         Kw.y.at(i, j) *= inv_sqrt_m;

@@ -2,12 +2,8 @@
 `slipfront serve` on an ephemeral loopback port with a temporary data dir."""
 
 import os
-import select
-import shutil
-import signal
 import subprocess
 import sys
-import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -16,6 +12,12 @@ CLIENTS = os.path.join(REPO, "clients")
 SCRIPT = os.path.join(CLIENTS, "slipfront-client")
 if CLIENTS not in sys.path:
     sys.path.insert(0, CLIENTS)
+
+# `slipfront serve --port 0` in a temporary data dir; `base` is its URL, stop() ends it and
+# removes the directory.
+from slipfront_client import local_server  # noqa: E402
+
+Server = local_server.Server
 
 # A tiny job: n_d = 5 on a 12 m x 5 m domain, 3 s simulated; well under a second.
 # The probes must lie in the domain [x_min, x_min + width) = [-1, 11).
@@ -53,47 +55,6 @@ def run_client(*args, server=None, timeout=60, env=None, stdin=None):
     e.update(env or {})
     return subprocess.run(["/usr/bin/python3", SCRIPT, *args], capture_output=True, text=True,
                           timeout=timeout, env=e, input=stdin)
-
-
-class Server:
-    """`slipfront serve --port 0` in a temporary data dir; `base` is its URL."""
-
-    def __init__(self, binary, args=()):
-        self.binary = binary
-        self.args = list(args)
-        self.data_dir = tempfile.mkdtemp(prefix="slipfront-client-test-")
-        self.proc = None
-        self.base = None
-
-    def start(self, timeout=20.0):
-        if not os.access(self.binary, os.X_OK):
-            raise RuntimeError(f"no slipfront binary at {self.binary} (pass --binary)")
-        self.log = open(os.path.join(self.data_dir, "server.log"), "ab")
-        self.proc = subprocess.Popen(
-            [self.binary, "serve", "--host", "127.0.0.1", "--port", "0",
-             "--data-dir", self.data_dir] + self.args,
-            stdout=subprocess.PIPE, stderr=self.log)
-        ready, _, _ = select.select([self.proc.stdout], [], [], timeout)
-        line = self.proc.stdout.readline().decode().strip() if ready else ""
-        if not line.startswith("listening on http://"):
-            self.stop()
-            raise RuntimeError(f"server did not start: {line!r}")
-        self.base = line[len("listening on "):]
-        return self
-
-    def stop(self):
-        if self.proc and self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGTERM)
-            try:
-                self.proc.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(timeout=10)
-        if self.proc and self.proc.stdout:
-            self.proc.stdout.close()
-        if getattr(self, "log", None):
-            self.log.close()
-        shutil.rmtree(self.data_dir, ignore_errors=True)
 
 
 def wait_until(predicate, timeout=30.0, interval=0.1):

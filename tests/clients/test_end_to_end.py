@@ -35,7 +35,7 @@ def sha256(path):
 class EndToEnd(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.server = Server(BINARY, ["--workers", "2"]).start()
+        cls.server = Server(BINARY, args=["--workers", "2"]).start()
         cls.tmp = tempfile.mkdtemp(prefix="slipfront-client-e2e-")
         cls.job_file = os.path.join(cls.tmp, "tiny.json")
         with open(cls.job_file, "w") as f:

@@ -3,14 +3,14 @@ talk to it. Shared by the server tests and the load benchmark. Every wait is bou
 
 import json
 import os
-import select
-import shutil
-import signal
-import subprocess
-import tempfile
+import sys
 import time
 
 import requests
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))), "clients"))
+from slipfront_client import local_server  # noqa: E402
 
 TERMINAL = {"succeeded", "failed", "cancelled"}
 
@@ -28,47 +28,13 @@ def long_job(name="long"):
     }
 
 
-class Server:
+class Server(local_server.Server):
+    """The shared launcher (clients/slipfront_client/local_server.py) with a requests
+    session for the tests: get/post/submit and waiting for a job's status."""
+
     def __init__(self, binary, data_dir=None, args=(), startup_timeout=20.0, preexec_fn=None):
-        self.binary = binary
-        self.own_dir = data_dir is None
-        self.data_dir = data_dir or tempfile.mkdtemp(prefix="slipfront-test-")
-        self.args = list(args)
-        self.startup_timeout = startup_timeout
-        self.preexec_fn = preexec_fn  # e.g. lower resource limits in the server's process
-        self.proc = None
-        self.base = None
-        self.log_path = os.path.join(self.data_dir, "server.log")
+        super().__init__(binary, data_dir, args, startup_timeout, preexec_fn)
         self.session = requests.Session()
-
-    def start(self):
-        cmd = [self.binary, "serve", "--host", "127.0.0.1", "--port", "0",
-               "--data-dir", self.data_dir] + self.args
-        self.log = open(self.log_path, "ab")
-        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=self.log,
-                                     preexec_fn=self.preexec_fn)
-        deadline = time.monotonic() + self.startup_timeout
-        line = b""
-        while time.monotonic() < deadline:
-            ready, _, _ = select.select([self.proc.stdout], [], [], 0.2)
-            if ready:
-                line = self.proc.stdout.readline()
-                break
-            if self.proc.poll() is not None:
-                break
-        text = line.decode().strip()
-        if not text.startswith("listening on http://"):
-            self.kill()
-            raise RuntimeError(f"server did not start (got {text!r}); log:\n{self.read_log()}")
-        self.base = text[len("listening on "):]
-        return self
-
-    def read_log(self):
-        try:
-            with open(self.log_path, "rb") as f:
-                return f.read().decode(errors="replace")[-4000:]
-        except OSError:
-            return ""
 
     def url(self, path):
         return self.base + path
@@ -98,31 +64,15 @@ class Server:
 
     def terminate(self, timeout=30.0):
         """SIGTERM (drain) and wait; returns the exit code."""
-        if self.proc and self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGTERM)
-            try:
-                self.proc.wait(timeout=timeout)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(timeout=10)
-                raise AssertionError("server did not stop within %s s of SIGTERM" % timeout)
         self.session.close()
-        return self.proc.returncode if self.proc else None
+        try:
+            return super().terminate(timeout)
+        except RuntimeError as e:
+            raise AssertionError(str(e)) from None
 
     def kill(self):
-        if self.proc and self.proc.poll() is None:
-            self.proc.kill()
-            self.proc.wait(timeout=10)
+        super().kill()
         self.session.close()
-
-    def cleanup(self):
-        self.kill()
-        if self.proc and self.proc.stdout:
-            self.proc.stdout.close()
-        if getattr(self, "log", None):
-            self.log.close()
-        if self.own_dir:
-            shutil.rmtree(self.data_dir, ignore_errors=True)
 
 
 def wait_study(server, study_id, timeout=240.0):

@@ -14,6 +14,7 @@
 #include "verification_support.hpp"
 
 #include "solver/make_rupture_method.hpp"
+#include "solver/periodic_index.hpp"
 
 #include <gtest/gtest.h>
 
@@ -67,7 +68,7 @@ Growth growth_rate(SimulationParams p, double t_end = 6.0) {
     InterfaceTraction load;
     if (t >= t_on && t < t_off) {
       const long i = std::lround((x1 - p.geometry.x_min) / dx);
-      load.t1 = pattern[std::size_t(((i % n) + n) % n)];
+      load.t1 = pattern[std::size_t(periodic_index(i, n))];
     }
     return load;
   };
