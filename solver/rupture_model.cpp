@@ -39,6 +39,8 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
     w_ = VectorField(nx_, ny_);
     kdx_.assign(nx_, 0.0);
     kdy_.assign(nx_, 0.0);
+    kdx_top_.assign(nx_, 0.0);
+    kdy_top_.assign(nx_, 0.0);
   }
   zero_row_.assign(nx_ + 2, 0.0);
   load1_.assign(nx_, 0.0);
@@ -196,7 +198,7 @@ void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<d
       if (damping_a_ > 0) damping_force_row(stencils_.bottom, 0, kdx_.data(), kdy_.data());
       interface_row(compute_energy);
     } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
-      if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_.data(), kdy_.data());
+      if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_top_.data(), kdy_top_.data());
       absorbing_top_row(uxm, uym, compute_energy);
     } else if (damping_a_ > 0) {
       damped_interior_row(j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, compute_energy,
@@ -294,16 +296,16 @@ void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool 
   const double* ux0 = u_.x.row(j);
   const double* uy0 = u_.y.row(j);
   const double* z = zero_row_.data() + 1;
-  const bool damped = damping_a_ > 0; // then kdx_, kdy_ hold the row's damping force
+  const bool damped = damping_a_ > 0; // then kdx_top_, kdy_top_ hold the row's damping force
   double dissipated = 0, kinetic = 0, strain = 0;
   for_each_node_force(
       stencils_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
-        const double fx = damped ? kx + kdx_[i] : kx, fy = damped ? ky + kdy_[i] : ky;
+        const double fx = damped ? kx + kdx_top_[i] : kx, fy = damped ? ky + kdy_top_[i] : ky;
         const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * fx) / (1 + a_x);
         const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * fy) / (1 + a_y);
         const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
         dissipated += dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid);
-        if (damped) dissipated += dt_ * (kdx_[i] * vx_mid + kdy_[i] * vy_mid);
+        if (damped) dissipated += dt_ * (kdx_top_[i] * vx_mid + kdy_top_[i] * vy_mid);
         vx[i] = vx_new;
         vy[i] = vy_new;
         if (compute_energy) {

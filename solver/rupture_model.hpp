@@ -85,9 +85,11 @@ private:
   double dx_, height_, dt_, stable_dt_;
   MeshStencils stencils_;
   VectorField u_, v_;
-  double damping_a_ = 0;              // a = zeta dx / c_s [s]; 0: undamped, w_ unused
-  VectorField w_;                     // u + a v^{n-1/2}, with the damping on
-  std::vector<double> kdx_, kdy_;     // damping force row of the interface / absorbing top
+  double damping_a_ = 0;          // a = zeta dx / c_s [s]; 0: undamped, w_ unused
+  VectorField w_;                 // u + a v^{n-1/2}, with the damping on
+  std::vector<double> kdx_, kdy_; // damping force row of the interface
+  // ... and of the absorbing top: a row of its own, another thread may be on the interface.
+  std::vector<double> kdx_top_, kdy_top_;
   std::vector<double> zero_row_;      // nx + 2 zeros, a neighbour for boundary rows
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   std::vector<double> kx0_, ky0_;     // K u on the interface row
