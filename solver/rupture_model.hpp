@@ -24,6 +24,7 @@
 #include "solver/interface_law.hpp"
 #include "solver/nodal_field.hpp"
 #include "solver/params.hpp"
+#include "solver/quiet_columns.hpp"
 #include "solver/stencil.hpp"
 #include "solver/thread_team.hpp"
 
@@ -59,6 +60,11 @@ public:
   // the mesh damping on, also recomputes w = u + a v from them.
   void activate_all_rows();
   double damping_coefficient() const { return damping_a_; } // a [s]
+  // Skip the quiet far field (rows and columns that hold exact zeros; on by default). Off,
+  // every node is swept at every step: the same bits, slower (for tests).
+  void set_skip_quiet(bool on) { skip_quiet_ = on; }
+  // The columns of row j that may be non-zero after the last step (solver/quiet_columns.hpp).
+  ColumnRange active_columns(int j) const { return columns_[j]; }
 
   double node_mass(int j) const; // lumped mass of a node of row j [kg/m]
 
@@ -67,18 +73,19 @@ private:
     int begin, end;
   };
   void sweep_rows(RowRange rows, bool compute_energy, std::vector<double>& scratch);
+  // The columns of each row this step sweeps, into next_columns_ (rows [0, rows)).
+  void plan_columns(int rows);
   void reserve_scratch(int members);
   void interface_row(bool compute_energy);
   void absorbing_top_row(const double* uxm, const double* uym, bool compute_energy);
-  void damped_interior_row(int j, const NodeStencil& s, bool compute_energy,
+  void damped_interior_row(int j, const NodeStencil& s, ColumnRange cols, bool compute_energy,
                            std::vector<double>& scratch);
   // K w - K u (= a K v^{n-1/2}) of the row j into dx, dy, from the rows of u and w.
   void damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const;
   void update_displacement_row(int j);
   void update_damping_row(int j); // w = u + a v on row j, with its ghosts
   // Row j's kinetic and strain energy from its per-node terms, summed in node order.
-  void store_row_energy(int j, const double* kin, const double* str);
-  bool row_is_zero(int j) const;
+  void store_row_energy(int j, const double* kin, const double* str, int count);
 
   SimulationParams params_;
   int nx_, ny_;
@@ -101,6 +108,9 @@ private:
   std::vector<std::vector<double>> energy_scratch_; // per team member: 2 rows of energy terms
   long step_ = 0;
   int active_rows_ = 1; // rows >= active_rows_ hold exact zeros in u and v
+  bool skip_quiet_ = true;
+  std::vector<ColumnRange> columns_;      // per row: u and v are exact zeros outside
+  std::vector<ColumnRange> next_columns_; // per row: the columns this step sweeps
 };
 
 } // namespace slipfront
