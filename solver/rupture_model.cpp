@@ -195,12 +195,15 @@ void RuptureModel::plan_columns(int rows) {
   const bool absorbing = params_.top == TopBoundary::absorbing;
   if (!skip_quiet_) {
     std::fill(next_columns_.begin(), next_columns_.begin() + rows, ColumnRange{0, nx_});
+    swept_node_updates_ += (long long)rows * nx_;
     return;
   }
   grow_column_ranges(columns_, 1, rows, nx_, next_columns_);
   // The interface and the absorbing top rows are always swept whole (one row each).
   next_columns_[0] = ColumnRange{0, nx_};
   if (absorbing && rows == ny_) next_columns_[ny_ - 1] = ColumnRange{0, nx_};
+  for (int j = 0; j < rows; ++j)
+    swept_node_updates_ += next_columns_[j].size();
 }
 
 void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<double>& scratch) {

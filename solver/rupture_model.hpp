@@ -65,6 +65,8 @@ public:
   void set_skip_quiet(bool on) { skip_quiet_ = on; }
   // The columns of row j that may be non-zero after the last step (solver/quiet_columns.hpp).
   ColumnRange active_columns(int j) const { return columns_[j]; }
+  // Node updates the steps so far have made (the nodes they swept; bulk rows' columns).
+  long long swept_node_updates() const { return swept_node_updates_; }
 
   double node_mass(int j) const; // lumped mass of a node of row j [kg/m]
 
@@ -111,6 +113,7 @@ private:
   bool skip_quiet_ = true;
   std::vector<ColumnRange> columns_;      // per row: u and v are exact zeros outside
   std::vector<ColumnRange> next_columns_; // per row: the columns this step sweeps
+  long long swept_node_updates_ = 0;
 };
 
 } // namespace slipfront
