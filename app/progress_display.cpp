@@ -32,10 +32,11 @@ std::string format_progress(const Progress& p) {
   const int filled = static_cast<int>(fraction * bar_width);
   std::string bar(bar_width, '.');
   bar.replace(0, filled, filled, '#');
-  char text[160];
-  std::snprintf(text, sizeof text, "[%s] %5.1f%%  t = %.3g / %.3g s  %.0f steps/s  ETA %s",
-                bar.c_str(), 100.0 * fraction, p.time, p.duration, p.steps_per_s,
-                format_duration(p.eta_s).c_str());
+  char text[224];
+  std::snprintf(text, sizeof text,
+                "[%s] %5.1f%%  t = %.3g / %.3g s  step %ld / %ld  %.0f steps/s  wall %s  ETA %s",
+                bar.c_str(), 100.0 * fraction, p.time, p.duration, p.step, p.total_steps,
+                p.steps_per_s, format_duration(p.wall_s).c_str(), format_duration(p.eta_s).c_str());
   return text;
 }
 

@@ -11,7 +11,8 @@
 
 namespace slipfront::app {
 
-// One line: "[#####.....]  42.0%  t = 6.72 / 16 s  1234 steps/s  ETA 0:12".
+// One line: "[#####.....]  42.0%  t = 6.72 / 16 s  step 934 / 2224  1234 steps/s  wall 0:01
+// ETA 0:01" (steps/s and the ETA from the rate since the last report).
 std::string format_progress(const Progress& progress);
 
 // The last line of a run, also when it stopped early on arrest: "done: arrested at

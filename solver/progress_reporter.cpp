@@ -17,15 +17,23 @@ void ProgressReporter::after_step(long n) {
   if (!on_progress_) return;
   const double wall = wall_seconds();
   if (!(wall - last_report_ >= interval_)) return;
+  // The rate since the last report (a step's cost grows as the waves spread over the
+  // block, so the mean since the start would promise too early an end in a long run);
+  // the mean at the first report, or if the last one is too recent to time.
+  const double window = wall - last_report_;
+  const long window_steps = n + 1 - last_report_step_;
+  const bool recent = last_report_step_ > 0 && window >= kMinRateWindowSeconds;
+  const double rate = recent ? window_steps / window : (n + 1) / std::max(wall, 1e-9);
   last_report_ = wall;
-  Progress pr{(n + 1) * dt_,
-              duration_,
-              n + 1,
-              total_steps_,
-              double(n + 1) / total_steps_,
-              wall,
-              (n + 1) / std::max(wall, 1e-9),
-              0.0};
+  last_report_step_ = n + 1;
+  Progress pr;
+  pr.time = (n + 1) * dt_;
+  pr.duration = duration_;
+  pr.step = n + 1;
+  pr.total_steps = total_steps_;
+  pr.fraction = double(n + 1) / total_steps_;
+  pr.wall_s = wall;
+  pr.steps_per_s = rate;
   pr.eta_s = (total_steps_ - n - 1) / std::max(pr.steps_per_s, 1e-9);
   on_progress_(pr);
 }

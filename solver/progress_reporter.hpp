@@ -1,5 +1,7 @@
 // Progress of a run through RunHooks::on_progress: after a step at most every
 // progress_interval_s of wall time, and once at the end. Also the run's wall clock.
+// steps_per_s and the ETA are from the rate since the last report (the mean at the first
+// report and at the end).
 #pragma once
 
 #include "solver/simulation.hpp"
@@ -28,6 +30,9 @@ private:
   long total_steps_;
   Clock::time_point started_;
   double last_report_ = -1e9;
+  long last_report_step_ = 0; // steps done at the last report
+  // Shorter windows time too few steps for a steady rate (thread hand-offs, load).
+  static constexpr double kMinRateWindowSeconds = 0.2;
 };
 
 } // namespace slipfront

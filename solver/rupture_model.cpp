@@ -40,6 +40,8 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
     w_ = VectorField(nx_, ny_);
     kdx_.assign(nx_, 0.0);
     kdy_.assign(nx_, 0.0);
+    kdx_top_.assign(nx_, 0.0);
+    kdy_top_.assign(nx_, 0.0);
   }
   zero_row_.assign(nx_ + 2, 0.0);
   load1_.assign(nx_, 0.0);
@@ -52,6 +54,8 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   row_kinetic_.assign(ny_, 0.0);
   row_strain_.assign(ny_, 0.0);
   row_dissipated_.assign(ny_, 0.0);
+  columns_.assign(ny_, ColumnRange{});
+  next_columns_.assign(ny_, ColumnRange{});
 }
 
 void RuptureModel::reserve_scratch(int members) {
@@ -61,6 +65,7 @@ void RuptureModel::reserve_scratch(int members) {
 
 void RuptureModel::activate_all_rows() {
   active_rows_ = ny_;
+  columns_.assign(ny_, ColumnRange{0, nx_});
   if (damping_a_ > 0)
     for (int j = 0; j < ny_; ++j)
       update_damping_row(j);
@@ -95,27 +100,34 @@ void RuptureModel::damping_force_row(const NodeStencil& s, int j, double* dx, do
   });
 }
 
-void RuptureModel::damped_interior_row(int j, const NodeStencil& s, bool compute_energy,
-                                       std::vector<double>& scratch) {
+void RuptureModel::damped_interior_row(int j, const NodeStencil& s, ColumnRange cols,
+                                       bool compute_energy, std::vector<double>& scratch) {
   const double* z = zero_row_.data() + 1;
-  const auto u = neighbour_rows(u_, j, ny_, z);
-  const auto w = neighbour_rows(w_, j, ny_, z);
+  auto u = neighbour_rows(u_, j, ny_, z);
+  auto w = neighbour_rows(w_, j, ny_, z);
+  for (int k = 0; k < 6; ++k) { // from the first column swept on
+    u[k] += cols.begin;
+    w[k] += cols.begin;
+  }
+  const int n = cols.size();
   double* kin = compute_energy ? scratch.data() : nullptr;
   double* str = compute_energy ? scratch.data() + nx_ : nullptr;
   double* dis = scratch.data() + 2 * nx_;
   stencil_damped_velocity_update(s, u[0], u[1], u[2], u[3], u[4], u[5], w[0], w[1], w[2], w[3],
-                                 w[4], w[5], v_.x.row(j), v_.y.row(j), nx_, dt_, node_mass(j), dis,
-                                 kin, str);
+                                 w[4], w[5], v_.x.row(j) + cols.begin, v_.y.row(j) + cols.begin, n,
+                                 dt_, node_mass(j), dis, kin, str);
   double dis_sum = 0;
-  for (int i = 0; i < nx_; ++i)
+  for (int i = 0; i < n; ++i)
     dis_sum += dis[i];
   row_dissipated_[j] = dis_sum;
-  if (compute_energy) store_row_energy(j, kin, str);
+  if (compute_energy) store_row_energy(j, kin, str, n);
 }
 
-void RuptureModel::store_row_energy(int j, const double* kin, const double* str) {
+// The nodes left out of a sum hold exact zeros, whose terms are +0: leaving them out of
+// the sum in node order changes no bit of it.
+void RuptureModel::store_row_energy(int j, const double* kin, const double* str, int count) {
   double kin_sum = 0, str_sum = 0;
-  for (int i = 0; i < nx_; ++i) {
+  for (int i = 0; i < count; ++i) {
     kin_sum += kin[i];
     str_sum += str[i];
   }
@@ -141,12 +153,12 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
   }
 
   // Rows at and above active_rows_ + 1 are exact zeros and stay so in this step.
-  const int rows = std::min(ny_, active_rows_ + 1);
+  const int rows = skip_quiet_ ? std::min(ny_, active_rows_ + 1) : ny_;
+  plan_columns(rows);
   const int members = rows >= 2 * team.size() ? team.size() : 1;
   reserve_scratch(members);
-  auto chunk = [&](int m) {
-    return RowRange{int(long(rows) * m / members), int(long(rows) * (m + 1) / members)};
-  };
+  const std::vector<int> bands = balanced_row_bands(next_columns_, rows, members);
+  auto chunk = [&](int m) { return RowRange{bands[m], bands[m + 1]}; };
   team.run([&](int member, int) {
     if (member < members) sweep_rows(chunk(member), compute_energy, energy_scratch_[member]);
   });
@@ -157,7 +169,9 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
     update_displacement_row(r.begin);
     if (r.end - 1 > r.begin) update_displacement_row(r.end - 1);
   }
-  if (rows > active_rows_ && !row_is_zero(rows - 1)) active_rows_ = rows;
+  for (int j = 0; j < rows; ++j)
+    columns_[j] = trim_column_range(u_, v_, j, next_columns_[j]);
+  if (rows > active_rows_ && !columns_[rows - 1].empty()) active_rows_ = rows;
 
   // Sum the per-row terms in row order: the same result for any number of threads.
   double dissipated = 0;
@@ -177,16 +191,35 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
   ++step_;
 }
 
+void RuptureModel::plan_columns(int rows) {
+  const bool absorbing = params_.top == TopBoundary::absorbing;
+  if (!skip_quiet_) {
+    std::fill(next_columns_.begin(), next_columns_.begin() + rows, ColumnRange{0, nx_});
+    swept_node_updates_ += (long long)rows * nx_;
+    return;
+  }
+  grow_column_ranges(columns_, 1, rows, nx_, next_columns_);
+  // The interface and the absorbing top rows are always swept whole (one row each).
+  next_columns_[0] = ColumnRange{0, nx_};
+  if (absorbing && rows == ny_) next_columns_[ny_ - 1] = ColumnRange{0, nx_};
+  for (int j = 0; j < rows; ++j)
+    swept_node_updates_ += next_columns_[j].size();
+}
+
 void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<double>& scratch) {
   const double* z = zero_row_.data() + 1;
   for (int j = range.begin; j < range.end; ++j) {
-    const double* uxm = j > 0 ? u_.x.row(j - 1) : z;
-    const double* uym = j > 0 ? u_.y.row(j - 1) : z;
-    const double* uxp = j < ny_ - 1 ? u_.x.row(j + 1) : z;
-    const double* uyp = j < ny_ - 1 ? u_.y.row(j + 1) : z;
-    const double* ux0 = u_.x.row(j);
-    const double* uy0 = u_.y.row(j);
+    const ColumnRange cols = next_columns_[j];
+    const int b = cols.begin, n = cols.size(); // the bulk rows sweep columns [b, b + n)
+    const double* uxm = (j > 0 ? u_.x.row(j - 1) : z) + b;
+    const double* uym = (j > 0 ? u_.y.row(j - 1) : z) + b;
+    const double* uxp = (j < ny_ - 1 ? u_.x.row(j + 1) : z) + b;
+    const double* uyp = (j < ny_ - 1 ? u_.y.row(j + 1) : z) + b;
+    const double* ux0 = u_.x.row(j) + b;
+    const double* uy0 = u_.y.row(j) + b;
     row_dissipated_[j] = 0.0;
+    row_kinetic_[j] = 0.0;
+    row_strain_[j] = 0.0;
     if (j == 0) {
       for_each_node_force(stencils_.bottom, uxm, uym, ux0, uy0, uxp, uyp, nx_,
                           [&](int i, double kx, double ky) {
@@ -196,23 +229,23 @@ void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<d
       if (damping_a_ > 0) damping_force_row(stencils_.bottom, 0, kdx_.data(), kdy_.data());
       interface_row(compute_energy);
     } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
-      if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_.data(), kdy_.data());
+      if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_top_.data(), kdy_top_.data());
       absorbing_top_row(uxm, uym, compute_energy);
     } else if (damping_a_ > 0) {
-      damped_interior_row(j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, compute_energy,
-                          scratch);
+      damped_interior_row(j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, cols,
+                          compute_energy, scratch);
     } else {
       const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
       if (!compute_energy) {
-        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
-                                node_mass(j));
+        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b,
+                                n, dt_, node_mass(j));
       } else {
         // Per-node energy terms into this member's scratch rows, then summed in node order.
         double* kin = scratch.data();
         double* str = scratch.data() + nx_;
-        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j), v_.y.row(j), nx_, dt_,
-                                node_mass(j), kin, str);
-        store_row_energy(j, kin, str);
+        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b,
+                                n, dt_, node_mass(j), kin, str);
+        store_row_energy(j, kin, str, n);
       }
     }
     // Row j-1 is no longer read by this member: advance its displacement now, while it is
@@ -294,16 +327,16 @@ void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool 
   const double* ux0 = u_.x.row(j);
   const double* uy0 = u_.y.row(j);
   const double* z = zero_row_.data() + 1;
-  const bool damped = damping_a_ > 0; // then kdx_, kdy_ hold the row's damping force
+  const bool damped = damping_a_ > 0; // then kdx_top_, kdy_top_ hold the row's damping force
   double dissipated = 0, kinetic = 0, strain = 0;
   for_each_node_force(
       stencils_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
-        const double fx = damped ? kx + kdx_[i] : kx, fy = damped ? ky + kdy_[i] : ky;
+        const double fx = damped ? kx + kdx_top_[i] : kx, fy = damped ? ky + kdy_top_[i] : ky;
         const double vx_new = (vx[i] * (1 - a_x) - dt_ / m * fx) / (1 + a_x);
         const double vy_new = (vy[i] * (1 - a_y) - dt_ / m * fy) / (1 + a_y);
         const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
         dissipated += dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid);
-        if (damped) dissipated += dt_ * (kdx_[i] * vx_mid + kdy_[i] * vy_mid);
+        if (damped) dissipated += dt_ * (kdx_top_[i] * vx_mid + kdy_top_[i] * vy_mid);
         vx[i] = vx_new;
         vy[i] = vy_new;
         if (compute_energy) {
@@ -319,15 +352,17 @@ void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool 
 }
 
 void RuptureModel::update_displacement_row(int j) {
-  double* __restrict ux = u_.x.row(j);
-  double* __restrict uy = u_.y.row(j);
-  const double* __restrict vx = v_.x.row(j);
-  const double* __restrict vy = v_.y.row(j);
+  // Outside the columns swept this step v is zero and u stays as it is.
+  const int b = next_columns_[j].begin, n = next_columns_[j].size();
+  double* __restrict ux = u_.x.row(j) + b;
+  double* __restrict uy = u_.y.row(j) + b;
+  const double* __restrict vx = v_.x.row(j) + b;
+  const double* __restrict vy = v_.y.row(j) + b;
   if (damping_a_ > 0) { // u and w = u + a v in one pass
-    double* __restrict wx = w_.x.row(j);
-    double* __restrict wy = w_.y.row(j);
+    double* __restrict wx = w_.x.row(j) + b;
+    double* __restrict wy = w_.y.row(j) + b;
     const double a = damping_a_;
-    for (int i = 0; i < nx_; ++i) {
+    for (int i = 0; i < n; ++i) {
       ux[i] += dt_ * vx[i];
       uy[i] += dt_ * vy[i];
       wx[i] = ux[i] + a * vx[i];
@@ -336,21 +371,13 @@ void RuptureModel::update_displacement_row(int j) {
     w_.x.refresh_ghosts(j);
     w_.y.refresh_ghosts(j);
   } else {
-    for (int i = 0; i < nx_; ++i) {
+    for (int i = 0; i < n; ++i) {
       ux[i] += dt_ * vx[i];
       uy[i] += dt_ * vy[i];
     }
   }
   u_.x.refresh_ghosts(j);
   u_.y.refresh_ghosts(j);
-}
-
-bool RuptureModel::row_is_zero(int j) const {
-  const double* rows[4] = {u_.x.row(j), u_.y.row(j), v_.x.row(j), v_.y.row(j)};
-  for (const double* r : rows)
-    for (int i = 0; i < nx_; ++i)
-      if (r[i] != 0.0) return false;
-  return true;
 }
 
 } // namespace slipfront

@@ -24,6 +24,7 @@
 #include "solver/interface_law.hpp"
 #include "solver/nodal_field.hpp"
 #include "solver/params.hpp"
+#include "solver/quiet_columns.hpp"
 #include "solver/stencil.hpp"
 #include "solver/thread_team.hpp"
 
@@ -59,6 +60,13 @@ public:
   // the mesh damping on, also recomputes w = u + a v from them.
   void activate_all_rows();
   double damping_coefficient() const { return damping_a_; } // a [s]
+  // Skip the quiet far field (rows and columns that hold exact zeros; on by default). Off,
+  // every node is swept at every step: the same bits, slower (for tests).
+  void set_skip_quiet(bool on) { skip_quiet_ = on; }
+  // The columns of row j that may be non-zero after the last step (solver/quiet_columns.hpp).
+  ColumnRange active_columns(int j) const { return columns_[j]; }
+  // Node updates the steps so far have made (the nodes they swept; bulk rows' columns).
+  long long swept_node_updates() const { return swept_node_updates_; }
 
   double node_mass(int j) const; // lumped mass of a node of row j [kg/m]
 
@@ -67,27 +75,30 @@ private:
     int begin, end;
   };
   void sweep_rows(RowRange rows, bool compute_energy, std::vector<double>& scratch);
+  // The columns of each row this step sweeps, into next_columns_ (rows [0, rows)).
+  void plan_columns(int rows);
   void reserve_scratch(int members);
   void interface_row(bool compute_energy);
   void absorbing_top_row(const double* uxm, const double* uym, bool compute_energy);
-  void damped_interior_row(int j, const NodeStencil& s, bool compute_energy,
+  void damped_interior_row(int j, const NodeStencil& s, ColumnRange cols, bool compute_energy,
                            std::vector<double>& scratch);
   // K w - K u (= a K v^{n-1/2}) of the row j into dx, dy, from the rows of u and w.
   void damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const;
   void update_displacement_row(int j);
   void update_damping_row(int j); // w = u + a v on row j, with its ghosts
   // Row j's kinetic and strain energy from its per-node terms, summed in node order.
-  void store_row_energy(int j, const double* kin, const double* str);
-  bool row_is_zero(int j) const;
+  void store_row_energy(int j, const double* kin, const double* str, int count);
 
   SimulationParams params_;
   int nx_, ny_;
   double dx_, height_, dt_, stable_dt_;
   MeshStencils stencils_;
   VectorField u_, v_;
-  double damping_a_ = 0;              // a = zeta dx / c_s [s]; 0: undamped, w_ unused
-  VectorField w_;                     // u + a v^{n-1/2}, with the damping on
-  std::vector<double> kdx_, kdy_;     // damping force row of the interface / absorbing top
+  double damping_a_ = 0;          // a = zeta dx / c_s [s]; 0: undamped, w_ unused
+  VectorField w_;                 // u + a v^{n-1/2}, with the damping on
+  std::vector<double> kdx_, kdy_; // damping force row of the interface
+  // ... and of the absorbing top: a row of its own, another thread may be on the interface.
+  std::vector<double> kdx_top_, kdy_top_;
   std::vector<double> zero_row_;      // nx + 2 zeros, a neighbour for boundary rows
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   std::vector<double> kx0_, ky0_;     // K u on the interface row
@@ -99,6 +110,10 @@ private:
   std::vector<std::vector<double>> energy_scratch_; // per team member: 2 rows of energy terms
   long step_ = 0;
   int active_rows_ = 1; // rows >= active_rows_ hold exact zeros in u and v
+  bool skip_quiet_ = true;
+  std::vector<ColumnRange> columns_;      // per row: u and v are exact zeros outside
+  std::vector<ColumnRange> next_columns_; // per row: the columns this step sweeps
+  long long swept_node_updates_ = 0;
 };
 
 } // namespace slipfront

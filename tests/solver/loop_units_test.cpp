@@ -13,8 +13,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace slipfront {
 namespace {
@@ -223,6 +225,26 @@ TEST(ProgressReporter, ThrottledAfterStepsAndAlwaysAtTheEnd) {
   ProgressReporter silent(RunHooks{}, 1.0, 0.1, 10, ProgressReporter::Clock::now());
   silent.after_step(0);
   silent.final_report(1, 0.1, 1.0);
+}
+
+// After the first report, steps/s and the ETA come from the steps since the last report, not
+// from the mean since the start (which a run whose steps grow dearer would over-estimate).
+TEST(ProgressReporter, RateAndEtaFromTheStepsSinceTheLastReport) {
+  std::vector<Progress> seen;
+  RunHooks hooks;
+  hooks.on_progress = [&](const Progress& p) { seen.push_back(p); };
+  hooks.progress_interval_s = 0.25;
+  // The run started 1000 s ago: its mean rate stays far below one step per second.
+  const auto started = ProgressReporter::Clock::now() - std::chrono::seconds(1000);
+  ProgressReporter progress(hooks, 1.0, 1e-6, 1000000, started);
+  progress.after_step(0);
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_LT(seen[0].steps_per_s, 0.01); // the first report: the mean, 1 step in 1000 s
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  progress.after_step(99999); // 99999 steps in the last ~0.3 s
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_GT(seen[1].steps_per_s, 1000.0); // the mean would be about 100 steps/s
+  EXPECT_NEAR(seen[1].eta_s, (1000000 - 100000) / seen[1].steps_per_s, 1e-6 * seen[1].eta_s);
 }
 
 } // namespace

@@ -1,0 +1,144 @@
+// Skipping the quiet far field (solver/quiet_columns.hpp) changes no bit: the paper's scene
+// stepped with the skipping and with every node swept at every step gives the same u, v,
+// interface and energy, with and without the mesh damping and the absorbing top; and the
+// skipping does leave columns out.
+#include "scene_support.hpp"
+
+#include "solver/quiet_columns.hpp"
+#include "solver/rupture_model.hpp"
+#include "solver/thread_team.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace slipfront {
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+
+long differing_nodes(const VectorField& a, const VectorField& b) {
+  long n = 0;
+  for (int j = 0; j < a.x.ny(); ++j)
+    for (int i = -1; i <= a.x.nx(); ++i) // with the ghost nodes
+      n += !same_bits(a.x.at(i, j), b.x.at(i, j)) + !same_bits(a.y.at(i, j), b.y.at(i, j));
+  return n;
+}
+
+long differing(const std::vector<double>& a, const std::vector<double>& b) {
+  long n = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    n += !same_bits(a[i], b[i]);
+  return n;
+}
+
+struct Variant {
+  double mesh_damping;
+  TopBoundary top;
+  double height;
+};
+
+void expect_skipping_changes_no_bit(const Variant& variant) {
+  SimulationParams p = verification::paper_scene(10.0, 5e-5, 2);
+  p.fe.mesh_damping = variant.mesh_damping;
+  p.top = variant.top;
+  p.geometry.height = variant.height;
+  RuptureModel skipping(p), sweeping(p);
+  sweeping.set_skip_quiet(false);
+  ThreadTeam team(2);
+  const int nx = skipping.nx();
+  long narrow_rows = 0; // row-steps that left some, not all, of the row's columns out
+  long swept_nodes = 0; // node-updates the skipping made
+  for (int n = 0; n < 600; ++n) {
+    const bool energy = n % 7 == 0;
+    skipping.step(team, energy);
+    sweeping.step(team, energy);
+    for (int j = 0; j < skipping.ny(); ++j) {
+      const int width = skipping.active_columns(j).size();
+      narrow_rows += width > 0 && width < nx;
+      swept_nodes += width;
+    }
+    if (n % 50 != 49) continue;
+    ASSERT_EQ(differing_nodes(skipping.displacement(), sweeping.displacement()), 0) << "step " << n;
+    ASSERT_EQ(differing_nodes(skipping.velocity(), sweeping.velocity()), 0) << "step " << n;
+    const InterfaceFields &a = skipping.interface(), &b = sweeping.interface();
+    ASSERT_EQ(differing(a.velocity, b.velocity) + differing(a.slip, b.slip) +
+                  differing(a.opening, b.opening) + differing(a.shear_traction, b.shear_traction) +
+                  differing(a.pressure, b.pressure) + differing(a.strength, b.strength),
+              0)
+        << "step " << n;
+    const EnergyBalance &ea = skipping.energy(), &eb = sweeping.energy();
+    ASSERT_TRUE(same_bits(ea.kinetic, eb.kinetic)) << "step " << n;
+    ASSERT_TRUE(same_bits(ea.strain, eb.strain)) << "step " << n;
+    ASSERT_TRUE(same_bits(ea.external_work, eb.external_work)) << "step " << n;
+    ASSERT_TRUE(same_bits(ea.dissipated, eb.dissipated)) << "step " << n;
+  }
+  EXPECT_GT(skipping.energy().kinetic, 0.0); // the rupture is running
+  // The waves have not crossed the 40 m period in 600 steps (c_p dt / dx < 1).
+  EXPECT_GT(narrow_rows, 0);
+  verification::measure(
+      "quiet skipping (n_d=10, damping %g, top %s, h %g m, 600 steps): "
+      "row-steps partly swept = %ld, nodes swept = %.3f of all",
+      variant.mesh_damping, variant.top == TopBoundary::absorbing ? "absorbing" : "traction",
+      variant.height, narrow_rows, double(swept_nodes) / (600.0 * nx * skipping.ny()));
+}
+
+TEST(QuietSkipping, ChangesNoBitOnThePaperScene) {
+  expect_skipping_changes_no_bit({0.0, TopBoundary::traction, 20.0});
+}
+
+TEST(QuietSkipping, ChangesNoBitWithMeshDampingAndAbsorbingTop) {
+  // A low block: the waves reach the absorbing top within the run.
+  expect_skipping_changes_no_bit({0.1, TopBoundary::absorbing, 3.0});
+}
+
+TEST(QuietSkipping, ChangesNoBitWithATractionTopTheWavesReach) {
+  expect_skipping_changes_no_bit({0.0, TopBoundary::traction, 3.0});
+}
+
+TEST(QuietColumns, GrowByOneColumnAndCoverTheRowAtThePeriodicBoundary) {
+  const int nx = 20;
+  std::vector<ColumnRange> now(4), next(4);
+  now[0] = {8, 10};
+  now[1] = {9, 11};
+  now[2] = {};
+  now[3] = {0, 3}; // touches column 0: its neighbour nx - 1 may change
+  grow_column_ranges(now, 1, 4, nx, next);
+  EXPECT_EQ(next[1].begin, 7); // hull of rows 0..2 = [8, 11), grown
+  EXPECT_EQ(next[1].end, 12);
+  EXPECT_EQ(next[2].begin, 0); // rows 1..3 touch column 0
+  EXPECT_EQ(next[2].end, nx);
+  EXPECT_EQ(next[3].size(), nx);
+  grow_column_ranges(now, 1, 2, nx, next); // rows >= 2 are zeros
+  EXPECT_EQ(next[1].begin, 7);
+  EXPECT_EQ(next[1].end, 12);
+}
+
+TEST(QuietColumns, TrimToTheNonZeroColumns) {
+  VectorField u(10, 2), v(10, 2);
+  EXPECT_TRUE(trim_column_range(u, v, 1, {0, 10}).empty());
+  u.y.at(3, 1) = 1e-300;
+  v.x.at(6, 1) = -2.0;
+  const ColumnRange r = trim_column_range(u, v, 1, {1, 9});
+  EXPECT_EQ(r.begin, 3);
+  EXPECT_EQ(r.end, 7);
+}
+
+TEST(QuietColumns, BandsBalanceTheWorkAndKeepTwoRowsEach) {
+  std::vector<ColumnRange> ranges(100, ColumnRange{});
+  for (int j = 0; j < 10; ++j)
+    ranges[j] = {0, 1000}; // the work sits in the first rows
+  const std::vector<int> bands = balanced_row_bands(ranges, 100, 2);
+  ASSERT_EQ(bands.size(), 3u);
+  EXPECT_EQ(bands[0], 0);
+  EXPECT_EQ(bands[2], 100);
+  EXPECT_GT(bands[1], 2);
+  EXPECT_LT(bands[1], 10); // the first band holds the wide rows only
+  const std::vector<int> tight = balanced_row_bands(ranges, 6, 3);
+  EXPECT_EQ(tight, (std::vector<int>{0, 2, 4, 6}));
+}
+
+} // namespace
+} // namespace slipfront
