@@ -2,11 +2,11 @@
 // GET /studies/{id}/speed-accuracy, GET /convergence-map (docs/studies-api.md).
 #include "server/handlers.hpp"
 #include "server/job_id.hpp"
-#include "server/probe_record.hpp"
 #include "server/responses.hpp"
 #include "server/study_progress.hpp"
 
 #include "api/json_number.hpp"
+#include "api/result_reader.hpp"
 #include "api/study_analysis.hpp"
 
 #include <charconv>
@@ -181,18 +181,18 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
     groups[r.regime].push_back(&r);
     by_id[r.job_id] = &r;
   }
-  std::map<std::string, std::optional<ProbeRecord>> records; // read each file once
+  std::map<std::string, std::optional<api::ProbeRecord>> records; // read each file once
   std::map<std::string, std::string> record_errors;
-  auto record_of = [&](const std::string& job_id) -> const std::optional<ProbeRecord>& {
+  auto record_of = [&](const std::string& job_id) -> const std::optional<api::ProbeRecord>& {
     auto it = records.find(job_id);
     if (it != records.end()) return it->second;
     const auto* row = by_id.at(job_id);
     std::string why;
-    std::optional<ProbeRecord> rec;
+    std::optional<api::ProbeRecord> rec;
     if (row->result_path.empty())
       why = "no result file (job " + row->job_status + ")";
     else
-      rec = read_probe_record(ctx.data_dir + "/" + row->result_path, why);
+      rec = api::read_probe_record(ctx.data_dir + "/" + row->result_path, why);
     record_errors[job_id] = why;
     return records.emplace(job_id, std::move(rec)).first->second;
   };

@@ -1,6 +1,6 @@
+#include "server/db/database.hpp"
 #include "server/job_id.hpp"
 #include "server/job_store.hpp"
-#include "server/sqlite_db.hpp"
 
 #include "temp_dir.hpp"
 
@@ -68,7 +68,7 @@ TEST(JobStore, MigratesAnOlderSchemaKeepingItsJobs) {
   const auto path = dir.file("db.sqlite");
   {
     Database raw(path); // a database written by a build at schema version 1
-    raw.exec(schema_migrations()[0]);
+    raw.exec(schema_migrations()[0].sql);
     raw.set_user_version(1);
     raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at) VALUES "
              "('0123456789abcdef0123456789abcdef', 'queued', '{}', 'h', '2024')");
