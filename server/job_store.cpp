@@ -8,31 +8,6 @@
 
 namespace slipfront::server {
 
-namespace {
-
-std::optional<double> metric(const nlohmann::json& metrics, const char* key,
-                             const char* nested = nullptr) {
-  if (!metrics.is_object()) return std::nullopt;
-  auto it = metrics.find(key);
-  if (it == metrics.end()) return std::nullopt;
-  if (nested) {
-    if (!it->is_object()) return std::nullopt;
-    auto inner = it->find(nested);
-    if (inner == it->end() || !inner->is_number()) return std::nullopt;
-    return inner->get<double>();
-  }
-  if (!it->is_number()) return std::nullopt;
-  double v = it->get<double>();
-  if (!std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-std::optional<double> either(std::optional<double> a, std::optional<double> b) {
-  return a ? a : b;
-}
-
-} // namespace
-
 std::int64_t JobStore::insert(const Job& job) {
   auto db = db_.lock();
   Transaction tx(*db);
@@ -152,6 +127,7 @@ bool JobStore::finish(const std::string& id, const RunRecord& r) {
       "progress_updated_at = ?5, progress_fraction = CASE WHEN ?2 = 'succeeded' THEN 1.0 "
       "ELSE progress_fraction END, progress_steps = COALESCE(?9, progress_steps), "
       "progress_time = COALESCE(?10, progress_time) WHERE id = ?1 AND status = 'running'");
+  const api::MetricsRow row = r.metrics_row ? *r.metrics_row : api::metrics_row(r.metrics);
   auto opt = [](const std::string& v) {
     return v.empty() ? std::nullopt : std::optional<std::string>(v);
   };
@@ -163,11 +139,11 @@ bool JobStore::finish(const std::string& id, const RunRecord& r) {
       .bind(6, opt(r.result.path))
       .bind(7, static_cast<std::int64_t>(r.result.size))
       .bind(8, opt(r.result.sha256));
-  if (auto steps = metric(r.metrics, "steps"))
-    s.bind(9, static_cast<std::int64_t>(*steps));
+  if (row.steps)
+    s.bind(9, *row.steps);
   else
     s.bind_null(9);
-  s.bind(10, metric(r.metrics, "simulated_time"));
+  s.bind(10, row.simulated_time);
   s.run();
   if (s.changes() != 1) return false;
   if (!r.metrics.is_null()) {
@@ -175,26 +151,21 @@ bool JobStore::finish(const std::string& id, const RunRecord& r) {
         db->prepare("INSERT OR REPLACE INTO metrics (job_id, " + metrics_columns() +
                     ") SELECT ?1, L, n_d, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14 "
                     "FROM jobs WHERE id = ?1");
-    const auto& x = r.metrics;
-    auto outcome = x.contains("outcome") && x["outcome"].is_string()
-                       ? std::optional<std::string>(x["outcome"].get<std::string>())
-                       : std::nullopt;
-    auto steps = metric(x, "steps");
     m.bind(1, id)
-        .bind(2, metric(x, "arrest_position"))
-        .bind(3, metric(x, "propagation_distance"))
-        .bind(4, metric(x, "arrival_time_at_probe"))
-        .bind(5, either(metric(x, "max_rupture_speed"), metric(x, "rupture_speed", "max")))
-        .bind(6, either(metric(x, "mean_rupture_speed"), metric(x, "rupture_speed", "mean")))
-        .bind(7, metric(x, "max_slip_velocity"))
-        .bind(8, outcome)
-        .bind(9, metric(x, "energy_error"))
-        .bind(10, either(metric(x, "wall_time_s"), std::optional<double>(r.wall_time_s)));
-    if (steps)
-      m.bind(11, static_cast<std::int64_t>(*steps));
+        .bind(2, row.arrest_position)
+        .bind(3, row.propagation_distance)
+        .bind(4, row.arrival_time_at_probe)
+        .bind(5, row.max_rupture_speed)
+        .bind(6, row.mean_rupture_speed)
+        .bind(7, row.max_slip_velocity)
+        .bind(8, row.outcome)
+        .bind(9, row.energy_error)
+        .bind(10, row.wall_time_s.value_or(r.wall_time_s));
+    if (row.steps)
+      m.bind(11, *row.steps);
     else
       m.bind_null(11);
-    m.bind(12, metric(x, "dt"))
+    m.bind(12, row.dt)
         .bind(13, r.metrics.dump())
         .bind(14, r.front.is_null() ? std::nullopt : std::optional<std::string>(r.front.dump()))
         .run();

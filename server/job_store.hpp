@@ -4,6 +4,7 @@
 // (`WHERE status = ...`) so the transitions of job.hpp hold even when a cancel races a worker.
 #pragma once
 
+#include "api/metrics_row.hpp"
 #include "server/db/database.hpp"
 #include "server/db/migrations.hpp"
 #include "server/db/store_db.hpp"
@@ -54,6 +55,9 @@ struct RunRecord {
   ResultFile result;
   double wall_time_s = 0.0;
   std::string finished_at;
+  // The columns of the metrics row. Unset (a run whose metrics arrived as JSON only): read
+  // from `metrics` (api::metrics_row).
+  std::optional<api::MetricsRow> metrics_row;
 };
 
 class JobStore {

@@ -151,6 +151,7 @@ void WorkerPool::run_one(const std::string& id) {
     RunReport report = runner_.run(*job, output, hooks);
     cancelled = report.cancelled;
     record.metrics = report.metrics;
+    record.metrics_row = report.metrics_row;
     record.front = report.front;
     if (report.failed) {
       record.status = JobStatus::failed;
