@@ -214,9 +214,10 @@ std::vector<Job> JobStore::queued_jobs() {
   return jobs;
 }
 
-JobPage JobStore::list(const JobFilter& f) {
+ListQuery list_query(const JobFilter& f) {
   std::string where = "WHERE 1 = 1";
-  SqlParams params;
+  ListQuery q;
+  SqlParams& params = q.params;
   if (!f.statuses.empty()) {
     where += " AND j.status IN (";
     for (std::size_t i = 0; i < f.statuses.size(); ++i)
@@ -252,13 +253,23 @@ JobPage JobStore::list(const JobFilter& f) {
       order += sort_sql(key, params) + ", ";
   }
   order += "j.seq DESC";
-  int limit = std::max(1, f.limit);
-  std::string tail = " LIMIT " + std::to_string(limit + 1);
+  std::string tail = " LIMIT " + std::to_string(std::max(1, f.limit) + 1);
   if (!f.sort.empty() && f.offset > 0) tail += " OFFSET " + std::to_string(f.offset);
-  auto db = db_.lock();
-  auto s = db->prepare(select_jobs() + where + order + tail);
+  q.sql = select_jobs() + where + order + tail;
+  return q;
+}
+
+void bind_all(Statement& s, const SqlParams& params) {
   for (std::size_t i = 0; i < params.values.size(); ++i)
     std::visit([&](const auto& v) { s.bind(static_cast<int>(i + 1), v); }, params.values[i]);
+}
+
+JobPage JobStore::list(const JobFilter& f) {
+  const ListQuery q = list_query(f);
+  const int limit = std::max(1, f.limit);
+  auto db = db_.lock();
+  auto s = db->prepare(q.sql);
+  bind_all(s, q.params);
   JobPage page;
   while (s.step()) {
     if (static_cast<int>(page.jobs.size()) == limit) {

@@ -60,9 +60,18 @@ struct RunRecord {
   std::optional<api::MetricsRow> metrics_row;
 };
 
+// The SELECT of JobStore::list(filter), one row more than the page (a next page exists when
+// it comes back), and its parameters: for EXPLAIN QUERY PLAN in tests.
+struct ListQuery {
+  std::string sql;
+  SqlParams params;
+};
+ListQuery list_query(const JobFilter& filter);
+void bind_all(Statement& statement, const SqlParams& params); // ?1, ?2, ... in order
+
 class JobStore {
 public:
-  static constexpr int schema_version = 5;
+  static constexpr int schema_version = 6;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).

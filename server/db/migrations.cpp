@@ -13,6 +13,7 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m3_studies(), migrations::m3_fill_scene_hashes},
       {migrations::m4_study_cancelled()},
       {migrations::m5_slurm_executor()},
+      {migrations::m6_search_indexes()},
   };
   return list;
 }

@@ -13,5 +13,6 @@ const char* m3_studies();
 void m3_fill_scene_hashes(Database& db);
 const char* m4_study_cancelled();
 const char* m5_slurm_executor();
+const char* m6_search_indexes();
 
 } // namespace slipfront::server::migrations
