@@ -183,7 +183,8 @@ void WorkerPool::run_one(const std::string& id) {
                          nullptr,
                          {},
                          record.wall_time_s,
-                         record.finished_at};
+                         record.finished_at,
+                         std::nullopt};
     }
     bool was_running = false;
     if (!store_final(id, record, was_running)) {
