@@ -83,6 +83,15 @@ herr_t close_object(hid_t id) {
 
 } // namespace
 
+QuietErrors::QuietErrors() {
+  H5Eget_auto2(H5E_DEFAULT, &old_func_, &old_data_);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+QuietErrors::~QuietErrors() {
+  H5Eset_auto2(H5E_DEFAULT, old_func_, old_data_);
+}
+
 void check(herr_t status, const std::string& what) {
   if (status < 0) fail(what);
 }

@@ -28,6 +28,20 @@ private:
 void check(herr_t status, const std::string& what);
 hid_t check_id(hid_t id, const std::string& what);
 
+// While alive, HDF5 prints nothing on a failure (the caller reports it); restores the
+// previous error handler when destroyed.
+class QuietErrors {
+public:
+  QuietErrors();
+  ~QuietErrors();
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+
+private:
+  H5E_auto2_t old_func_ = nullptr;
+  void* old_data_ = nullptr;
+};
+
 // An owned identifier (file, group, dataset, dataspace, type or property list).
 class Handle {
 public:

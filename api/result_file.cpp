@@ -2,6 +2,7 @@
 
 #include "api/hdf5_objects.hpp"
 #include "api/job_spec.hpp"
+#include "api/result_layout.hpp"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -24,18 +25,22 @@ namespace {
 constexpr hsize_t max_chunk_rows = 64;
 constexpr hsize_t max_chunk_bytes = 1 << 20;
 
-// The float64 interface fields, in the order of InterfaceSample, with their units.
+// The float64 interface fields (names and units: api/result_layout.hpp), each with the
+// member of InterfaceSample that holds its values.
 struct FieldInfo {
   const char* name;
   const char* units;
   const std::vector<double> InterfaceSample::*values;
 };
-constexpr std::array<FieldInfo, 5> interface_fields = {{
-    {"slip_velocity", "m/s", &InterfaceSample::slip_velocity},
-    {"slip", "m", &InterfaceSample::slip},
-    {"shear_traction", "Pa", &InterfaceSample::shear_traction},
-    {"contact_pressure", "Pa", &InterfaceSample::contact_pressure},
-    {"strength", "Pa", &InterfaceSample::strength},
+constexpr FieldInfo field_info(std::size_t i, const std::vector<double> InterfaceSample::*values) {
+  return {layout::float_fields[i].name, layout::float_fields[i].units, values};
+}
+constexpr std::array<FieldInfo, layout::float_fields.size()> interface_fields = {{
+    field_info(0, &InterfaceSample::slip_velocity),
+    field_info(1, &InterfaceSample::slip),
+    field_info(2, &InterfaceSample::shear_traction),
+    field_info(3, &InterfaceSample::contact_pressure),
+    field_info(4, &InterfaceSample::strength),
 }};
 
 std::string iso_time_now() {
@@ -69,7 +74,7 @@ struct ResultFileWriter::Impl {
   std::vector<std::int8_t> state_buffer;
 
   void open_file();
-  void create_interface(const InterfaceLayout& layout);
+  void create_interface(const InterfaceLayout& grid);
   void flush();
   void write_records(const RunResult& result);
   void attach_interface_scales();
@@ -85,25 +90,26 @@ void ResultFileWriter::Impl::open_file() {
   file = hdf5::create_file(temp_path);
 }
 
-void ResultFileWriter::Impl::create_interface(const InterfaceLayout& layout) {
+void ResultFileWriter::Impl::create_interface(const InterfaceLayout& grid) {
   open_file();
   if (interface_group.valid()) throw std::logic_error("ResultFileWriter::begin called twice");
-  nodes = layout.x1.size();
+  nodes = grid.x1.size();
   const hsize_t row_bytes = std::max<hsize_t>(nodes, 1) * sizeof(double);
   chunk_rows = std::clamp<hsize_t>(max_chunk_bytes / row_bytes, 1, max_chunk_rows);
 
-  interface_group = hdf5::create_group(file.get(), "interface");
+  interface_group = hdf5::create_group(file.get(), layout::interface_group);
   const hid_t group = interface_group.get();
-  hdf5::write_attribute(group, "sample_interval", layout.sample_interval);
+  hdf5::write_attribute(group, "sample_interval", grid.sample_interval);
   hdf5::write_attribute(group, "layout", "time-major: [n_samples, n_nodes]");
-  hdf5::write_vector(group, "x1", layout.x1, "m");
-  time = hdf5::RowAppender(group, "time", H5T_NATIVE_DOUBLE, std::nullopt, chunk_rows, "s");
+  hdf5::write_vector(group, layout::x1, grid.x1, "m");
+  time = hdf5::RowAppender(group, layout::time, H5T_NATIVE_DOUBLE, std::nullopt, chunk_rows, "s");
   for (std::size_t f = 0; f < interface_fields.size(); ++f) {
     fields[f] = hdf5::RowAppender(group, interface_fields[f].name, H5T_NATIVE_DOUBLE, nodes,
                                   chunk_rows, interface_fields[f].units);
     field_buffers[f].reserve(chunk_rows * nodes);
   }
-  state = hdf5::RowAppender(group, "state", H5T_NATIVE_INT8, nodes, chunk_rows, "1");
+  state = hdf5::RowAppender(group, layout::state_field.name, H5T_NATIVE_INT8, nodes, chunk_rows,
+                            layout::state_field.units);
   hdf5::write_attribute(state.id(), "meaning", "0 = stick, 1 = slip, 2 = open");
   state_buffer.reserve(chunk_rows * nodes);
 }
@@ -124,62 +130,77 @@ void ResultFileWriter::Impl::flush() {
 void ResultFileWriter::Impl::write_records(const RunResult& result) {
   const hid_t root = file.get();
   {
-    hdf5::Handle front = hdf5::create_group(root, "front");
-    hdf5::write_vector(front.get(), "x1", result.front.x1, "m");
-    hdf5::write_vector(front.get(), "arrival_time", result.front.arrival_time, "s");
-    hdf5::write_vector(front.get(), "rupture_speed", result.front.rupture_speed, "m/s");
+    hdf5::Handle front = hdf5::create_group(root, layout::front_group);
+    hdf5::write_vector(front.get(), layout::x1, result.front.x1, "m");
+    hdf5::write_vector(front.get(), layout::front_arrival_time, result.front.arrival_time, "s");
+    hdf5::write_vector(front.get(), layout::front_rupture_speed, result.front.rupture_speed, "m/s");
   }
   {
     const ProbeRecords& p = result.probes;
-    hdf5::Handle probes = hdf5::create_group(root, "probes");
-    hdf5::write_attribute(probes.get(), "arrival_x1", p.arrival_node_x1);
-    hdf5::write_attribute(probes.get(), "spectrum_x1", p.spectrum_node_x1);
-    hdf5::write_vector(probes.get(), "time", p.time, "s");
-    hdf5::write_vector(probes.get(), "slip_velocity_arrival", p.slip_velocity_arrival, "m/s");
-    hdf5::write_vector(probes.get(), "slip_velocity_spectrum", p.slip_velocity_spectrum, "m/s");
-    hdf5::write_vector(probes.get(), "strength_spectrum", p.strength_spectrum, "Pa");
+    hdf5::Handle probes = hdf5::create_group(root, layout::probes_group);
+    hdf5::write_attribute(probes.get(), layout::probe_arrival_x1, p.arrival_node_x1);
+    hdf5::write_attribute(probes.get(), layout::probe_spectrum_x1, p.spectrum_node_x1);
+    hdf5::write_vector(probes.get(), layout::time, p.time, "s");
+    hdf5::write_vector(probes.get(), layout::probe_slip_velocity_arrival, p.slip_velocity_arrival,
+                       "m/s");
+    hdf5::write_vector(probes.get(), layout::probe_slip_velocity_spectrum, p.slip_velocity_spectrum,
+                       "m/s");
+    hdf5::write_vector(probes.get(), layout::probe_strength_spectrum, p.strength_spectrum, "Pa");
   }
   {
     const EnergyRecords& e = result.energy;
-    hdf5::Handle energy = hdf5::create_group(root, "energy");
-    hdf5::write_vector(energy.get(), "time", e.time, "s");
-    hdf5::write_vector(energy.get(), "kinetic", e.kinetic, "J/m");
-    hdf5::write_vector(energy.get(), "strain", e.strain, "J/m");
-    hdf5::write_vector(energy.get(), "external_work", e.external_work, "J/m");
-    hdf5::write_vector(energy.get(), "dissipated", e.dissipated, "J/m");
+    hdf5::Handle energy = hdf5::create_group(root, layout::energy_group);
+    hdf5::write_vector(energy.get(), layout::time, e.time, "s");
+    hdf5::write_vector(energy.get(), layout::energy_kinetic, e.kinetic, "J/m");
+    hdf5::write_vector(energy.get(), layout::energy_strain, e.strain, "J/m");
+    hdf5::write_vector(energy.get(), layout::energy_external_work, e.external_work, "J/m");
+    hdf5::write_vector(energy.get(), layout::energy_dissipated, e.dissipated, "J/m");
   }
 }
 
 // /interface/time and /interface/x1 become the coordinates of every interface field
 // (dimension 0: time, 1: x1); /front/x1, /probes/time and /energy/time those of their groups.
 void ResultFileWriter::Impl::attach_interface_scales() {
+  using layout::path;
   const hid_t group = interface_group.get();
-  hdf5::Handle x1 = hdf5::open_dataset(group, "x1");
-  hdf5::make_scale(x1.get(), "x1");
-  hdf5::make_scale(time.id(), "time");
-  for (std::size_t f = 0; f < interface_fields.size(); ++f) {
-    const std::string name = std::string("/interface/") + interface_fields[f].name;
-    hdf5::attach_scale(fields[f].id(), time.id(), 0, "/interface/time to " + name);
-    hdf5::attach_scale(fields[f].id(), x1.get(), 1, "/interface/x1 to " + name);
-  }
-  hdf5::attach_scale(state.id(), time.id(), 0, "/interface/time to /interface/state");
-  hdf5::attach_scale(state.id(), x1.get(), 1, "/interface/x1 to /interface/state");
-  const hid_t root = file.get();
-  const std::pair<const char*, std::vector<const char*>> groups[] = {
-      {"/front/x1", {"/front/arrival_time", "/front/rupture_speed"}},
-      {"/probes/time",
-       {"/probes/slip_velocity_arrival", "/probes/slip_velocity_spectrum",
-        "/probes/strength_spectrum"}},
-      {"/energy/time",
-       {"/energy/kinetic", "/energy/strain", "/energy/external_work", "/energy/dissipated"}},
+  hdf5::Handle x1 = hdf5::open_dataset(group, layout::x1);
+  hdf5::make_scale(x1.get(), layout::x1);
+  hdf5::make_scale(time.id(), layout::time);
+  const std::string time_path = path(layout::interface_group, layout::time);
+  const std::string x1_path = path(layout::interface_group, layout::x1);
+  auto attach_both = [&](hid_t dataset, const char* name) {
+    const std::string field_path = path(layout::interface_group, name);
+    hdf5::attach_scale(dataset, time.id(), 0, time_path + " to " + field_path);
+    hdf5::attach_scale(dataset, x1.get(), 1, x1_path + " to " + field_path);
   };
-  for (const auto& [scale_path, dataset_paths] : groups) {
+  for (std::size_t f = 0; f < interface_fields.size(); ++f)
+    attach_both(fields[f].id(), interface_fields[f].name);
+  attach_both(state.id(), layout::state_field.name);
+  const hid_t root = file.get();
+  struct Scaled {
+    const char* group;
+    const char* scale;
+    std::vector<const char*> datasets;
+  };
+  const Scaled groups[] = {
+      {layout::front_group, layout::x1, {layout::front_arrival_time, layout::front_rupture_speed}},
+      {layout::probes_group,
+       layout::time,
+       {layout::probe_slip_velocity_arrival, layout::probe_slip_velocity_spectrum,
+        layout::probe_strength_spectrum}},
+      {layout::energy_group,
+       layout::time,
+       {layout::energy_kinetic, layout::energy_strain, layout::energy_external_work,
+        layout::energy_dissipated}},
+  };
+  for (const auto& g : groups) {
+    const std::string scale_path = path(g.group, g.scale);
     hdf5::Handle scale = hdf5::open_dataset(root, scale_path);
-    const std::string scale_name(scale_path);
-    hdf5::make_scale(scale.get(), scale_name.substr(scale_name.rfind('/') + 1));
-    for (const char* path : dataset_paths) {
-      hdf5::Handle dataset = hdf5::open_dataset(root, path);
-      hdf5::attach_scale(dataset.get(), scale.get(), 0, scale_name + " to " + path);
+    hdf5::make_scale(scale.get(), g.scale);
+    for (const char* name : g.datasets) {
+      const std::string dataset_path = path(g.group, name);
+      hdf5::Handle dataset = hdf5::open_dataset(root, dataset_path);
+      hdf5::attach_scale(dataset.get(), scale.get(), 0, scale_path + " to " + dataset_path);
     }
   }
 }

@@ -1,6 +1,7 @@
 #include "api/result_xdmf.hpp"
 
 #include "api/hdf5_objects.hpp"
+#include "api/result_layout.hpp"
 
 #include <unistd.h>
 
@@ -13,17 +14,6 @@
 namespace slipfront::api {
 
 namespace {
-
-struct Field {
-  const char* name;
-  const char* number_type; // XDMF NumberType
-  int precision;           // bytes
-};
-
-const Field fields[] = {
-    {"slip_velocity", "Float", 8},    {"slip", "Float", 8},     {"shear_traction", "Float", 8},
-    {"contact_pressure", "Float", 8}, {"strength", "Float", 8}, {"state", "Char", 1},
-};
 
 std::vector<hsize_t> shape_of(hid_t file, const std::string& path) {
   hdf5::Handle dataset = hdf5::open_dataset(file, path);
@@ -70,10 +60,12 @@ std::string result_xdmf(const std::string& h5_path, const std::string& h5_refere
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   hdf5::Handle file(hdf5::check_id(H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
                                    "opening result file " + h5_path));
-  const auto x1 = shape_of(file.get(), "/interface/x1");
-  const auto time = shape_of(file.get(), "/interface/time");
+  const std::string x1_path = layout::path(layout::interface_group, layout::x1);
+  const std::string time_path = layout::path(layout::interface_group, layout::time);
+  const auto x1 = shape_of(file.get(), x1_path);
+  const auto time = shape_of(file.get(), time_path);
   if (x1.size() != 1 || time.size() != 1)
-    throw std::runtime_error(h5_path + ": /interface/x1 and /interface/time must be 1-D");
+    throw std::runtime_error(h5_path + ": " + x1_path + " and " + time_path + " must be 1-D");
   const std::string n_nodes = std::to_string(x1[0]);
   const std::string n_samples = std::to_string(time[0]);
   const std::string plane = n_samples + " " + n_nodes;
@@ -89,17 +81,17 @@ std::string result_xdmf(const std::string& h5_path, const std::string& h5_refere
   x += "    <Grid Name=\"interface\" GridType=\"Uniform\">\n";
   x += "      <Topology TopologyType=\"2DRectMesh\" Dimensions=\"" + plane + "\"/>\n";
   x += "      <Geometry GeometryType=\"VXVY\">\n";
-  x += "        " + data_item(n_nodes, "Float", 8, h5, "/interface/x1") + "\n";
-  x += "        " + data_item(n_samples, "Float", 8, h5, "/interface/time") + "\n";
+  x += "        " + data_item(n_nodes, "Float", 8, h5, x1_path) + "\n";
+  x += "        " + data_item(n_samples, "Float", 8, h5, time_path) + "\n";
   x += "      </Geometry>\n";
-  for (const auto& f : fields) {
-    const std::string path = std::string("/interface/") + f.name;
+  for (const auto& f : layout::all_fields) {
+    const std::string path = layout::path(layout::interface_group, f.name);
     const auto dims = shape_of(file.get(), path);
     if (dims.size() != 2 || dims[0] != time[0] || dims[1] != x1[0])
       throw std::runtime_error(h5_path + ": " + path + " is not [n_samples, n_nodes]");
     x += std::string("      <Attribute Name=\"") + f.name +
          "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
-    x += "        " + data_item(plane, f.number_type, f.precision, h5, path) + "\n";
+    x += "        " + data_item(plane, f.xdmf_number_type, f.precision, h5, path) + "\n";
     x += "      </Attribute>\n";
   }
   x += "    </Grid>\n";

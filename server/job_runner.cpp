@@ -23,6 +23,7 @@ RunReport SolverJobRunner::run(const Job& job, const std::string& output_path,
   RunReport report;
   report.cancelled = out.result.cancelled;
   report.metrics = out.metrics;
+  report.metrics_row = api::metrics_row(out.result.metrics);
   report.front = api::front_json(out.result);
   report.result = {out.result_path, out.result_size, out.result_sha256};
   if (!report.cancelled && out.result.metrics.outcome == Outcome::diverged) {

@@ -2,12 +2,14 @@
 // through api::run_job; tests of the HTTP layer may inject another runner.
 #pragma once
 
+#include "api/metrics_row.hpp"
 #include "server/job.hpp"
 #include "solver/simulation.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace slipfront::server {
@@ -19,6 +21,8 @@ struct RunReport {
   nlohmann::json metrics; // null if none
   nlohmann::json front;   // null if none
   ResultFile result;      // path as given to run(), size and sha256; empty path if none
+  // The metrics row columns, from the solver Metrics; unset: read from `metrics`.
+  std::optional<api::MetricsRow> metrics_row;
 };
 
 class JobRunner {

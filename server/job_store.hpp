@@ -1,14 +1,15 @@
-// The SQLite store of jobs and their metrics: one database file in the data dir, WAL mode,
-// a busy timeout, a schema versioned by PRAGMA user_version and upgraded by migrations.
-//
-// One connection guarded by a mutex: every call is one short transaction, so HTTP handlers
-// and workers can share it. Every state change is a conditional UPDATE (`WHERE status = ...`)
-// so the transitions of job.hpp hold even when a cancel races a worker.
+// The jobs and metrics tables of the jobs database (server/db/: the connection, the
+// migrations, the column lists). Every call is one short transaction on the shared
+// connection, so HTTP handlers and workers can share it. Every state change is a conditional UPDATE
+// (`WHERE status = ...`) so the transitions of job.hpp hold even when a cancel races a worker.
 #pragma once
 
+#include "api/metrics_row.hpp"
+#include "server/db/database.hpp"
+#include "server/db/migrations.hpp"
+#include "server/db/store_db.hpp"
 #include "server/job.hpp"
 #include "server/run_query.hpp"
-#include "server/sqlite_db.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -54,16 +55,28 @@ struct RunRecord {
   ResultFile result;
   double wall_time_s = 0.0;
   std::string finished_at;
+  // The columns of the metrics row. Unset (a run whose metrics arrived as JSON only): read
+  // from `metrics` (api::metrics_row).
+  std::optional<api::MetricsRow> metrics_row;
 };
+
+// The SELECT of JobStore::list(filter), one row more than the page (a next page exists when
+// it comes back), and its parameters: for EXPLAIN QUERY PLAN in tests.
+struct ListQuery {
+  std::string sql;
+  SqlParams params;
+};
+ListQuery list_query(const JobFilter& filter);
+void bind_all(Statement& statement, const SqlParams& params); // ?1, ?2, ... in order
 
 class JobStore {
 public:
-  static constexpr int schema_version = 5;
+  static constexpr int schema_version = 6;
 
-  // Refuses (throws) a zero-length database file and, unless `integrity_check` is false, a
-  // database that fails PRAGMA quick_check: the server must not start on a damaged file.
-  explicit JobStore(const std::string& path, bool integrity_check = true);
-  ~JobStore();
+  // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
+  // damaged file; brings the schema up to date).
+  explicit JobStore(const std::string& path, bool integrity_check = true)
+      : db_(path, integrity_check) {}
 
   // Inserts a new job (status queued, or succeeded with cached_from set: then the metrics
   // and front of cached_from are copied in the same transaction). Returns its seq.
@@ -108,31 +121,16 @@ public:
 
   std::string path() const { return db_.path(); }
 
-  // Runs `f(Database&)` holding the store's lock: for the other tables of the same database
-  // (server/study_store.hpp). `f` should be one short transaction.
-  template <class F> auto with_db(F&& f) {
-    std::lock_guard lock(mutex_);
-    return f(db_);
-  }
+  // The connection, shared with the other tables of the database (server/study_store.hpp).
+  StoreDb& db() { return db_; }
   // On a connection of its own (the health check's): never waits behind a long listing
-  // holding the store's lock.
-  std::int64_t user_version();
+  // holding the connection's lock.
+  std::int64_t user_version() { return db_.user_version(); }
 
 private:
-  void migrate();
   std::optional<Job> query_one(const std::string& where, const std::vector<std::string>& args);
 
-  std::mutex mutex_;
-  Database db_;
-  std::mutex probe_mutex_;
-  std::optional<Database> probe_db_; // opened after the migrations
+  StoreDb db_;
 };
-
-// The schema migrations: entry i takes user_version i to i + 1.
-const std::vector<std::string>& schema_migrations();
-
-// Part of migration 2 -> 3: jobs.scene_hash of every row that has none, recomputed from its
-// stored canonical spec (api::scene_hash).
-void fill_scene_hashes(Database& db);
 
 } // namespace slipfront::server

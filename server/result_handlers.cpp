@@ -1,9 +1,9 @@
 // GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/result.xdmf (its XDMF
 // sidecar), /jobs/{id}/metrics, /jobs/{id}/front, /jobs/{id}/fields/{name} (a window of an
 // /interface field as JSON).
+#include "api/result_reader.hpp"
 #include "api/result_xdmf.hpp"
 #include "server/byte_range.hpp"
-#include "server/field_slice.hpp"
 #include "server/handlers.hpp"
 #include "server/job_id.hpp"
 #include "server/range_file.hpp"
@@ -40,16 +40,44 @@ Response not_finished(const Request& req, const Job& job, const std::string& wha
                               " yet");
 }
 
-Response download(ServerContext& ctx, RequestContext& rc) {
+Response result_gone(const Request& req, const Job& job) {
+  return problem_response(req, http::status::gone,
+                          "the result file of job " + job.id +
+                              " is no longer on the server (deleted from its data dir); "
+                              "submit the job again with fresh=true to recompute it");
+}
+
+// A finished job's result file on disk.
+struct ResultOnDisk {
+  Job job;
+  std::string path; // absolute: the stored path is relative to the data dir
+};
+
+// The result file of the path's job, or the response to send instead: 404 (unknown job, or
+// a job that ended without a result file), 409 (not finished yet), 410 (file deleted).
+std::variant<ResultOnDisk, Response> find_result(ServerContext& ctx, RequestContext& rc) {
   auto found = find_job(ctx, rc);
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
-  const Job& job = std::get<Job>(found);
+  Job& job = std::get<Job>(found);
   const auto& req = rc.request;
   if (!is_final(job.status)) return not_finished(req, job, "result file");
   if (job.status != JobStatus::succeeded || job.result.path.empty())
     return problem_response(req, http::status::not_found,
                             "job " + job.id + " has no result file (" + to_string(job.status) +
                                 (job.error.empty() ? "" : ": " + job.error) + ")");
+  // The stored path is relative to the data dir and made of a validated id only.
+  std::string path = ctx.data_dir + "/" + job.result.path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return result_gone(req, job);
+  return ResultOnDisk{std::move(job), std::move(path)};
+}
+
+Response download(ServerContext& ctx, RequestContext& rc) {
+  auto found = find_result(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<ResultOnDisk>(found).job;
+  const std::string& path = std::get<ResultOnDisk>(found).path;
+  const auto& req = rc.request;
   const std::string etag = "\"" + job.result.sha256 + "\"";
   if (req.count(http::field::if_none_match) &&
       etag_list_matches(req[http::field::if_none_match], etag)) {
@@ -59,16 +87,10 @@ Response download(ServerContext& ctx, RequestContext& rc) {
     res.keep_alive(req.keep_alive());
     return res;
   }
-  // The stored path is relative to the data dir and made of a validated id only.
-  const std::string path = ctx.data_dir + "/" + job.result.path;
   beast::error_code ec;
   RangeFile file;
   file.open(path.c_str(), beast::file_mode::scan, ec);
-  if (ec == beast::errc::no_such_file_or_directory)
-    return problem_response(req, http::status::gone,
-                            "the result file of job " + job.id +
-                                " is no longer on the server (deleted from its data dir); "
-                                "submit the job again with fresh=true to recompute it");
+  if (ec == beast::errc::no_such_file_or_directory) return result_gone(req, job);
   if (ec)
     return problem_response(req, http::status::internal_server_error,
                             "result file of job " + job.id + " cannot be opened: " + ec.message());
@@ -117,20 +139,11 @@ Response download(ServerContext& ctx, RequestContext& rc) {
 // The XDMF sidecar of the result file, generated from it; it names the file "ID.h5" (the
 // download's file name), so both belong in one directory.
 Response xdmf(ServerContext& ctx, RequestContext& rc) {
-  auto found = find_job(ctx, rc);
+  auto found = find_result(ctx, rc);
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
-  const Job& job = std::get<Job>(found);
+  const Job& job = std::get<ResultOnDisk>(found).job;
+  const std::string& path = std::get<ResultOnDisk>(found).path;
   const auto& req = rc.request;
-  if (!is_final(job.status)) return not_finished(req, job, "result file");
-  if (job.status != JobStatus::succeeded || job.result.path.empty())
-    return problem_response(req, http::status::not_found,
-                            "job " + job.id + " has no result file (" + to_string(job.status) +
-                                ")");
-  const std::string path = ctx.data_dir + "/" + job.result.path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    return problem_response(req, http::status::gone,
-                            "the result file of job " + job.id + " is no longer on the server");
   std::string text;
   try {
     text = api::result_xdmf(path, job.id + ".h5");
@@ -164,7 +177,7 @@ Response front(ServerContext& ctx, RequestContext& rc) {
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
   const Job& job = std::get<Job>(found);
   if (!is_final(job.status)) return not_finished(rc.request, job, "front");
-  auto stored = ctx.store.front(job.id);
+  auto stored = ctx.service.front(job.id);
   if (!stored || stored->is_null())
     return problem_response(rc.request, http::status::not_found,
                             "job " + job.id + " has no front (" + to_string(job.status) + ")");
@@ -195,7 +208,7 @@ Response field(ServerContext& ctx, RequestContext& rc) {
   const auto& req = rc.request;
   const auto& name = rc.path_params.at("name");
   std::vector<api::FieldError> errors;
-  SliceWindow window;
+  api::SliceWindow window;
   for (const auto& [key, value] : rc.query) {
     if (key == "x1_min" || key == "x1_max" || key == "t_min" || key == "t_max") {
       auto v = finite_number(value);
@@ -228,28 +241,19 @@ Response field(ServerContext& ctx, RequestContext& rc) {
     errors.push_back({"/query/t_max", "must be >= t_min"});
   if (!errors.empty())
     return problem_response(req, http::status::bad_request, "invalid query parameters", errors);
-  if (slice_field_units(name).empty()) {
+  if (api::slice_field_units(name).empty()) {
     std::string known;
-    for (const auto& n : slice_field_names())
+    for (const auto& n : api::slice_field_names())
       known += (known.empty() ? "" : ", ") + n;
     return problem_response(req, http::status::not_found,
                             "no field '" + name.substr(0, 40) + "'; the fields are " + known);
   }
-  auto found = find_job(ctx, rc);
+  auto found = find_result(ctx, rc);
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
-  const Job& job = std::get<Job>(found);
-  if (!is_final(job.status)) return not_finished(req, job, "result file");
-  if (job.status != JobStatus::succeeded || job.result.path.empty())
-    return problem_response(req, http::status::not_found,
-                            "job " + job.id + " has no result file (" + to_string(job.status) +
-                                ")");
-  const std::string path = ctx.data_dir + "/" + job.result.path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    return problem_response(req, http::status::gone,
-                            "the result file of job " + job.id + " is no longer on the server");
+  const Job& job = std::get<ResultOnDisk>(found).job;
+  const std::string& path = std::get<ResultOnDisk>(found).path;
   std::string why;
-  auto slice = read_field_slice(path, name, window, why);
+  auto slice = api::read_field_slice(path, name, window, why);
   if (!slice)
     return problem_response(req, http::status::internal_server_error,
                             "the result file of job " + job.id + " cannot be read: " + why);

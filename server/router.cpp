@@ -1,9 +1,9 @@
 #include "server/router.hpp"
 
+#include "server/db/database.hpp"
 #include "server/log.hpp"
 #include "server/query_string.hpp"
 #include "server/responses.hpp"
-#include "server/sqlite_db.hpp"
 
 namespace slipfront::server {
 

@@ -122,7 +122,7 @@ void ServerApp::start() {
   else
     executor_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
 
-  context_.reset(new ServerContext{*service_, *store_, *queue_, stats_, tokens_, config_.data_dir,
+  context_.reset(new ServerContext{*service_, stats_, tokens_, config_.data_dir,
                                    executor_->slots(), config_.retry_after_s, draining_, *studies_,
                                    config_.min_free_bytes, executor_->name()});
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {

@@ -1,12 +1,9 @@
 // Everything the HTTP handlers use, owned by ServerApp. Handlers ask the services (jobs,
-// studies); `store` and `queue` remain for two reads not yet moved behind them (the front of
-// result_handlers.cpp, the queue limit of study_handlers.cpp).
+// studies), never the store, the queue or the running jobs directly.
 #pragma once
 
 #include "server/auth.hpp"
-#include "server/job_queue.hpp"
 #include "server/job_service.hpp"
-#include "server/job_store.hpp"
 #include "server/server_stats.hpp"
 #include "server/study_service.hpp"
 
@@ -18,8 +15,6 @@ namespace slipfront::server {
 
 struct ServerContext {
   JobService& service;
-  JobStore& store;
-  JobQueue& queue;
   ServerStats& stats;
   const std::optional<TokenTable>& tokens;
   std::string data_dir;

@@ -331,6 +331,7 @@ bool SlurmExecutor::collect(Tracked& t, const SlurmJobState& state) {
   }
 
   record.metrics = (*report)["metrics"];
+  record.metrics_row = api::metrics_row(record.metrics); // the report crossed a process boundary
   record.front = report->value("front", nlohmann::json());
   if (record.metrics.is_object() && record.metrics.contains("wall_time_s") &&
       record.metrics["wall_time_s"].is_number())

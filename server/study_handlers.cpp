@@ -2,11 +2,11 @@
 // GET /studies/{id}/speed-accuracy, GET /convergence-map (docs/studies-api.md).
 #include "server/handlers.hpp"
 #include "server/job_id.hpp"
-#include "server/probe_record.hpp"
 #include "server/responses.hpp"
 #include "server/study_progress.hpp"
 
 #include "api/json_number.hpp"
+#include "api/result_reader.hpp"
 #include "api/study_analysis.hpp"
 
 #include <charconv>
@@ -59,7 +59,7 @@ Response create_study(ServerContext& ctx, RequestContext& rc) {
   case Kind::queue_full: {
     auto res = problem_response(req, http::status::service_unavailable,
                                 "the queue has no room for this study's runs (limit " +
-                                    std::to_string(ctx.queue.limit()) + " jobs); retry later");
+                                    std::to_string(ctx.service.load().queue_limit) + " jobs); retry later");
     res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
     return res;
   }
@@ -188,7 +188,7 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
     std::optional<api::ProbeSeries> series;
     if (row->result_path.empty()) {
       why = "no result file (job " + row->job_status + ")";
-    } else if (auto rec = read_probe_record(ctx.data_dir + "/" + row->result_path, why)) {
+    } else if (auto rec = api::read_probe_record(ctx.data_dir + "/" + row->result_path, why)) {
       series = api::ProbeSeries{std::move(rec->time), std::move(rec->slip_velocity), rec->x1};
     }
     return series;

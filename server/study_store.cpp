@@ -91,7 +91,7 @@ api::StudyRun to_study_run(const StudyRunRow& row) {
 }
 
 void StudyStore::insert(const StudyRecord& st) {
-  jobs_.with_db([&](Database& db) {
+  db_.with_db([&](Database& db) {
     auto s = db.prepare("INSERT INTO studies (id, name, tags, kind, base_spec, request, "
                         "scene_hash, submitted_by, priority, fresh, created_at, updated_at, "
                         "status) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?11, ?12)");
@@ -113,7 +113,7 @@ void StudyStore::insert(const StudyRecord& st) {
 
 void StudyStore::add_run(const std::string& study_id, const std::string& job_id,
                          const std::string& regime, double L, double n_d) {
-  jobs_.with_db([&](Database& db) {
+  db_.with_db([&](Database& db) {
     auto s = db.prepare("INSERT OR IGNORE INTO study_runs (study_id, job_id, regime, L, n_d) "
                         "VALUES (?1, ?2, ?3, ?4, ?5)");
     s.bind(1, study_id).bind(2, job_id).bind(3, regime).bind(4, L).bind(5, n_d).run();
@@ -121,7 +121,7 @@ void StudyStore::add_run(const std::string& study_id, const std::string& job_id,
 }
 
 std::optional<StudyRecord> StudyStore::get(const std::string& id) {
-  return jobs_.with_db([&](Database& db) -> std::optional<StudyRecord> {
+  return db_.with_db([&](Database& db) -> std::optional<StudyRecord> {
     auto s = db.prepare(std::string("SELECT ") + study_columns + "WHERE id = ?1");
     s.bind(1, id);
     if (!s.step()) return std::nullopt;
@@ -131,7 +131,7 @@ std::optional<StudyRecord> StudyStore::get(const std::string& id) {
 
 std::vector<StudyRecord> StudyStore::list(int limit, std::optional<std::int64_t> before_seq,
                                           const std::string& status) {
-  return jobs_.with_db([&](Database& db) {
+  return db_.with_db([&](Database& db) {
     std::string sql = std::string("SELECT ") + study_columns + "WHERE 1 = 1";
     if (before_seq) sql += " AND seq < ?1";
     if (!status.empty()) sql += " AND status = ?2";
@@ -147,7 +147,7 @@ std::vector<StudyRecord> StudyStore::list(int limit, std::optional<std::int64_t>
 }
 
 std::vector<std::string> StudyStore::running_ids() {
-  return jobs_.with_db([&](Database& db) {
+  return db_.with_db([&](Database& db) {
     auto s = db.prepare("SELECT id FROM studies WHERE status = 'running' ORDER BY seq");
     std::vector<std::string> out;
     while (s.step())
@@ -158,7 +158,7 @@ std::vector<std::string> StudyStore::running_ids() {
 
 void StudyStore::set_status(const std::string& id, const std::string& status,
                             const std::string& at) {
-  jobs_.with_db([&](Database& db) {
+  db_.with_db([&](Database& db) {
     db.prepare("UPDATE studies SET status = ?2, updated_at = ?3 WHERE id = ?1")
         .bind(1, id)
         .bind(2, status)
@@ -168,7 +168,7 @@ void StudyStore::set_status(const std::string& id, const std::string& status,
 }
 
 std::vector<std::string> StudyStore::unsettled_cancelled_ids() {
-  return jobs_.with_db([&](Database& db) {
+  return db_.with_db([&](Database& db) {
     auto s = db.prepare(
         "SELECT s.id FROM studies s WHERE s.status = 'cancelled' AND (s.runs_done < s.runs_total "
         "OR EXISTS (SELECT 1 FROM study_runs r JOIN jobs j ON j.id = r.job_id "
@@ -181,7 +181,7 @@ std::vector<std::string> StudyStore::unsettled_cancelled_ids() {
 }
 
 std::vector<StudyRunRow> StudyStore::runs(const std::string& study_id) {
-  return jobs_.with_db([&](Database& db) {
+  return db_.with_db([&](Database& db) {
     auto s = db.prepare(std::string("SELECT ") + run_columns +
                         "FROM study_runs r JOIN jobs j ON j.id = r.job_id "
                         "LEFT JOIN metrics m ON m.job_id = j.id WHERE r.study_id = ?1 "
@@ -195,7 +195,7 @@ std::vector<StudyRunRow> StudyStore::runs(const std::string& study_id) {
 }
 
 std::vector<StudyRunRow> StudyStore::scene_runs(const std::string& scene_hash) {
-  return jobs_.with_db([&](Database& db) {
+  return db_.with_db([&](Database& db) {
     auto s = db.prepare(
         "SELECT j.id, '', j.L, j.n_d, 'pending', NULL, NULL, NULL, NULL, j.status, "
         "m.metrics_json, j.wall_time_s, j.memory_estimate_bytes, j.scene_hash, j.cached_from, "
@@ -212,7 +212,7 @@ std::vector<StudyRunRow> StudyStore::scene_runs(const std::string& scene_hash) {
 }
 
 std::string StudyStore::study_of_job(const std::string& job_id) {
-  return jobs_.with_db([&](Database& db) {
+  return db_.with_db([&](Database& db) {
     auto s = db.prepare("SELECT study_id FROM jobs WHERE id = ?1");
     s.bind(1, job_id);
     return s.step() ? s.text(0) : std::string();
@@ -220,7 +220,7 @@ std::string StudyStore::study_of_job(const std::string& job_id) {
 }
 
 void StudyStore::save_analysis(const StudyRecord& st, const std::vector<StudyRunRow>& runs) {
-  jobs_.with_db([&](Database& db) {
+  db_.with_db([&](Database& db) {
     Transaction tx(db);
     auto r = db.prepare("UPDATE study_runs SET convergence_status = ?3, partner_n_d = ?4, "
                         "propagation_distance_change = ?5, arrival_time_change = ?6, "

@@ -1,7 +1,7 @@
-// The studies and study_runs tables (migration 2 -> 3 in server/job_store.cpp), in the
-// jobs database and under the JobStore's lock. Convergence statuses, L_c and the analysis
-// JSON are stored when a run of the study finishes (StudySupervisor), so reading a study
-// is a few indexed SELECTs.
+// The studies and study_runs tables (migration 2 -> 3, server/db/migrations/m3_studies.cpp),
+// in the jobs database, on its shared connection (server/db/store_db.hpp). Convergence statuses,
+// L_c and the analysis JSON are stored when a run of the study finishes (StudySupervisor), so
+// reading a study is a few indexed SELECTs.
 #pragma once
 
 #include "api/study_analysis.hpp"
@@ -59,7 +59,7 @@ api::StudyRun to_study_run(const StudyRunRow& row);
 
 class StudyStore {
 public:
-  explicit StudyStore(JobStore& jobs) : jobs_(jobs) {}
+  explicit StudyStore(JobStore& jobs) : db_(jobs.db()) {}
 
   void insert(const StudyRecord& study);
   void add_run(const std::string& study_id, const std::string& job_id, const std::string& regime,
@@ -85,7 +85,7 @@ public:
   void save_analysis(const StudyRecord& study, const std::vector<StudyRunRow>& runs);
 
 private:
-  JobStore& jobs_;
+  StoreDb& db_;
 };
 
 } // namespace slipfront::server

@@ -151,6 +151,7 @@ void WorkerPool::run_one(const std::string& id) {
     RunReport report = runner_.run(*job, output, hooks);
     cancelled = report.cancelled;
     record.metrics = report.metrics;
+    record.metrics_row = report.metrics_row;
     record.front = report.front;
     if (report.failed) {
       record.status = JobStatus::failed;
@@ -182,7 +183,8 @@ void WorkerPool::run_one(const std::string& id) {
                          nullptr,
                          {},
                          record.wall_time_s,
-                         record.finished_at};
+                         record.finished_at,
+                         std::nullopt};
     }
     bool was_running = false;
     if (!store_final(id, record, was_running)) {

@@ -2,7 +2,7 @@
 // with the project's HDF5 helpers: values read back exactly, windows, the nearest node,
 // decimation within the budget, and the reasons of missing files and datasets.
 #include "api/hdf5_objects.hpp"
-#include "server/field_slice.hpp"
+#include "api/result_reader.hpp"
 #include "temp_dir.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +12,9 @@
 
 namespace slipfront::server {
 namespace {
+
+using api::read_field_slice;
+using api::SliceWindow;
 
 constexpr int rows = 30, cols = 50;
 double value(int r, int c) {

@@ -1,6 +1,6 @@
+#include "server/db/database.hpp"
 #include "server/job_id.hpp"
 #include "server/job_store.hpp"
-#include "server/sqlite_db.hpp"
 
 #include "temp_dir.hpp"
 
@@ -68,7 +68,7 @@ TEST(JobStore, MigratesAnOlderSchemaKeepingItsJobs) {
   const auto path = dir.file("db.sqlite");
   {
     Database raw(path); // a database written by a build at schema version 1
-    raw.exec(schema_migrations()[0]);
+    raw.exec(schema_migrations()[0].sql);
     raw.set_user_version(1);
     raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at) VALUES "
              "('0123456789abcdef0123456789abcdef', 'queued', '{}', 'h', '2024')");
@@ -303,4 +303,68 @@ TEST(JobStore, ReuseAndIdempotencyLookups) {
   Job dup = make_job("a");
   dup.idempotency_key = "key-1";
   EXPECT_THROW(store.insert(dup), SqliteError) << "the key is unique per user";
+}
+
+TEST(JobStore, MigrationToSixAddsTheSearchIndexes) {
+  TempDir dir("slipfront-store-");
+  const auto path = dir.file("db.sqlite");
+  Job job = make_job("indexed");
+  {
+    Database raw(path); // a database written by a build at schema version 5
+    for (int v = 0; v < 5; ++v)
+      raw.exec(schema_migrations()[static_cast<std::size_t>(v)].sql);
+    raw.set_user_version(5);
+    raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at) VALUES ('" + job.id +
+             "', 'succeeded', '{}', 'h', '2024')");
+    raw.exec("INSERT INTO metrics (job_id, arrest_position, metrics_json) VALUES ('" + job.id +
+             "', 12.5, '{}')");
+  }
+  JobStore store(path);
+  EXPECT_EQ(store.user_version(), 6);
+  EXPECT_EQ(store.user_version(), JobStore::schema_version);
+  Database raw(path);
+  const std::pair<const char*, const char*> indexes[] = {
+      {"metrics_arrest_position", "metrics"},
+      {"metrics_propagation_distance", "metrics"},
+      {"metrics_arrival_time_at_probe", "metrics"},
+      {"jobs_wall_time_s", "jobs"},
+      {"jobs_created_at", "jobs"},
+      {"jobs_finished_at", "jobs"}};
+  for (const auto& [name, table] : indexes) {
+    auto s = raw.prepare("SELECT tbl_name FROM sqlite_master WHERE type = 'index' AND name = ?1");
+    s.bind(1, std::string(name));
+    ASSERT_TRUE(s.step()) << name;
+    EXPECT_EQ(s.text(0), table) << name;
+  }
+  ASSERT_TRUE(store.get(job.id));
+}
+
+// The SQL of GET /jobs?where=metrics.arrest_position>10 (JobStore::list with that condition)
+// is answered through the index on metrics.arrest_position, not by a scan of every job.
+TEST(JobStore, SearchOnArrestPositionUsesItsIndex) {
+  TempDir dir("slipfront-store-");
+  const auto path = dir.file("db.sqlite");
+  JobStore store(path);
+  for (int i = 0; i < 20; ++i) {
+    Job job = make_job("run" + std::to_string(i));
+    store.insert(job);
+    ASSERT_TRUE(store.mark_running(job.id, "2024-01-01T00:00:00.000Z", "h", "v"));
+    RunRecord r = success();
+    r.metrics["arrest_position"] = i;
+    ASSERT_TRUE(store.finish(job.id, r));
+  }
+  JobFilter filter;
+  filter.conditions = parse_where("metrics.arrest_position>10");
+  const auto page = store.list(filter);
+  EXPECT_EQ(page.jobs.size(), 9u);
+  const ListQuery query = list_query(filter); // the very SELECT list() ran
+  Database raw(path);
+  auto s = raw.prepare("EXPLAIN QUERY PLAN " + query.sql);
+  bind_all(s, query.params);
+  std::string plan;
+  while (s.step()) {
+    plan += s.text("detail");
+    plan += '\n';
+  }
+  EXPECT_NE(plan.find("metrics_arrest_position"), std::string::npos) << plan;
 }

@@ -2,12 +2,12 @@
 // each SLURM state, the sbatch command line, the batch script, and the store's SLURM
 // columns (migration 4 -> 5, re-attach and recovery). The executor itself runs against a
 // real single-host SLURM in test_slurm.py.
+#include "server/db/database.hpp"
 #include "server/job_id.hpp"
 #include "server/job_store.hpp"
 #include "server/slurm_client.hpp"
 #include "server/slurm_job_dir.hpp"
 #include "server/slurm_state.hpp"
-#include "server/sqlite_db.hpp"
 
 #include "temp_dir.hpp"
 
@@ -131,7 +131,7 @@ Job queued_job(JobStore& store) {
   Job job;
   job.id = new_job_id();
   job.spec = nlohmann::json::object();
-  job.spec_sha256 = "h";
+  job.spec_sha256.append("h"); // (append: GCC 12 -Wrestrict misfires on = "h" here)
   job.created_at = "2024-01-01T00:00:00.000Z";
   store.insert(job);
   return job;
@@ -177,13 +177,13 @@ TEST(SlurmStore, MigrationFromFourAddsTheSlurmColumnsToExistingJobs) {
   {
     Database raw(path); // written by a build at schema version 4
     for (int v = 0; v < 4; ++v)
-      raw.exec(schema_migrations()[static_cast<std::size_t>(v)]);
+      raw.exec(schema_migrations()[static_cast<std::size_t>(v)].sql);
     raw.set_user_version(4);
     raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at) VALUES ('" + id +
              "', 'running', '{}', 'h', '2024')");
   }
   JobStore store(path);
-  EXPECT_EQ(store.user_version(), 5);
+  EXPECT_EQ(store.user_version(), JobStore::schema_version);
   auto job = store.get(id);
   ASSERT_TRUE(job);
   EXPECT_TRUE(job->executor.empty());

@@ -1,9 +1,9 @@
 // The studies schema (migrations 2 -> 3 -> 4) and StudyStore.
 #include "api/job_spec.hpp"
 #include "api/study_analysis.hpp"
+#include "server/db/database.hpp"
 #include "server/job_id.hpp"
 #include "server/job_store.hpp"
-#include "server/sqlite_db.hpp"
 #include "server/study_store.hpp"
 
 #include "temp_dir.hpp"
@@ -50,8 +50,8 @@ TEST(StudySchema, MigrationFillsTheSceneHashOfExistingJobs) {
              c = spec(1e-5, 10, 0.6, "c");
   {
     Database raw(path); // a database written by a build at schema version 2
-    raw.exec(schema_migrations()[0]);
-    raw.exec(schema_migrations()[1]);
+    raw.exec(schema_migrations()[0].sql);
+    raw.exec(schema_migrations()[1].sql);
     raw.set_user_version(2);
     auto s = raw.prepare("INSERT INTO jobs (id, status, spec, spec_sha256, created_at) VALUES "
                          "(?1, 'succeeded', ?2, 'h', '2024')");
@@ -88,7 +88,7 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
     Database raw(path); // a database written by a build at schema version 3
     raw.exec("PRAGMA foreign_keys = ON");
     for (int v = 0; v < 3; ++v)
-      raw.exec(schema_migrations()[static_cast<std::size_t>(v)]);
+      raw.exec(schema_migrations()[static_cast<std::size_t>(v)].sql);
     raw.set_user_version(3);
     raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at, study_id) VALUES ('" +
              job_id + "', 'running', '{}', 'h', '2024', '" + study_id + "')");
@@ -117,7 +117,7 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
   // Its run is not final: the next start-up must settle it.
   EXPECT_EQ(studies.unsettled_cancelled_ids(), std::vector<std::string>{study_id});
   // Foreign keys hold again after the migration.
-  EXPECT_THROW(jobs.with_db([&](Database& db) {
+  EXPECT_THROW(jobs.db().with_db([&](Database& db) {
     db.exec("INSERT INTO study_runs (study_id, job_id, L, n_d) VALUES ('" + std::string(32, 'c') +
             "', '" + job_id + "', 1e-5, 20)");
   }),

@@ -1,4 +1,4 @@
-#include "server/sqlite_db.hpp"
+#include "server/db/database.hpp"
 
 #include <sqlite3.h>
 
@@ -125,6 +125,19 @@ double Statement::real(int column) const {
 std::optional<double> Statement::optional_real(int column) const {
   if (is_null(column)) return std::nullopt;
   return sqlite3_column_double(stmt_, column);
+}
+
+int Statement::column_index(const std::string& name) const {
+  if (names_.empty()) {
+    const int n = sqlite3_column_count(stmt_);
+    for (int i = 0; i < n; ++i) {
+      const char* column = sqlite3_column_name(stmt_, i);
+      names_.emplace_back(column ? column : "");
+    }
+  }
+  for (std::size_t i = 0; i < names_.size(); ++i)
+    if (names_[i] == name) return static_cast<int>(i);
+  throw SqliteError("no result column " + name + " in `" + sql_ + "`");
 }
 
 Database::Database(const std::string& path) : path_(path) {

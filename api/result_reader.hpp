@@ -1,12 +1,31 @@
-// A window of one /interface field of a result file (docs/hdf5-layout.md), decimated to a
-// point budget: what GET /api/v1/jobs/{id}/fields/{name} serves (docs/server.md).
+// Reading a result file (layout: docs/hdf5-layout.md, names: api/result_layout.hpp), next to
+// its writer (api/result_file.hpp): the slip-velocity record at the spectrum probe and
+// windows of the /interface fields, decimated to a point budget (what the server's
+// GET /jobs/{id}/fields/{name} and the study probe comparisons serve).
+//
+// Nothing here throws for a missing or malformed file: the functions return nullopt and put
+// the reason in `why`, which the server passes on in its problem responses.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace slipfront::server {
+namespace slipfront::api {
+
+// --- The probe record --------------------------------------------------------------------
+
+struct ProbeRecord {
+  std::vector<double> time;
+  std::vector<double> slip_velocity;
+  double x1 = 0.0; // the node's x1 (attribute spectrum_x1 of /probes)
+};
+
+// /probes/time and /probes/slip_velocity_spectrum (default probe x1 = 6 m).
+std::optional<ProbeRecord> read_probe_record(const std::string& path, std::string& why);
+
+// --- Windows of the interface fields -----------------------------------------------------
 
 // The fields that may be sliced: the 2-D datasets of /interface.
 const std::vector<std::string>& slice_field_names();
@@ -31,8 +50,7 @@ struct FieldSlice {
 // [min, max]; a window holding none keeps the one nearest its middle (so x1_min = x1_max
 // picks the nearest node). The same stride along both axes where the budget allows
 // (a single-column or single-row window spends the whole budget on the other axis).
-// nullopt with the reason in `why` when the file or dataset is missing or unreadable.
 std::optional<FieldSlice> read_field_slice(const std::string& path, const std::string& name,
                                            const SliceWindow& window, std::string& why);
 
-} // namespace slipfront::server
+} // namespace slipfront::api

@@ -1,4 +1,5 @@
-// Thin RAII wrappers over the SQLite C API: a connection and prepared statements.
+// Thin RAII wrappers over the SQLite C API: a connection and prepared statements, whose
+// row values are read by column index or by result column name.
 // Every failure throws SqliteError carrying SQLite's message and the SQL that failed.
 #pragma once
 
@@ -8,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 struct sqlite3;
 struct sqlite3_stmt;
@@ -54,11 +56,20 @@ public:
   double real(int column) const; // NaN for NULL
   std::optional<double> optional_real(int column) const;
 
+  // The same by result column name (the name after AS, else the column's own name);
+  // throws SqliteError naming the SQL when the row has no such column.
+  int column_index(const std::string& name) const;
+  bool is_null(const std::string& name) const { return is_null(column_index(name)); }
+  std::string text(const std::string& name) const { return text(column_index(name)); }
+  std::int64_t integer(const std::string& name) const { return integer(column_index(name)); }
+  double real(const std::string& name) const { return real(column_index(name)); }
+
 private:
   void check(int rc, const char* what) const;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* stmt_ = nullptr;
   std::string sql_;
+  mutable std::vector<std::string> names_; // result column names, read on first use
 };
 
 class Database {

@@ -1,0 +1,70 @@
+// The names of the HDF5 result file's groups and datasets (docs/hdf5-layout.md), defined
+// once: the writer (api/result_file.cpp), the XDMF sidecar (api/result_xdmf.cpp) and the
+// reader (api/result_reader.cpp) all spell them from here. Changing one changes the layout,
+// which is part of the API.
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace slipfront::api::layout {
+
+// Groups under the root.
+inline constexpr const char* interface_group = "interface";
+inline constexpr const char* front_group = "front";
+inline constexpr const char* probes_group = "probes";
+inline constexpr const char* energy_group = "energy";
+
+// Datasets of /interface: the coordinates, then the 2-D [n_samples, n_nodes] fields.
+inline constexpr const char* x1 = "x1";
+inline constexpr const char* time = "time";
+
+struct InterfaceField {
+  const char* name;
+  const char* units;
+  const char* xdmf_number_type; // XDMF NumberType of its values
+  int precision;                // bytes per value
+};
+
+// The float64 fields, in the order of InterfaceSample's members.
+inline constexpr std::array<InterfaceField, 5> float_fields = {{
+    {"slip_velocity", "m/s", "Float", 8},
+    {"slip", "m", "Float", 8},
+    {"shear_traction", "Pa", "Float", 8},
+    {"contact_pressure", "Pa", "Float", 8},
+    {"strength", "Pa", "Float", 8},
+}};
+// The int8 contact state (0 = stick, 1 = slip, 2 = open).
+inline constexpr InterfaceField state_field = {"state", "1", "Char", 1};
+// Every 2-D field of /interface: the float64 ones, then the state.
+inline constexpr std::array<InterfaceField, float_fields.size() + 1> all_fields = {
+    {float_fields[0], float_fields[1], float_fields[2], float_fields[3], float_fields[4],
+     state_field}};
+
+// Datasets of /front.
+inline constexpr const char* front_arrival_time = "arrival_time";
+inline constexpr const char* front_rupture_speed = "rupture_speed";
+
+// Datasets and attributes of /probes.
+inline constexpr const char* probe_slip_velocity_arrival = "slip_velocity_arrival";
+inline constexpr const char* probe_slip_velocity_spectrum = "slip_velocity_spectrum";
+inline constexpr const char* probe_strength_spectrum = "strength_spectrum";
+inline constexpr const char* probe_arrival_x1 = "arrival_x1";   // attribute
+inline constexpr const char* probe_spectrum_x1 = "spectrum_x1"; // attribute
+
+// Datasets of /energy.
+inline constexpr const char* energy_kinetic = "kinetic";
+inline constexpr const char* energy_strain = "strain";
+inline constexpr const char* energy_external_work = "external_work";
+inline constexpr const char* energy_dissipated = "dissipated";
+
+// "/group/name": the absolute path of a dataset.
+inline std::string path(const char* group, const char* name) {
+  std::string p = "/";
+  p += group;
+  p += '/';
+  p += name;
+  return p;
+}
+
+} // namespace slipfront::api::layout

@@ -1,0 +1,27 @@
+// The rows of the jobs and metrics tables as C++ values: their column lists, defined once
+// and used by every SELECT and INSERT of server/job_store.cpp, and the reading of a row by
+// column name.
+#pragma once
+
+#include "server/db/database.hpp"
+#include "server/job.hpp"
+
+#include <string>
+
+namespace slipfront::server {
+
+// "SELECT <every column of a Job> FROM jobs j LEFT JOIN metrics m ON m.job_id = j.id ":
+// append the WHERE / ORDER BY clauses.
+const std::string& select_jobs();
+
+// A row of select_jobs().
+Job read_job(const Statement& row);
+
+// "INSERT INTO jobs (<the columns a new job sets>) VALUES (?1, ...)"; bind_new_job binds them.
+const std::string& insert_job_sql();
+void bind_new_job(Statement& insert, const Job& job);
+
+// The columns of the metrics table after job_id, in table order ("L, n_d, ... front_json").
+const std::string& metrics_columns();
+
+} // namespace slipfront::server

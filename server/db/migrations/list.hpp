@@ -1,0 +1,18 @@
+// The schema migrations, one file each (server/db/migrations.hpp lists them in order).
+#pragma once
+
+namespace slipfront::server {
+class Database;
+}
+
+namespace slipfront::server::migrations {
+
+const char* m1_jobs_and_metrics();
+const char* m2_name_and_submitter_indexes();
+const char* m3_studies();
+void m3_fill_scene_hashes(Database& db);
+const char* m4_study_cancelled();
+const char* m5_slurm_executor();
+const char* m6_search_indexes();
+
+} // namespace slipfront::server::migrations
