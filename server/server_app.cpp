@@ -1,8 +1,8 @@
 #include "server/server_app.hpp"
 
 #include "server/clock.hpp"
+#include "server/http/static_files.hpp"
 #include "server/log.hpp"
-#include "server/static_files.hpp"
 #include "solver/simulation.hpp"
 
 #include <boost/asio/ip/address.hpp>
@@ -122,8 +122,8 @@ void ServerApp::start() {
   else
     executor_ = std::make_unique<WorkerPool>(wo, *store_, *queue_, *runner_, running_, stats_);
 
-  context_.reset(new ServerContext{*service_, stats_, tokens_, config_.data_dir,
-                                   executor_->slots(), config_.retry_after_s, draining_, *studies_,
+  context_.reset(new ServerContext{*service_, stats_, tokens_, config_.data_dir, executor_->slots(),
+                                   config_.retry_after_s, draining_, *studies_,
                                    config_.min_free_bytes, executor_->name()});
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
     stats_.record_storage_error(what);

@@ -8,23 +8,23 @@
 // to queued, close the database.
 #pragma once
 
-#include "server/auth.hpp"
 #include "server/data_dir_lock.hpp"
-#include "server/handlers.hpp"
-#include "server/job_queue.hpp"
-#include "server/job_runner.hpp"
-#include "server/job_service.hpp"
-#include "server/job_store.hpp"
-#include "server/listener.hpp"
-#include "server/router.hpp"
-#include "server/running_jobs.hpp"
+#include "server/db/job_store.hpp"
+#include "server/db/study_store.hpp"
+#include "server/http/auth.hpp"
+#include "server/http/handlers.hpp"
+#include "server/http/listener.hpp"
+#include "server/http/router.hpp"
+#include "server/http/server_stats.hpp"
+#include "server/jobs/job_queue.hpp"
+#include "server/jobs/job_runner.hpp"
+#include "server/jobs/job_service.hpp"
+#include "server/jobs/running_jobs.hpp"
+#include "server/jobs/worker_pool.hpp"
 #include "server/server_config.hpp"
-#include "server/server_stats.hpp"
-#include "server/slurm_executor.hpp"
-#include "server/study_service.hpp"
-#include "server/study_store.hpp"
-#include "server/study_supervisor.hpp"
-#include "server/worker_pool.hpp"
+#include "server/slurm/slurm_executor.hpp"
+#include "server/studies/study_service.hpp"
+#include "server/studies/study_supervisor.hpp"
 
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>

@@ -2,10 +2,10 @@
 // studies), never the store, the queue or the running jobs directly.
 #pragma once
 
-#include "server/auth.hpp"
-#include "server/job_service.hpp"
-#include "server/server_stats.hpp"
-#include "server/study_service.hpp"
+#include "server/http/auth.hpp"
+#include "server/http/server_stats.hpp"
+#include "server/jobs/job_service.hpp"
+#include "server/studies/study_service.hpp"
 
 #include <atomic>
 #include <optional>

@@ -1,10 +1,10 @@
 // The rows of the jobs and metrics tables as C++ values: their column lists, defined once
-// and used by every SELECT and INSERT of server/job_store.cpp, and the reading of a row by
+// and used by every SELECT and INSERT of server/db/job_store.cpp, and the reading of a row by
 // column name.
 #pragma once
 
 #include "server/db/database.hpp"
-#include "server/job.hpp"
+#include "server/jobs/job.hpp"
 
 #include <string>
 

@@ -1,7 +1,7 @@
-// libFuzzer target: the Range header of a download (server/byte_range.hpp) against a file
+// libFuzzer target: the Range header of a download (server/http/byte_range.hpp) against a file
 // size taken from the input's first 8 bytes. A partial answer must lie inside the file and
 // be non-empty; an unsatisfiable one only happens for a range starting at or after its end.
-#include "server/byte_range.hpp"
+#include "server/http/byte_range.hpp"
 
 #include <cstdint>
 #include <cstdio>

@@ -1,6 +1,6 @@
 // Bearer tokens (compared in constant time over their digests) and job ids (from getrandom).
-#include "server/auth.hpp"
-#include "server/job_id.hpp"
+#include "server/http/auth.hpp"
+#include "server/jobs/job_id.hpp"
 
 #include "temp_dir.hpp"
 

@@ -1,4 +1,4 @@
-#include "server/job.hpp"
+#include "server/jobs/job.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Comma-separated lists (split_list) and If-None-Match matching (etag_list_matches): one
 // parser for the sort= query value and for both ETag checks (JSON answers, result files).
-#include "server/query_string.hpp"
-#include "server/responses.hpp"
+#include "server/http/query_string.hpp"
+#include "server/http/responses.hpp"
 
 #include <gtest/gtest.h>
 

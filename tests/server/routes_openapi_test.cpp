@@ -1,6 +1,6 @@
 // The router's API routes and the OpenAPI document's operations are the same set: a route
 // added without its documentation, or a documented path nobody serves, fails here.
-#include "server/handlers.hpp"
+#include "server/http/handlers.hpp"
 #include "server/server_app.hpp"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // The search language of GET /api/v1/jobs: parsing, the field whitelist, and SQL whose
 // values and JSON paths are bound parameters.
-#include "server/run_query.hpp"
+#include "server/jobs/run_query.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,11 +3,11 @@
 // columns (migration 4 -> 5, re-attach and recovery). The executor itself runs against a
 // real single-host SLURM in test_slurm.py.
 #include "server/db/database.hpp"
-#include "server/job_id.hpp"
-#include "server/job_store.hpp"
-#include "server/slurm_client.hpp"
-#include "server/slurm_job_dir.hpp"
-#include "server/slurm_state.hpp"
+#include "server/db/job_store.hpp"
+#include "server/jobs/job_id.hpp"
+#include "server/slurm/slurm_client.hpp"
+#include "server/slurm/slurm_job_dir.hpp"
+#include "server/slurm/slurm_state.hpp"
 
 #include "temp_dir.hpp"
 

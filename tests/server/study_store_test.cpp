@@ -2,9 +2,9 @@
 #include "api/job_spec.hpp"
 #include "api/study_analysis.hpp"
 #include "server/db/database.hpp"
-#include "server/job_id.hpp"
-#include "server/job_store.hpp"
-#include "server/study_store.hpp"
+#include "server/db/job_store.hpp"
+#include "server/db/study_store.hpp"
+#include "server/jobs/job_id.hpp"
 
 #include "temp_dir.hpp"
 

@@ -3,7 +3,7 @@
 // the runs of one convergence map; jobs.study_id names the study that submitted a job.
 #include "server/db/migrations/list.hpp"
 
-#include "api/study_analysis.hpp"
+#include "api/job_spec.hpp"
 #include "server/db/database.hpp"
 
 #include <string>

@@ -1,0 +1,136 @@
+// The jobs and metrics tables of the jobs database (server/db/: the connection, the
+// migrations, the column lists). Every call is one short transaction on the shared
+// connection, so HTTP handlers and workers can share it. Every state change is a conditional UPDATE
+// (`WHERE status = ...`) so the transitions of job.hpp hold even when a cancel races a worker.
+#pragma once
+
+#include "api/metrics_row.hpp"
+#include "server/db/database.hpp"
+#include "server/db/migrations.hpp"
+#include "server/db/store_db.hpp"
+#include "server/jobs/job.hpp"
+#include "server/jobs/run_query.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct JobFilter {
+  std::vector<JobStatus> statuses; // any of these (empty = all)
+  std::string tag;                 // jobs carrying this tag
+  std::string name;                // exact name
+  std::string outcome;             // metrics outcome (finished jobs only)
+  std::string submitted_by;
+  std::string spec_sha256;
+  std::string scene_hash;
+  std::string study_id;
+  std::optional<double> L_min, L_max, n_d_min, n_d_max; // inclusive ranges
+  std::optional<std::int64_t> before_seq;               // cursor: jobs older than this
+  std::vector<Condition> conditions;                    // `where` (server/jobs/run_query.hpp)
+  std::vector<SortKey> sort; // `sort`; empty = newest first (then pages by before_seq)
+  std::int64_t offset = 0;   // with `sort`: rows to skip (the cursor of sorted listings)
+  int limit = 50;
+};
+
+struct JobPage {
+  std::vector<Job> jobs;                   // newest first, or in `sort` order
+  std::optional<std::int64_t> next_cursor; // before_seq of the next page (newest first)
+  std::optional<std::int64_t> next_offset; // offset of the next page (sorted listings)
+  std::map<std::string, std::string> convergence_status; // job id -> status, if in a study
+};
+
+// What a finished run leaves behind.
+struct RunRecord {
+  JobStatus status = JobStatus::succeeded;
+  std::string error;
+  nlohmann::json metrics; // null if none
+  nlohmann::json front;   // null if none
+  ResultFile result;
+  double wall_time_s = 0.0;
+  std::string finished_at;
+  // The columns of the metrics row. Unset (a run whose metrics arrived as JSON only): read
+  // from `metrics` (api::metrics_row).
+  std::optional<api::MetricsRow> metrics_row;
+};
+
+// The SELECT of JobStore::list(filter), one row more than the page (a next page exists when
+// it comes back), and its parameters: for EXPLAIN QUERY PLAN in tests.
+struct ListQuery {
+  std::string sql;
+  SqlParams params;
+};
+ListQuery list_query(const JobFilter& filter);
+void bind_all(Statement& statement, const SqlParams& params); // ?1, ?2, ... in order
+
+class JobStore {
+public:
+  static constexpr int schema_version = 6;
+
+  // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
+  // damaged file; brings the schema up to date).
+  explicit JobStore(const std::string& path, bool integrity_check = true)
+      : db_(path, integrity_check) {}
+
+  // Inserts a new job (status queued, or succeeded with cached_from set: then the metrics
+  // and front of cached_from are copied in the same transaction). Returns its seq.
+  std::int64_t insert(const Job& job);
+
+  std::optional<Job> get(const std::string& id);
+  std::optional<Job> find_by_idempotency_key(const std::string& user, const std::string& key);
+  // The newest succeeded job with this physics hash and code version that has a result
+  // written with these output settings (the spec's `output`, which the hash leaves out: a
+  // result file is reused only when it holds the sampling the new job asks for).
+  std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version,
+                                   const nlohmann::json& output);
+
+  // queued -> running (attempts + 1) on `executor` ("local" or "slurm"). False if the job
+  // is no longer queued.
+  bool mark_running(const std::string& id, const std::string& started_at, const std::string& host,
+                    const std::string& code_version, const std::string& executor = "local");
+  // The SLURM job of a running job (stored as soon as sbatch answers) and its last seen
+  // SLURM state ("PENDING (Resources)", "RUNNING"); `host` "" keeps the stored host.
+  bool set_slurm_job(const std::string& id, const std::string& slurm_job_id,
+                     const std::string& slurm_state);
+  void update_slurm_state(const std::string& id, const std::string& slurm_state,
+                          const std::string& host);
+  // Running jobs that have a SLURM job: what the SLURM executor re-attaches to at start-up.
+  std::vector<Job> running_slurm_jobs();
+  void update_progress(const std::string& id, const JobProgress& progress);
+  // running -> final status, with the metrics row. False if the job was not running.
+  bool finish(const std::string& id, const RunRecord& record);
+  // queued -> cancelled. False if the job was not queued.
+  bool cancel_queued(const std::string& id, const std::string& finished_at);
+  // running -> queued: only for drain (SIGTERM) and crash recovery. False if not running.
+  bool requeue(const std::string& id);
+  // Crash recovery at start-up: every running job goes back to queued (with
+  // `keep_slurm_jobs`, except those with a SLURM job: they are re-attached). Returns the count.
+  int requeue_all_running(bool keep_slurm_jobs = false);
+  // Queued jobs in run order: priority (high first), then submission order.
+  std::vector<Job> queued_jobs();
+
+  JobPage list(const JobFilter& filter);
+  std::map<std::string, std::int64_t> count_by_status();
+  std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
+
+  std::string path() const { return db_.path(); }
+
+  // The connection, shared with the other tables of the database (server/db/study_store.hpp).
+  StoreDb& db() { return db_; }
+  // On a connection of its own (the health check's): never waits behind a long listing
+  // holding the connection's lock.
+  std::int64_t user_version() { return db_.user_version(); }
+
+private:
+  std::optional<Job> query_one(const std::string& where, const std::vector<std::string>& args);
+
+  StoreDb db_;
+};
+
+} // namespace slipfront::server

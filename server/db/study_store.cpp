@@ -1,0 +1,256 @@
+#include "server/db/study_store.hpp"
+
+#include <stdexcept>
+
+namespace slipfront::server {
+
+using nlohmann::json;
+
+namespace {
+
+const char* study_columns =
+    "seq, id, name, tags, kind, base_spec, request, scene_hash, submitted_by, priority, fresh, "
+    "created_at, updated_at, finished_at, status, runs_done, runs_total, L_c, "
+    "spectral_critical_length, result FROM studies ";
+
+StudyRecord read_study(const Statement& s) {
+  StudyRecord r;
+  r.seq = s.integer(0);
+  r.id = s.text(1);
+  r.name = s.text(2);
+  r.tags = parse_stored_json(s.text(3), "tags of study " + r.id).get<std::vector<std::string>>();
+  r.kind = s.text(4);
+  r.base = parse_stored_json(s.text(5), "base of study " + r.id);
+  r.request = parse_stored_json(s.text(6), "request of study " + r.id);
+  r.scene_hash = s.text(7);
+  r.submitted_by = s.text(8);
+  r.priority = static_cast<int>(s.integer(9));
+  r.fresh = s.integer(10) != 0;
+  r.created_at = s.text(11);
+  r.updated_at = s.text(12);
+  r.finished_at = s.text(13);
+  r.status = s.text(14);
+  r.runs_done = static_cast<int>(s.integer(15));
+  r.runs_total = static_cast<int>(s.integer(16));
+  r.L_c = s.real(17);
+  r.spectral_critical_length = s.real(18);
+  r.result = parse_stored_json(s.text(19), "result of study " + r.id);
+  return r;
+}
+
+// Columns 0..8 of study_runs, then the job's.
+const char* run_columns =
+    "r.job_id, r.regime, r.L, r.n_d, r.convergence_status, r.partner_n_d, "
+    "r.propagation_distance_change, r.arrival_time_change, r.reason, j.status, m.metrics_json, "
+    "j.wall_time_s, j.memory_estimate_bytes, j.scene_hash, j.cached_from, j.result_path, "
+    "j.submitted_by, j.study_id, j.error ";
+
+StudyRunRow read_run(const Statement& s) {
+  StudyRunRow r;
+  r.job_id = s.text(0);
+  r.regime = s.text(1);
+  r.L = s.real(2);
+  r.n_d = s.real(3);
+  r.convergence_status = s.text(4);
+  r.partner_n_d = s.real(5);
+  r.propagation_distance_change = s.real(6);
+  r.arrival_time_change = s.real(7);
+  r.reason = s.text(8);
+  r.job_status = s.text(9);
+  r.metrics = parse_stored_json(s.text(10), "metrics of job " + r.job_id);
+  r.wall_time_s = s.is_null(11) ? 0.0 : s.real(11);
+  r.memory_estimate_bytes = s.is_null(12) ? 0.0 : s.real(12);
+  r.scene_hash = s.text(13);
+  r.cached_from = s.text(14);
+  r.result_path = s.text(15);
+  r.submitted_by = s.text(16);
+  r.study_id = s.text(17);
+  r.error = s.text(18);
+  return r;
+}
+
+std::optional<std::string> text_or_null(const std::string& v) {
+  return v.empty() ? std::nullopt : std::optional<std::string>(v);
+}
+
+} // namespace
+
+api::StudyRun to_study_run(const StudyRunRow& row) {
+  api::StudyRun run;
+  run.id = row.job_id;
+  run.L = row.L;
+  run.n_d = row.n_d;
+  run.status = api::parse_status(row.job_status).value_or(api::JobStatus::failed);
+  if (!row.metrics.is_null()) run.metrics = row.metrics;
+  run.wall_time_s = row.wall_time_s;
+  if (row.metrics.is_object() && row.metrics.contains("wall_time_s") &&
+      row.metrics["wall_time_s"].is_number())
+    run.wall_time_s = row.metrics["wall_time_s"].get<double>();
+  run.memory_bytes = row.memory_estimate_bytes;
+  return run;
+}
+
+void StudyStore::insert(const StudyRecord& st) {
+  db_.with_db([&](Database& db) {
+    auto s = db.prepare("INSERT INTO studies (id, name, tags, kind, base_spec, request, "
+                        "scene_hash, submitted_by, priority, fresh, created_at, updated_at, "
+                        "status) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?11, ?12)");
+    s.bind(1, st.id)
+        .bind(2, st.name)
+        .bind(3, json(st.tags).dump())
+        .bind(4, st.kind)
+        .bind(5, st.base.dump())
+        .bind(6, st.request.dump())
+        .bind(7, st.scene_hash)
+        .bind(8, st.submitted_by)
+        .bind(9, std::int64_t{st.priority})
+        .bind(10, std::int64_t{st.fresh ? 1 : 0})
+        .bind(11, st.created_at)
+        .bind(12, st.status)
+        .run();
+  });
+}
+
+void StudyStore::add_run(const std::string& study_id, const std::string& job_id,
+                         const std::string& regime, double L, double n_d) {
+  db_.with_db([&](Database& db) {
+    auto s = db.prepare("INSERT OR IGNORE INTO study_runs (study_id, job_id, regime, L, n_d) "
+                        "VALUES (?1, ?2, ?3, ?4, ?5)");
+    s.bind(1, study_id).bind(2, job_id).bind(3, regime).bind(4, L).bind(5, n_d).run();
+  });
+}
+
+std::optional<StudyRecord> StudyStore::get(const std::string& id) {
+  return db_.with_db([&](Database& db) -> std::optional<StudyRecord> {
+    auto s = db.prepare(std::string("SELECT ") + study_columns + "WHERE id = ?1");
+    s.bind(1, id);
+    if (!s.step()) return std::nullopt;
+    return read_study(s);
+  });
+}
+
+std::vector<StudyRecord> StudyStore::list(int limit, std::optional<std::int64_t> before_seq,
+                                          const std::string& status) {
+  return db_.with_db([&](Database& db) {
+    std::string sql = std::string("SELECT ") + study_columns + "WHERE 1 = 1";
+    if (before_seq) sql += " AND seq < ?1";
+    if (!status.empty()) sql += " AND status = ?2";
+    sql += " ORDER BY seq DESC LIMIT " + std::to_string(limit);
+    auto s = db.prepare(sql);
+    if (before_seq) s.bind(1, *before_seq);
+    if (!status.empty()) s.bind(2, status);
+    std::vector<StudyRecord> out;
+    while (s.step())
+      out.push_back(read_study(s));
+    return out;
+  });
+}
+
+std::vector<std::string> StudyStore::running_ids() {
+  return db_.with_db([&](Database& db) {
+    auto s = db.prepare("SELECT id FROM studies WHERE status = 'running' ORDER BY seq");
+    std::vector<std::string> out;
+    while (s.step())
+      out.push_back(s.text(0));
+    return out;
+  });
+}
+
+void StudyStore::set_status(const std::string& id, const std::string& status,
+                            const std::string& at) {
+  db_.with_db([&](Database& db) {
+    db.prepare("UPDATE studies SET status = ?2, updated_at = ?3 WHERE id = ?1")
+        .bind(1, id)
+        .bind(2, status)
+        .bind(3, at)
+        .run();
+  });
+}
+
+std::vector<std::string> StudyStore::unsettled_cancelled_ids() {
+  return db_.with_db([&](Database& db) {
+    auto s = db.prepare(
+        "SELECT s.id FROM studies s WHERE s.status = 'cancelled' AND (s.runs_done < s.runs_total "
+        "OR EXISTS (SELECT 1 FROM study_runs r JOIN jobs j ON j.id = r.job_id "
+        "WHERE r.study_id = s.id AND j.status IN ('queued', 'running'))) ORDER BY s.seq");
+    std::vector<std::string> out;
+    while (s.step())
+      out.push_back(s.text(0));
+    return out;
+  });
+}
+
+std::vector<StudyRunRow> StudyStore::runs(const std::string& study_id) {
+  return db_.with_db([&](Database& db) {
+    auto s = db.prepare(std::string("SELECT ") + run_columns +
+                        "FROM study_runs r JOIN jobs j ON j.id = r.job_id "
+                        "LEFT JOIN metrics m ON m.job_id = j.id WHERE r.study_id = ?1 "
+                        "ORDER BY r.regime, r.L, r.n_d, j.seq");
+    s.bind(1, study_id);
+    std::vector<StudyRunRow> out;
+    while (s.step())
+      out.push_back(read_run(s));
+    return out;
+  });
+}
+
+std::vector<StudyRunRow> StudyStore::scene_runs(const std::string& scene_hash) {
+  return db_.with_db([&](Database& db) {
+    auto s = db.prepare(
+        "SELECT j.id, '', j.L, j.n_d, 'pending', NULL, NULL, NULL, NULL, j.status, "
+        "m.metrics_json, j.wall_time_s, j.memory_estimate_bytes, j.scene_hash, j.cached_from, "
+        "j.result_path, j.submitted_by, j.study_id, j.error FROM jobs j "
+        "LEFT JOIN metrics m ON m.job_id = j.id WHERE j.scene_hash = ?1 "
+        "AND j.status IN ('succeeded', 'failed') AND j.cached_from IS NULL "
+        "ORDER BY j.L, j.n_d, j.seq");
+    s.bind(1, scene_hash);
+    std::vector<StudyRunRow> out;
+    while (s.step())
+      out.push_back(read_run(s));
+    return out;
+  });
+}
+
+std::string StudyStore::study_of_job(const std::string& job_id) {
+  return db_.with_db([&](Database& db) {
+    auto s = db.prepare("SELECT study_id FROM jobs WHERE id = ?1");
+    s.bind(1, job_id);
+    return s.step() ? s.text(0) : std::string();
+  });
+}
+
+void StudyStore::save_analysis(const StudyRecord& st, const std::vector<StudyRunRow>& runs) {
+  db_.with_db([&](Database& db) {
+    Transaction tx(db);
+    auto r = db.prepare("UPDATE study_runs SET convergence_status = ?3, partner_n_d = ?4, "
+                        "propagation_distance_change = ?5, arrival_time_change = ?6, "
+                        "reason = ?7 WHERE study_id = ?1 AND job_id = ?2");
+    for (const auto& run : runs) {
+      r.bind(1, st.id)
+          .bind(2, run.job_id)
+          .bind(3, run.convergence_status)
+          .bind(4, run.partner_n_d)
+          .bind(5, run.propagation_distance_change)
+          .bind(6, run.arrival_time_change)
+          .bind(7, run.reason)
+          .run();
+      r.reset();
+    }
+    auto s = db.prepare("UPDATE studies SET status = ?2, runs_done = ?3, runs_total = ?4, "
+                        "L_c = ?5, spectral_critical_length = ?6, result = ?7, updated_at = ?8, "
+                        "finished_at = ?9 WHERE id = ?1");
+    s.bind(1, st.id)
+        .bind(2, st.status)
+        .bind(3, std::int64_t{st.runs_done})
+        .bind(4, std::int64_t{st.runs_total})
+        .bind(5, st.L_c)
+        .bind(6, st.spectral_critical_length)
+        .bind(7, st.result.dump(-1, ' ', false, json::error_handler_t::replace))
+        .bind(8, st.updated_at)
+        .bind(9, text_or_null(st.finished_at))
+        .run();
+    tx.commit();
+  });
+}
+
+} // namespace slipfront::server

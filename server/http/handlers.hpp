@@ -1,0 +1,20 @@
+// Route tables of the API (SPEC §4, under /api/v1) and of the operations endpoints.
+#pragma once
+
+#include "server/http/auth.hpp" // authenticate()
+#include "server/http/router.hpp"
+#include "server/server_context.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace slipfront::server {
+
+void add_job_routes(Router& router, ServerContext& ctx);    // job_handlers.cpp
+void add_result_routes(Router& router, ServerContext& ctx); // result_handlers.cpp
+void add_ops_routes(Router& router, ServerContext& ctx);    // ops_handlers.cpp
+void add_study_routes(Router& router, ServerContext& ctx);  // study_handlers.cpp
+
+// The OpenAPI 3 description of every endpoint (openapi.cpp).
+nlohmann::json openapi_document();
+
+} // namespace slipfront::server

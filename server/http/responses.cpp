@@ -1,0 +1,84 @@
+#include "server/http/responses.hpp"
+
+#include "server/http/query_string.hpp"
+
+#include <cstdint>
+#include <cstdio>
+
+namespace slipfront::server {
+
+http::response<http::string_body> text_response(const Request& req, http::status status,
+                                                std::string body, const std::string& content_type) {
+  http::response<http::string_body> res{status, req.version()};
+  res.set(http::field::server, "slipfront");
+  res.set(http::field::content_type, content_type);
+  res.set(http::field::cache_control, "no-store");
+  res.keep_alive(req.keep_alive());
+  res.body() = std::move(body);
+  res.prepare_payload();
+  return res;
+}
+
+namespace {
+// A weak validator of a JSON body: FNV-1a (64 bits) of its bytes.
+std::string weak_etag(const std::string& body) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : body) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return std::string("W/\"") + hex + "\"";
+}
+
+} // namespace
+
+bool etag_list_matches(std::string_view if_none_match, std::string_view etag) {
+  auto opaque = [](std::string_view tag) { return tag.substr(0, 2) == "W/" ? tag.substr(2) : tag; };
+  for (std::string_view item : split_list(if_none_match))
+    if (item == "*" || opaque(item) == opaque(etag)) return true;
+  return false;
+}
+
+http::response<http::string_body> json_response(const Request& req, http::status status,
+                                                const nlohmann::json& body) {
+  auto res = text_response(req, status,
+                           body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                           "application/json");
+  // GET answers carry a weak ETag, so that pollers (the web view) send If-None-Match and get
+  // 304 without a body while nothing changed.
+  const bool get = req.method() == http::verb::get || req.method() == http::verb::head;
+  if (get && status == http::status::ok) {
+    const std::string etag = weak_etag(res.body());
+    res.set(http::field::etag, etag);
+    if (req.count(http::field::if_none_match) &&
+        etag_list_matches(req[http::field::if_none_match], etag)) {
+      res.result(http::status::not_modified);
+      res.body().clear();
+      res.prepare_payload();
+    }
+  }
+  return res;
+}
+
+http::response<http::string_body> problem_response(const Request& req, http::status status,
+                                                   const std::string& detail,
+                                                   const std::vector<api::FieldError>& errors) {
+  nlohmann::json body;
+  body["type"] = "about:blank";
+  body["title"] = std::string(http::obsolete_reason(status));
+  body["status"] = static_cast<unsigned>(status);
+  body["detail"] = detail;
+  body["instance"] = std::string(req.target());
+  if (!errors.empty()) {
+    body["errors"] = nlohmann::json::array();
+    for (const auto& e : errors)
+      body["errors"].push_back({{"pointer", e.pointer}, {"reason", e.reason}});
+  }
+  return text_response(req, status,
+                       body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                       "application/problem+json");
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,29 @@
+// Building responses: JSON, plain text, and errors as application/problem+json (RFC 9457)
+// naming each bad field by its JSON pointer.
+#pragma once
+
+#include "api/job_spec.hpp"
+#include "server/http/http_types.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace slipfront::server {
+
+http::response<http::string_body> json_response(const Request& req, http::status status,
+                                                const nlohmann::json& body);
+http::response<http::string_body> text_response(const Request& req, http::status status,
+                                                std::string body, const std::string& content_type);
+// Whether an If-None-Match header value matches `etag`: "*", or a list of entity tags one of
+// which equals it under the weak comparison of RFC 9110 §8.8.3.2 (W/ prefixes ignored on both
+// sides).
+bool etag_list_matches(std::string_view if_none_match, std::string_view etag);
+// errors: [{"pointer": ..., "reason": ...}]
+http::response<http::string_body> problem_response(const Request& req, http::status status,
+                                                   const std::string& detail,
+                                                   const std::vector<api::FieldError>& errors = {});
+
+} // namespace slipfront::server

@@ -1,0 +1,117 @@
+#include "server/http/router.hpp"
+
+#include "server/db/database.hpp"
+#include "server/http/query_string.hpp"
+#include "server/http/responses.hpp"
+#include "server/log.hpp"
+
+namespace slipfront::server {
+
+namespace {
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> out;
+  std::size_t start = 1;
+  while (start <= path.size()) {
+    auto slash = path.find('/', start);
+    if (slash == std::string::npos) slash = path.size();
+    out.push_back(path.substr(start, slash - start));
+    start = slash + 1;
+  }
+  return out;
+}
+
+bool match(const std::vector<std::string>& pattern, const std::vector<std::string>& path,
+           std::map<std::string, std::string>& params) {
+  if (pattern.size() != path.size()) return false;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const auto& p = pattern[i];
+    if (p.size() > 2 && p.front() == '{' && p.back() == '}')
+      params[p.substr(1, p.size() - 2)] = path[i];
+    else if (p != path[i])
+      return false;
+  }
+  return true;
+}
+} // namespace
+
+void Router::add(http::verb method, const std::string& pattern, Handler handler, bool offload) {
+  routes_.push_back({method, pattern, split_path(pattern), std::move(handler),
+                     offload || method != http::verb::get});
+}
+
+bool Router::offloaded(const Request& request) const {
+  auto target = parse_target(request.target());
+  if (!target) return false;
+  auto segments = split_path(target->path);
+  const bool head = request.method() == http::verb::head;
+  for (const auto& route : routes_) {
+    std::map<std::string, std::string> params;
+    if (route.offload && match(route.segments, segments, params) &&
+        (route.method == request.method() || (head && route.method == http::verb::get)))
+      return true;
+  }
+  return false;
+}
+
+void Router::on_storage_unavailable(int retry_after_s,
+                                    std::function<void(const std::string&)> record) {
+  retry_after_s_ = retry_after_s;
+  record_storage_error_ = std::move(record);
+}
+
+Response Router::dispatch(const Request& request) const {
+  Response response = answer(request);
+  if (request.method() == http::verb::head) response.drop_body();
+  return response;
+}
+
+Response Router::answer(const Request& request) const {
+  auto target = parse_target(request.target());
+  if (!target)
+    return problem_response(request, http::status::bad_request, "malformed request target");
+  auto segments = split_path(target->path);
+  std::string allow;
+  // HEAD is answered by the GET route, without the body (RFC 9110 §9.3.2).
+  const bool head = request.method() == http::verb::head;
+  for (const auto& route : routes_) {
+    std::map<std::string, std::string> params;
+    if (!match(route.segments, segments, params)) continue;
+    if (route.method != request.method() && !(head && route.method == http::verb::get)) {
+      allow += (allow.empty() ? "" : ", ") + std::string(http::to_string(route.method));
+      continue;
+    }
+    RequestContext ctx{request, target->path, std::move(params), target->query, {}};
+    try {
+      return route.handler(ctx);
+    } catch (const SqliteError& e) {
+      log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
+                e.what());
+      if (!e.unavailable())
+        return problem_response(request, http::status::internal_server_error,
+                                "internal error (the server log has the details)");
+      if (record_storage_error_) record_storage_error_(e.what());
+      auto res = problem_response(request, http::status::service_unavailable,
+                                  "the server's storage cannot take writes now (disk full or I/O "
+                                  "error); retry later");
+      res.set(http::field::retry_after, std::to_string(retry_after_s_));
+      return res;
+    } catch (const std::exception& e) {
+      log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
+                e.what());
+      // The exception's text may quote internals (SQL, library messages): it goes to the
+      // log only.
+      return problem_response(request, http::status::internal_server_error,
+                              "internal error (the server log has the details)");
+    }
+  }
+  if (!allow.empty()) {
+    auto res = problem_response(request, http::status::method_not_allowed,
+                                "method " + std::string(request.method_string()) +
+                                    " is not allowed here; allowed: " + allow);
+    res.set(http::field::allow, allow);
+    return res;
+  }
+  return problem_response(request, http::status::not_found, "no such resource: " + target->path);
+}
+
+} // namespace slipfront::server
