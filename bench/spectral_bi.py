@@ -2,6 +2,7 @@
 """The spectral boundary-integral (BI) method on the paper's scene: convergence, agreement
 with FE, small L, cost (issue 9, items 3, 4 and 6; docs/verification.md and
 docs/performance.md quote its tables).
+Over 400 lines on purpose: one script per issue's measurements, each table a function.
 
 Every run is the CLI, `slipfront run JOB.json --quiet` (metrics JSON on stdout), on the
 paper's scene (job defaults) with the fields named in its row; the job files are kept in

@@ -1,3 +1,6 @@
+// The SLURM executor (docs/cluster.md): a job's whole life on the cluster — submit, poll,
+// finish, cancel, adopt after a restart. Over 400 lines on purpose: that state machine reads
+// best in one file; its parts (client, job directory, state map) are in their own files.
 #include "server/slurm/slurm_executor.hpp"
 
 #include "api/job_spec.hpp"

@@ -1,5 +1,6 @@
 """Client pieces that need no server: job overrides, retries, back-off, convergence
 statuses, the filter law, the figures' inputs.
+Over 400 lines on purpose: one short test per client rule, no server needed.
 
     /usr/bin/python3 -m unittest discover -s tests/clients -p 'test_unit*.py'
 """

@@ -2,6 +2,7 @@
 (a small tmpfs as data dir), a run that fills the disk, a read-only data dir, SIGKILL at
 random points of jobs' lives, running out of file descriptors. Each asserts what must hold:
 no accepted job lost or stuck, no 500, the database intact.
+Over 400 lines on purpose: one test per fault, sharing the server harness.
 
     /usr/bin/python3 tests/server/test_faults.py --binary build/slipfront
 """

@@ -1,5 +1,6 @@
 """The job server over real HTTP on loopback: a `slipfront serve` started by the test on an
 ephemeral port with a temporary data dir, running the real solver on tiny coarse jobs.
+Over 400 lines on purpose: one short test per HTTP contract of docs/server.md.
 
     /usr/bin/python3 tests/server/test_http.py --binary build/slipfront
 """
