@@ -2,6 +2,7 @@
 // with another method is 405 (with Allow); no match is 404.
 #pragma once
 
+#include "server/http/api_prefix.hpp"
 #include "server/http/http_types.hpp"
 
 #include <functional>

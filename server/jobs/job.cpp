@@ -1,6 +1,7 @@
 #include "server/jobs/job.hpp"
 
 #include "api/json_number.hpp"
+#include "server/http/api_prefix.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +53,7 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["code_version"] = text_or_null(job.code_version);
   j["host"] = text_or_null(job.host);
   if (job.status == JobStatus::succeeded && !job.result.path.empty())
-    j["result"] = {{"url", "/api/v1/jobs/" + job.id + "/result.h5"},
+    j["result"] = {{"url", api_prefix + "/jobs/" + job.id + "/result.h5"},
                    {"size", job.result.size},
                    {"sha256", job.result.sha256}};
   else
@@ -65,10 +66,10 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["executor"] = text_or_null(job.executor);
   j["slurm_job_id"] = text_or_null(job.slurm_job_id);
   j["slurm_state"] = text_or_null(job.slurm_state);
-  j["links"] = {{"self", "/api/v1/jobs/" + job.id},
-                {"metrics", "/api/v1/jobs/" + job.id + "/metrics"},
-                {"front", "/api/v1/jobs/" + job.id + "/front"},
-                {"cancel", "/api/v1/jobs/" + job.id + "/cancel"}};
+  j["links"] = {{"self", api_prefix + "/jobs/" + job.id},
+                {"metrics", api_prefix + "/jobs/" + job.id + "/metrics"},
+                {"front", api_prefix + "/jobs/" + job.id + "/front"},
+                {"cancel", api_prefix + "/jobs/" + job.id + "/cancel"}};
   if (fields.empty()) return j;
   nlohmann::json projected;
   projected["id"] = job.id;

@@ -17,8 +17,6 @@ namespace slipfront::server {
 
 namespace {
 
-const std::string prefix = "/api/v1";
-
 Response not_found_job(const Request& req, const std::string& id) {
   return problem_response(req, http::status::not_found, "no job with id " + id);
 }
@@ -85,7 +83,7 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
   body["cache"] = !r.job->cached_from.empty() ? "hit" : (r.job->fresh ? "bypassed" : "miss");
   auto res =
       json_response(req, r.kind == Kind::replayed ? http::status::ok : http::status::created, body);
-  res.set(http::field::location, prefix + "/jobs/" + r.job->id);
+  res.set(http::field::location, api_prefix + "/jobs/" + r.job->id);
   if (r.kind == Kind::replayed) res.set("Idempotent-Replayed", "true");
   return res;
 }
@@ -113,7 +111,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   if (page.next_offset) next_cursor = "o" + std::to_string(*page.next_offset);
   std::optional<std::string> next;
   if (next_cursor) {
-    next = prefix + "/jobs?";
+    next = api_prefix + "/jobs?";
     for (const auto& [key, value] : q)
       if (key != "cursor") *next += percent_encode(key) + "=" + percent_encode(value) + "&";
     *next += "cursor=" + *next_cursor;
@@ -202,16 +200,16 @@ Response job_defaults(RequestContext& rc) {
 } // namespace
 
 void add_job_routes(Router& router, ServerContext& ctx) {
-  router.add(http::verb::post, prefix + "/jobs",
+  router.add(http::verb::post, api_prefix + "/jobs",
              [&ctx](RequestContext& rc) { return submit(ctx, rc); });
   router.add(
-      http::verb::get, prefix + "/jobs", [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); },
-      true);
-  router.add(http::verb::get, prefix + "/jobs/{id}",
+      http::verb::get, api_prefix + "/jobs",
+      [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); }, true);
+  router.add(http::verb::get, api_prefix + "/jobs/{id}",
              [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
-  router.add(http::verb::post, prefix + "/jobs/{id}/cancel",
+  router.add(http::verb::post, api_prefix + "/jobs/{id}/cancel",
              [&ctx](RequestContext& rc) { return cancel_job(ctx, rc); });
-  router.add(http::verb::get, prefix + "/job-defaults",
+  router.add(http::verb::get, api_prefix + "/job-defaults",
              [](RequestContext& rc) { return job_defaults(rc); });
 }
 

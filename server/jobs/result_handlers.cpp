@@ -19,7 +19,6 @@ namespace slipfront::server {
 
 namespace {
 
-const std::string prefix = "/api/v1";
 using RangeFileBody = http::basic_file_body<RangeFile>;
 
 // The job of the path, or the response to send instead (404 for malformed or unknown ids:
@@ -291,18 +290,18 @@ Response field(ServerContext& ctx, RequestContext& rc) {
 } // namespace
 
 void add_result_routes(Router& router, ServerContext& ctx) {
-  router.add(http::verb::get, prefix + "/jobs/{id}/result.h5",
+  router.add(http::verb::get, api_prefix + "/jobs/{id}/result.h5",
              [&ctx](RequestContext& rc) { return download(ctx, rc); });
   router.add(
-      http::verb::get, prefix + "/jobs/{id}/result.xdmf",
+      http::verb::get, api_prefix + "/jobs/{id}/result.xdmf",
       [&ctx](RequestContext& rc) { return xdmf(ctx, rc); }, true);
-  router.add(http::verb::get, prefix + "/jobs/{id}/metrics",
+  router.add(http::verb::get, api_prefix + "/jobs/{id}/metrics",
              [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
   router.add(
-      http::verb::get, prefix + "/jobs/{id}/front",
+      http::verb::get, api_prefix + "/jobs/{id}/front",
       [&ctx](RequestContext& rc) { return front(ctx, rc); }, true);
   router.add(
-      http::verb::get, prefix + "/jobs/{id}/fields/{name}",
+      http::verb::get, api_prefix + "/jobs/{id}/fields/{name}",
       [&ctx](RequestContext& rc) { return field(ctx, rc); }, true);
 }
 

@@ -20,8 +20,6 @@ namespace {
 
 using nlohmann::json;
 
-const std::string prefix = "/api/v1";
-
 Response not_found_study(const Request& req, const std::string& id) {
   return problem_response(req, http::status::not_found, "no study with id " + id);
 }
@@ -70,7 +68,7 @@ Response create_study(ServerContext& ctx, RequestContext& rc) {
   auto body = ctx.studies.view(*r.id);
   if (!body) throw std::runtime_error("study " + *r.id + " vanished after its creation");
   auto res = json_response(req, http::status::created, *body);
-  res.set(http::field::location, prefix + "/studies/" + *r.id);
+  res.set(http::field::location, api_prefix + "/studies/" + *r.id);
   return res;
 }
 
@@ -161,7 +159,7 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   body["count"] = body["studies"].size();
   body["next_cursor"] = next ? json(std::to_string(*next)) : json(nullptr);
   body["next"] =
-      next ? json(prefix + "/studies?limit=" + std::to_string(limit) +
+      next ? json(api_prefix + "/studies?limit=" + std::to_string(limit) +
                   (status.empty() ? "" : "&status=" + status) + "&cursor=" + std::to_string(*next))
            : json(nullptr);
   return json_response(rc.request, http::status::ok, body);
@@ -270,20 +268,20 @@ Response convergence_map(ServerContext& ctx, RequestContext& rc) {
 } // namespace
 
 void add_study_routes(Router& router, ServerContext& ctx) {
-  router.add(http::verb::post, prefix + "/studies",
+  router.add(http::verb::post, api_prefix + "/studies",
              [&ctx](RequestContext& rc) { return create_study(ctx, rc); });
   router.add(
-      http::verb::get, prefix + "/studies",
+      http::verb::get, api_prefix + "/studies",
       [&ctx](RequestContext& rc) { return list_studies(ctx, rc); }, true);
-  router.add(http::verb::get, prefix + "/studies/{id}",
+  router.add(http::verb::get, api_prefix + "/studies/{id}",
              [&ctx](RequestContext& rc) { return get_study(ctx, rc); });
-  router.add(http::verb::post, prefix + "/studies/{id}/cancel",
+  router.add(http::verb::post, api_prefix + "/studies/{id}/cancel",
              [&ctx](RequestContext& rc) { return cancel_study(ctx, rc); });
   router.add(
-      http::verb::get, prefix + "/studies/{id}/speed-accuracy",
+      http::verb::get, api_prefix + "/studies/{id}/speed-accuracy",
       [&ctx](RequestContext& rc) { return speed_accuracy(ctx, rc); }, true);
   router.add(
-      http::verb::get, prefix + "/convergence-map",
+      http::verb::get, api_prefix + "/convergence-map",
       [&ctx](RequestContext& rc) { return convergence_map(ctx, rc); }, true);
 }
 
