@@ -19,19 +19,22 @@ http::response<http::string_body> text_response(const Request& req, http::status
   return res;
 }
 
-namespace {
-// A weak validator of a JSON body: FNV-1a (64 bits) of its bytes.
-std::string weak_etag(const std::string& body) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : body) {
+std::string fnv1a_hex(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ULL; // FNV-1a, 64 bits: offset basis and prime
+  for (unsigned char c : bytes) {
     h ^= c;
     h *= 1099511628211ULL;
   }
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return std::string("W/\"") + hex + "\"";
+  return hex;
 }
 
+namespace {
+// A weak validator of a JSON body.
+std::string weak_etag(const std::string& body) {
+  return "W/\"" + fnv1a_hex(body) + "\"";
+}
 } // namespace
 
 bool etag_list_matches(std::string_view if_none_match, std::string_view etag) {

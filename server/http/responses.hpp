@@ -17,6 +17,9 @@ http::response<http::string_body> json_response(const Request& req, http::status
                                                 const nlohmann::json& body);
 http::response<http::string_body> text_response(const Request& req, http::status status,
                                                 std::string body, const std::string& content_type);
+// The 64-bit FNV-1a hash of `bytes` as 16 hex digits (the server's entity tags).
+std::string fnv1a_hex(const std::string& bytes);
+
 // Whether an If-None-Match header value matches `etag`: "*", or a list of entity tags one of
 // which equals it under the weak comparison of RFC 9110 §8.8.3.2 (W/ prefixes ignored on both
 // sides).

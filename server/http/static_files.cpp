@@ -36,14 +36,7 @@ std::string content_type_of(const fs::path& p) {
 }
 
 std::string strong_etag(const std::string& body) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : body) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return std::string("\"") + hex + "\"";
+  return "\"" + fnv1a_hex(body) + "\"";
 }
 
 } // namespace
