@@ -29,7 +29,7 @@ StudyRecord read_study(const Statement& s) {
   r.created_at = s.text(11);
   r.updated_at = s.text(12);
   r.finished_at = s.text(13);
-  r.status = s.text(14);
+  r.status = api::parse_study_status(s.text(14)).value_or(api::StudyStatus::running);
   r.runs_done = static_cast<int>(s.integer(15));
   r.runs_total = static_cast<int>(s.integer(16));
   r.L_c = s.real(17);
@@ -106,7 +106,7 @@ void StudyStore::insert(const StudyRecord& st) {
         .bind(9, std::int64_t{st.priority})
         .bind(10, std::int64_t{st.fresh ? 1 : 0})
         .bind(11, st.created_at)
-        .bind(12, st.status)
+        .bind(12, std::string(api::to_string(st.status)))
         .run();
   });
 }
@@ -130,15 +130,15 @@ std::optional<StudyRecord> StudyStore::get(const std::string& id) {
 }
 
 std::vector<StudyRecord> StudyStore::list(int limit, std::optional<std::int64_t> before_seq,
-                                          const std::string& status) {
+                                          std::optional<api::StudyStatus> status) {
   return db_.with_db([&](Database& db) {
     std::string sql = std::string("SELECT ") + study_columns + "WHERE 1 = 1";
     if (before_seq) sql += " AND seq < ?1";
-    if (!status.empty()) sql += " AND status = ?2";
+    if (status) sql += " AND status = ?2";
     sql += " ORDER BY seq DESC LIMIT " + std::to_string(limit);
     auto s = db.prepare(sql);
     if (before_seq) s.bind(1, *before_seq);
-    if (!status.empty()) s.bind(2, status);
+    if (status) s.bind(2, std::string(api::to_string(*status)));
     std::vector<StudyRecord> out;
     while (s.step())
       out.push_back(read_study(s));
@@ -156,12 +156,11 @@ std::vector<std::string> StudyStore::running_ids() {
   });
 }
 
-void StudyStore::set_status(const std::string& id, const std::string& status,
-                            const std::string& at) {
+void StudyStore::set_status(const std::string& id, api::StudyStatus status, const std::string& at) {
   db_.with_db([&](Database& db) {
     db.prepare("UPDATE studies SET status = ?2, updated_at = ?3 WHERE id = ?1")
         .bind(1, id)
-        .bind(2, status)
+        .bind(2, std::string(api::to_string(status)))
         .bind(3, at)
         .run();
   });
@@ -240,7 +239,7 @@ void StudyStore::save_analysis(const StudyRecord& st, const std::vector<StudyRun
                         "L_c = ?5, spectral_critical_length = ?6, result = ?7, updated_at = ?8, "
                         "finished_at = ?9 WHERE id = ?1");
     s.bind(1, st.id)
-        .bind(2, st.status)
+        .bind(2, std::string(api::to_string(st.status)))
         .bind(3, std::int64_t{st.runs_done})
         .bind(4, std::int64_t{st.runs_total})
         .bind(5, st.L_c)

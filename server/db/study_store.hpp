@@ -4,6 +4,7 @@
 // reading a study is a few indexed SELECTs.
 #pragma once
 
+#include "api/study/study_status.hpp"
 #include "api/study_analysis.hpp"
 #include "server/db/job_store.hpp"
 
@@ -29,7 +30,7 @@ struct StudyRecord {
   int priority = 0;
   bool fresh = false;
   std::string created_at, updated_at, finished_at;
-  std::string status = "running"; // running | finished | cancelled
+  api::StudyStatus status = api::StudyStatus::running;
   int runs_done = 0, runs_total = 0;
   double L_c = api::not_available;
   double spectral_critical_length = api::not_available;
@@ -67,7 +68,7 @@ public:
   std::optional<StudyRecord> get(const std::string& id);
   // Newest first; `before_seq` is the cursor of the previous page.
   std::vector<StudyRecord> list(int limit, std::optional<std::int64_t> before_seq,
-                                const std::string& status);
+                                std::optional<api::StudyStatus> status);
   std::vector<std::string> running_ids();
   // Cancelled studies with a run not final, or whose stored progress is behind.
   std::vector<std::string> unsettled_cancelled_ids();
@@ -79,7 +80,7 @@ public:
 
   // Sets the study's status and updated_at (cancellation; finished_at follows when the
   // last run ends, analyse_study).
-  void set_status(const std::string& id, const std::string& status, const std::string& at);
+  void set_status(const std::string& id, api::StudyStatus status, const std::string& at);
 
   // Stores the statuses of `runs` (by job id) and the study's summary in one transaction.
   void save_analysis(const StudyRecord& study, const std::vector<StudyRunRow>& runs);

@@ -98,7 +98,7 @@ Response cancel_study(ServerContext& ctx, RequestContext& rc) {
                             "study " + id + " was submitted by another user");
   case Kind::already_over:
     return problem_response(rc.request, http::status::conflict,
-                            "study " + id + " is already " + r.status);
+                            "study " + id + " is already " + api::to_string(r.status));
   case Kind::cancelled:
     break;
   }
@@ -116,7 +116,7 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   std::vector<api::FieldError> errors;
   int limit = 50;
   std::optional<std::int64_t> cursor;
-  std::string status;
+  std::optional<api::StudyStatus> status;
   auto integer = [](const std::string& s) -> std::optional<long> {
     long v = 0;
     auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -138,9 +138,8 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
       cursor = *c;
   }
   if (auto it = rc.query.find("status"); it != rc.query.end()) {
-    status = it->second;
-    if (status != "running" && status != "finished" && status != "cancelled")
-      errors.push_back({"/query/status", "must be running, finished or cancelled"});
+    status = api::parse_study_status(it->second);
+    if (!status) errors.push_back({"/query/status", "must be running, finished or cancelled"});
   }
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
@@ -160,7 +159,8 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   body["next_cursor"] = next ? json(std::to_string(*next)) : json(nullptr);
   body["next"] =
       next ? json(api_prefix + "/studies?limit=" + std::to_string(limit) +
-                  (status.empty() ? "" : "&status=" + status) + "&cursor=" + std::to_string(*next))
+                  (status ? std::string("&status=") + api::to_string(*status) : std::string()) +
+                  "&cursor=" + std::to_string(*next))
            : json(nullptr);
   return json_response(rc.request, http::status::ok, body);
 }

@@ -105,7 +105,7 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& rows, const jso
   study.runs_done = done;
   study.runs_total = static_cast<int>(rows.size());
   study.updated_at = now;
-  if (study.status == "cancelled") { // analysed as its runs end, never resumed
+  if (study.status == api::StudyStatus::cancelled) { // analysed as its runs end, never resumed
     if (done < study.runs_total)
       study.finished_at.clear();
     else if (study.finished_at.empty())
@@ -113,8 +113,8 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& rows, const jso
     return;
   }
   const bool finished = done == study.runs_total && !plans_open;
-  if (finished && study.status != "finished") study.finished_at = now;
-  study.status = finished ? "finished" : "running";
+  if (finished && study.status != api::StudyStatus::finished) study.finished_at = now;
+  study.status = finished ? api::StudyStatus::finished : api::StudyStatus::running;
   if (!finished) study.finished_at.clear();
 }
 

@@ -164,12 +164,12 @@ StudyCancelResult StudyService::cancel(const std::string& id, const std::string&
       out.kind = CancelKind::forbidden;
       return;
     }
-    if (study->status != "running") {
+    if (study->status != api::StudyStatus::running) {
       out.kind = CancelKind::already_over;
       return;
     }
     // Cancelled first, under the step lock: no step can submit a further mesh after this.
-    studies_.set_status(id, "cancelled", now_iso8601());
+    studies_.set_status(id, api::StudyStatus::cancelled, now_iso8601());
     auto runs = supervisor_.cancel_runs_locked(*study);
     out.cancelled_jobs = std::move(runs.cancelled);
     out.cancel_requested_jobs = std::move(runs.cancel_requested);
@@ -219,7 +219,7 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   j["name"] = s.name;
   j["tags"] = s.tags;
   j["kind"] = s.kind;
-  j["status"] = s.status;
+  j["status"] = api::to_string(s.status);
   j["submitted_by"] = s.submitted_by;
   j["created_at"] = s.created_at;
   j["updated_at"] = s.updated_at.empty() ? json(nullptr) : json(s.updated_at);

@@ -23,9 +23,9 @@ struct StudyCreateResult {
 
 struct StudyCancelResult {
   enum class Kind { cancelled, not_found, forbidden, already_over } kind = Kind::cancelled;
-  std::string status;                             // the study's status before the call
-  std::vector<std::string> cancelled_jobs;        // were queued: cancelled now
-  std::vector<std::string> cancel_requested_jobs; // were running: they stop at their next step
+  api::StudyStatus status = api::StudyStatus::running; // the study's status before the call
+  std::vector<std::string> cancelled_jobs;             // were queued: cancelled now
+  std::vector<std::string> cancel_requested_jobs;      // were running: they stop at their next step
 };
 
 // The study's scene and the same physics by the other method (docs/studies.md).

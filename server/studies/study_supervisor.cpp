@@ -147,7 +147,7 @@ void StudySupervisor::step_locked(const std::string& study_id) {
   auto rows = studies_.runs(study_id);
   json refinement = nullptr;
   bool plans_open = false;
-  if (study->kind == "convergence" && study->status == "cancelled") {
+  if (study->kind == "convergence" && study->status == api::StudyStatus::cancelled) {
     refinement = cancelled_refinement(study->result);
   } else if (study->kind == "convergence") {
     // Each pass submits at most one mesh per L; a reused result can settle a plan at once,
@@ -193,7 +193,7 @@ void StudySupervisor::step_locked(const std::string& study_id) {
   }
   analyse_study(*study, rows, refinement, plans_open, now_iso8601());
   studies_.save_analysis(*study, rows);
-  if (study->status == "finished" && !study->finished_at.empty())
+  if (study->status == api::StudyStatus::finished && !study->finished_at.empty())
     log_info("study " + study_id + ": " + std::to_string(study->runs_total) + " run(s) finished");
 }
 

@@ -14,6 +14,7 @@
 #include <filesystem>
 
 using namespace slipfront::server;
+namespace api = slipfront::api;
 namespace fs = std::filesystem;
 using slipfront::server::testing::TempDir;
 
@@ -104,16 +105,16 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
   StudyStore studies(jobs);
   auto study = studies.get(study_id);
   ASSERT_TRUE(study);
-  EXPECT_EQ(study->status, "running");
+  EXPECT_EQ(study->status, api::StudyStatus::running);
   EXPECT_EQ(study->result["x"], 1);
   ASSERT_EQ(studies.runs(study_id).size(), 1u); // the rebuild did not cascade to study_runs
   EXPECT_EQ(studies.study_of_job(job_id), study_id);
 
-  studies.set_status(study_id, "cancelled", "2025");
-  EXPECT_EQ(studies.get(study_id)->status, "cancelled");
+  studies.set_status(study_id, api::StudyStatus::cancelled, "2025");
+  EXPECT_EQ(studies.get(study_id)->status, api::StudyStatus::cancelled);
   EXPECT_EQ(studies.get(study_id)->updated_at, "2025");
   EXPECT_TRUE(studies.running_ids().empty());
-  EXPECT_EQ(studies.list(10, std::nullopt, "cancelled").size(), 1u);
+  EXPECT_EQ(studies.list(10, std::nullopt, api::StudyStatus::cancelled).size(), 1u);
   // Its run is not final: the next start-up must settle it.
   EXPECT_EQ(studies.unsettled_cancelled_ids(), std::vector<std::string>{study_id});
   // Foreign keys hold again after the migration.
@@ -160,7 +161,7 @@ TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {
   rows[0].convergence_status = "converged";
   rows[0].partner_n_d = 20;
   rows[0].propagation_distance_change = 0.001;
-  st.status = "finished";
+  st.status = api::StudyStatus::finished;
   st.runs_done = 1;
   st.runs_total = 2;
   st.L_c = 1e-5;
@@ -170,7 +171,7 @@ TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {
 
   auto back = studies.get(st.id);
   ASSERT_TRUE(back);
-  EXPECT_EQ(back->status, "finished");
+  EXPECT_EQ(back->status, api::StudyStatus::finished);
   EXPECT_DOUBLE_EQ(back->L_c, 1e-5);
   EXPECT_TRUE(std::isnan(back->spectral_critical_length));
   EXPECT_EQ(back->result["convergence_map"]["L"][0], 1e-5);
@@ -179,7 +180,7 @@ TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {
   EXPECT_DOUBLE_EQ(stored[0].partner_n_d, 20);
   EXPECT_EQ(stored[1].convergence_status, "pending");
   EXPECT_TRUE(studies.running_ids().empty());
-  EXPECT_EQ(studies.list(10, std::nullopt, "finished").size(), 1u);
+  EXPECT_EQ(studies.list(10, std::nullopt, api::StudyStatus::finished).size(), 1u);
 
   // The scene's finished jobs, reused copies left out.
   auto scene = studies.scene_runs(st.scene_hash);

@@ -14,11 +14,12 @@
 #include <thread>
 
 using namespace slipfront::server;
+namespace api = slipfront::api;
 using slipfront::server::testing::TempDir;
 
 namespace {
 
-StudyRecord study_record(const std::string& status) {
+StudyRecord study_record(api::StudyStatus status) {
   StudyRecord st;
   st.id = new_job_id();
   st.kind = "convergence";
@@ -54,7 +55,7 @@ TEST(StudySupervisor, StartCancelsTheRequeuedRunsOfACancelledStudy) {
   JobService service(ServiceOptions{}, store, queue, running);
   StudyStore studies(store);
 
-  StudyRecord cancelled = study_record("cancelled");
+  StudyRecord cancelled = study_record(api::StudyStatus::cancelled);
   cancelled.runs_total = 2;
   studies.insert(cancelled);
   std::vector<Job> runs = {queued_run(cancelled, 10), queued_run(cancelled, 20)};
@@ -80,7 +81,7 @@ TEST(StudySupervisor, StartCancelsTheRequeuedRunsOfACancelledStudy) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   supervisor.stop();
-  EXPECT_EQ(after->status, "cancelled");
+  EXPECT_EQ(after->status, api::StudyStatus::cancelled);
   EXPECT_EQ(after->runs_done, 2);
   EXPECT_FALSE(after->finished_at.empty());
   EXPECT_EQ(studies.runs(cancelled.id).size(), 2u); // no further mesh (n_d = 40) submitted
