@@ -2,7 +2,6 @@
 
 #include "api/job_spec.hpp"
 #include "server/http/responses.hpp"
-#include "server/server_context.hpp"
 
 #include <fstream>
 #include <stdexcept>
@@ -88,13 +87,13 @@ std::optional<std::string> TokenTable::user_for_header(std::string_view authoriz
   return *found;
 }
 
-std::optional<Response> authenticate(const ServerContext& ctx, RequestContext& rc) {
-  if (!ctx.tokens) {
+std::optional<Response> authenticate(const std::optional<TokenTable>& tokens, RequestContext& rc) {
+  if (!tokens) {
     rc.user = "anonymous";
     return std::nullopt;
   }
   auto header = rc.request[http::field::authorization];
-  auto user = ctx.tokens->user_for_header(header);
+  auto user = tokens->user_for_header(header);
   if (!user) {
     auto res = problem_response(rc.request, http::status::unauthorized,
                                 header.empty() ? "this server needs a bearer token "

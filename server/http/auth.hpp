@@ -44,10 +44,8 @@ private:
   std::shared_ptr<const Digests> digests_;
 };
 
-struct ServerContext;
-
-// Sets rc.user; a 401 response when a token file is configured and the request carries no
-// valid bearer token.
-std::optional<Response> authenticate(const ServerContext& ctx, RequestContext& rc);
+// Sets rc.user; a 401 response when a token file is configured (`tokens` set) and the request
+// carries no valid bearer token.
+std::optional<Response> authenticate(const std::optional<TokenTable>& tokens, RequestContext& rc);
 
 } // namespace slipfront::server

@@ -22,7 +22,7 @@ Response not_found_job(const Request& req, const std::string& id) {
 }
 
 Response submit(ServerContext& ctx, RequestContext& rc) {
-  if (auto denied = authenticate(ctx, rc)) return std::move(*denied);
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
   if (ctx.draining) {
     auto res =
@@ -145,7 +145,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
 }
 
 Response cancel_job(ServerContext& ctx, RequestContext& rc) {
-  if (auto denied = authenticate(ctx, rc)) return std::move(*denied);
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& id = rc.path_params.at("id");
   if (!is_valid_job_id(id)) return not_found_job(rc.request, id);
   auto r = ctx.service.cancel(id, rc.user);

@@ -35,7 +35,7 @@ std::optional<Response> unknown_parameters(const RequestContext& rc,
 }
 
 Response create_study(ServerContext& ctx, RequestContext& rc) {
-  if (auto denied = authenticate(ctx, rc)) return std::move(*denied);
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
   if (ctx.draining) {
     auto res =
@@ -84,7 +84,7 @@ Response get_study(ServerContext& ctx, RequestContext& rc) {
 // 200 when every unfinished run was still queued (all cancelled now), 202 when running
 // runs were asked to stop and will report `cancelled` when they do.
 Response cancel_study(ServerContext& ctx, RequestContext& rc) {
-  if (auto denied = authenticate(ctx, rc)) return std::move(*denied);
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& id = rc.path_params.at("id");
   if (!is_valid_job_id(id)) return not_found_study(rc.request, id);
   if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
