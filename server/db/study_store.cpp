@@ -13,28 +13,33 @@ const char* study_columns =
     "created_at, updated_at, finished_at, status, runs_done, runs_total, L_c, "
     "spectral_critical_length, result FROM studies ";
 
+// A row of SELECT study_columns, read by column name.
 StudyRecord read_study(const Statement& s) {
   StudyRecord r;
-  r.seq = s.integer(0);
-  r.id = s.text(1);
-  r.name = s.text(2);
-  r.tags = parse_stored_json(s.text(3), "tags of study " + r.id).get<std::vector<std::string>>();
-  r.kind = s.text(4);
-  r.base = parse_stored_json(s.text(5), "base of study " + r.id);
-  r.request = parse_stored_json(s.text(6), "request of study " + r.id);
-  r.scene_hash = s.text(7);
-  r.submitted_by = s.text(8);
-  r.priority = static_cast<int>(s.integer(9));
-  r.fresh = s.integer(10) != 0;
-  r.created_at = s.text(11);
-  r.updated_at = s.text(12);
-  r.finished_at = s.text(13);
-  r.status = api::parse_study_status(s.text(14)).value_or(api::StudyStatus::running);
-  r.runs_done = static_cast<int>(s.integer(15));
-  r.runs_total = static_cast<int>(s.integer(16));
-  r.L_c = s.real(17);
-  r.spectral_critical_length = s.real(18);
-  r.result = parse_stored_json(s.text(19), "result of study " + r.id);
+  r.seq = s.integer("seq");
+  r.id = s.text("id");
+  r.name = s.text("name");
+  r.tags =
+      parse_stored_json(s.text("tags"), "tags of study " + r.id).get<std::vector<std::string>>();
+  r.kind = s.text("kind");
+  r.base = parse_stored_json(s.text("base_spec"), "base of study " + r.id);
+  r.request = parse_stored_json(s.text("request"), "request of study " + r.id);
+  r.scene_hash = s.text("scene_hash");
+  r.submitted_by = s.text("submitted_by");
+  r.priority = static_cast<int>(s.integer("priority"));
+  r.fresh = s.integer("fresh") != 0;
+  r.created_at = s.text("created_at");
+  r.updated_at = s.text("updated_at");
+  r.finished_at = s.text("finished_at");
+  const auto status = api::parse_study_status(s.text("status"));
+  if (!status)
+    throw std::runtime_error("study " + r.id + " has unknown status " + s.text("status"));
+  r.status = *status;
+  r.runs_done = static_cast<int>(s.integer("runs_done"));
+  r.runs_total = static_cast<int>(s.integer("runs_total"));
+  r.L_c = s.real("L_c");
+  r.spectral_critical_length = s.real("spectral_critical_length");
+  r.result = parse_stored_json(s.text("result"), "result of study " + r.id);
   return r;
 }
 
