@@ -7,14 +7,17 @@
 //      two doubles each, read once and written once = 64 bytes;
 //   3. the floor (node updates per second) that bandwidth / 64 implies;
 //   4. the solver's node updates per second on the paper's grid (n_d = 40: 1600 x 801
-//      nodes, every row active) with 1 and 2 threads, and the ratio actual / floor;
+//      nodes, every row active) with 1 and 2 threads, for 1, 2, 4, 8 and 16 steps per
+//      thread in a trip over the mesh (temporal blocking, solver/level_pipeline.hpp; 1 is
+//      one step per trip), and the ratio actual / floor;
 //   5. the effective rate of the paper's run from rest (nucleation on, the quiet far field
-//      skipped): every node of the grid counted at every step, as if it had been swept,
-//      over the first --paper-steps steps (1793: the run arrests there), and its ratio to
-//      the same floor.
+//      skipped, the run's steps per trip): every node of the grid counted at every step, as
+//      if it had been swept, over the first --paper-steps steps (1793: the run arrests
+//      there), and its ratio to the same floor.
 //
-// Usage: slipfront_roofline [--nodes-per-meter 40] [--steps 60] [--repeats 5]
+// Usage: slipfront_roofline [--nodes-per-meter 40] [--steps 64] [--repeats 5]
 //                           [--paper-steps 1793]
+#include "solver/fe_method.hpp"
 #include "solver/rupture_model.hpp"
 #include "solver/thread_team.hpp"
 
@@ -68,8 +71,24 @@ double triad_bandwidth(int threads, std::size_t n, int repeats) {
   return 24.0 * double(n) / best;
 }
 
-// Best-of-`repeats` node updates per second of RuptureModel::step on the paper's grid.
-double solver_node_updates(double nodes_per_meter, int threads, int steps, int repeats) {
+// `steps` steps in trips of `per_trip` steps (the last trip shorter); energy terms in the
+// steps `energy_every` apart (0: none).
+void advance(RuptureModel& model, ThreadTeam& team, int per_trip, int steps, int energy_every) {
+  std::vector<bool> energy;
+  for (int done = 0; done < steps;) {
+    const int count = std::min(per_trip, steps - done);
+    energy.assign(count, false);
+    for (int k = 0; k < count && energy_every > 0; ++k)
+      energy[k] = (done + k) % energy_every == 0;
+    model.advance(team, energy);
+    done += count;
+  }
+}
+
+// Best-of-`repeats` node updates per second of RuptureModel::advance on the paper's grid,
+// `per_thread` steps per thread in each trip.
+double solver_node_updates(double nodes_per_meter, int threads, int per_thread, int steps,
+                           int repeats) {
   SimulationParams p;
   p.geometry.nodes_per_meter = nodes_per_meter;
   p.nucleation.enabled = false;
@@ -87,13 +106,12 @@ double solver_node_updates(double nodes_per_meter, int threads, int steps, int r
   model.displacement().y.refresh_all_ghosts();
   model.activate_all_rows();
   ThreadTeam team(threads);
-  for (int s = 0; s < 5; ++s)
-    model.step(team, false); // warm up
+  const int per_trip = threads * per_thread;
+  advance(model, team, per_trip, per_trip, 0); // warm up
   double best = 1e30;
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = Clock::now();
-    for (int s = 0; s < steps; ++s)
-      model.step(team, false);
+    advance(model, team, per_trip, steps, 0);
     best = std::min(best, seconds_since(t0) / steps);
   }
   return double(model.nx()) * model.ny() / best;
@@ -106,7 +124,7 @@ struct PaperRun {
   double swept_rows;    // the same with whole active rows swept (the skipping in x2 alone)
 };
 
-// The paper's run from rest, stepped as a run steps it.
+// The paper's run from rest, stepped as a run steps it (FiniteElementMethod's trips).
 PaperRun paper_run(double nodes_per_meter, int threads, int steps) {
   SimulationParams p; // the paper's scene
   p.geometry.nodes_per_meter = nodes_per_meter;
@@ -114,11 +132,18 @@ PaperRun paper_run(double nodes_per_meter, int threads, int steps) {
   RuptureModel model(p);
   ThreadTeam team(threads);
   double row_skip_updates = 0;
+  const int per_trip = threads * kFeStepsPerThreadPerTrip;
   const std::clock_t c0 = std::clock();
   const auto t0 = Clock::now();
-  for (int s = 0; s < steps; ++s) {
-    row_skip_updates += double(std::min(model.ny(), model.active_rows() + 1)) * model.nx();
-    model.step(team, s % 7 == 0); // the energy terms about as often as a run evaluates them
+  std::vector<bool> energy;
+  for (int s = 0; s < steps; s += per_trip) {
+    const int count = std::min(per_trip, steps - s);
+    row_skip_updates +=
+        double(count) * std::min(model.ny(), model.active_rows() + count) * model.nx();
+    energy.assign(count, false);
+    for (int k = 0; k < count; ++k)
+      energy[k] = (s + k) % 7 == 0; // the energy terms about as often as a run evaluates them
+    model.advance(team, energy);
   }
   const double wall = seconds_since(t0);
   const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
@@ -130,7 +155,7 @@ PaperRun paper_run(double nodes_per_meter, int threads, int steps) {
 
 int main(int argc, char** argv) {
   double nd = 40;
-  int steps = 60, repeats = 5, paper_steps = 1793;
+  int steps = 64, repeats = 5, paper_steps = 1793;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--nodes-per-meter")
@@ -152,19 +177,24 @@ int main(int argc, char** argv) {
   std::printf("layout: u and v as doubles (SoA), each read once and written once per step: "
               "%.0f bytes/node-update at the least\n",
               bytes_per_node);
-  std::printf("%-8s %16s %20s %22s %8s %26s %8s\n", "threads", "triad [GB/s]",
-              "floor [Mnode-upd/s]", "solver [Mnode-upd/s]", "ratio",
-              "paper run eff. [Mnode-upd/s]", "ratio");
+  const int per_thread_list[] = {1, 2, 4, 8, 16};
   for (int threads : {1, 2}) {
     const double bw = triad_bandwidth(threads, triad_n, repeats);
     const double floor = bw / bytes_per_node;
-    const double actual = solver_node_updates(nd, threads, steps, repeats);
-    const PaperRun paper = paper_steps > 0 ? paper_run(nd, threads, paper_steps) : PaperRun{};
-    std::printf("%-8d %16.2f %20.1f %22.1f %8.2f %26.1f %8.2f\n", threads, bw / 1e9, floor / 1e6,
-                actual / 1e6, actual / floor, paper.effective / 1e6, paper.effective / floor);
-    std::printf("         paper run: CPU-time effective rate %.1f Mnode-upd/s; node updates made: "
-                "%.3f of nx ny steps (%.3f with whole rows swept)\n",
-                paper.cpu_effective / 1e6, paper.swept, paper.swept_rows);
+    std::printf("\n%d thread%s: triad %.2f GB/s, floor %.1f Mnode-upd/s\n", threads,
+                threads > 1 ? "s" : "", bw / 1e9, floor / 1e6);
+    std::printf("  %-26s %22s %8s\n", "steps per thread per trip", "solver [Mnode-upd/s]", "ratio");
+    for (int per_thread : per_thread_list) {
+      const double actual = solver_node_updates(nd, threads, per_thread, steps, repeats);
+      std::printf("  %-26d %22.1f %8.2f%s\n", per_thread, actual / 1e6, actual / floor,
+                  per_thread == kFeStepsPerThreadPerTrip ? "   (the runs' setting)" : "");
+    }
+    if (paper_steps <= 0) continue;
+    const PaperRun paper = paper_run(nd, threads, paper_steps);
+    std::printf("  paper run: effective %.1f Mnode-upd/s = %.2f x floor; per CPU second %.1f; "
+                "node updates made: %.3f of nx ny steps (%.3f with whole rows swept)\n",
+                paper.effective / 1e6, paper.effective / floor, paper.cpu_effective / 1e6,
+                paper.swept, paper.swept_rows);
   }
   std::printf("grid: n_d = %g (%d x %d nodes at the paper's 40 m x 20 m); paper run: the first "
               "%d steps from rest\n",

@@ -4,24 +4,17 @@
 
 namespace slipfront {
 
-void grow_column_ranges(const std::vector<ColumnRange>& now, int first, int rows, int nx,
-                        std::vector<ColumnRange>& next) {
+ColumnRange grown_column_range(const std::vector<ColumnRange>& now, int j, int nx) {
   const int ny = int(now.size());
-  for (int j = first; j < rows; ++j) {
-    int begin = nx, end = 0; // the hull of the non-empty ranges of rows j-1, j, j+1
-    for (int r = std::max(0, j - 1); r <= std::min(ny - 1, j + 1); ++r) {
-      if (r >= rows || now[r].empty()) continue;
-      begin = std::min(begin, now[r].begin);
-      end = std::max(end, now[r].end);
-    }
-    if (end <= begin) {
-      next[j] = ColumnRange{};
-    } else if (begin == 0 || end == nx) { // would cross the periodic boundary
-      next[j] = ColumnRange{0, nx};
-    } else {
-      next[j] = ColumnRange{begin - 1, end + 1};
-    }
+  int begin = nx, end = 0; // the hull of the non-empty ranges of rows j-1, j, j+1
+  for (int r = std::max(0, j - 1); r <= std::min(ny - 1, j + 1); ++r) {
+    if (now[r].empty()) continue;
+    begin = std::min(begin, now[r].begin);
+    end = std::max(end, now[r].end);
   }
+  if (end <= begin) return ColumnRange{};
+  if (begin == 0 || end == nx) return ColumnRange{0, nx}; // would cross the periodic boundary
+  return ColumnRange{begin - 1, end + 1};
 }
 
 namespace {
@@ -41,23 +34,6 @@ ColumnRange trim_column_range(const VectorField& u, const VectorField& v, int j,
   while (end > begin && column_is_zero(rows, end - 1))
     --end;
   return end > begin ? ColumnRange{begin, end} : ColumnRange{};
-}
-
-std::vector<int> balanced_row_bands(const std::vector<ColumnRange>& ranges, int rows, int members) {
-  constexpr long kRowOverhead = 32;      // a row's fixed cost (calls, ghosts, trimming) in nodes
-  std::vector<long> before(rows + 1, 0); // work of rows [0, j)
-  for (int j = 0; j < rows; ++j)
-    before[j + 1] = before[j] + ranges[j].size() + kRowOverhead;
-  std::vector<int> bounds(members + 1, 0);
-  bounds[members] = rows;
-  for (int m = 1; m < members; ++m) {
-    const long target = before[rows] * m / members;
-    int b = int(std::lower_bound(before.begin(), before.end(), target) - before.begin());
-    b = std::max(b, bounds[m - 1] + 2);        // at least two rows in band m - 1
-    b = std::min(b, rows - 2 * (members - m)); // and in each band after it
-    bounds[m] = b;
-  }
-  return bounds;
 }
 
 } // namespace slipfront

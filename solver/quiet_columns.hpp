@@ -26,17 +26,12 @@ struct ColumnRange {
   int size() const { return empty() ? 0 : end - begin; }
 };
 
-// The ranges after one step of rows [first, rows) from those before it, `now` (rows at
-// and above rows hold exact zeros); row j of `next` from rows j-1, j, j+1 of `now`.
-void grow_column_ranges(const std::vector<ColumnRange>& now, int first, int rows, int nx,
-                        std::vector<ColumnRange>& next);
+// The range of row j after one step, from the ranges of rows j-1, j, j+1 before it: their
+// hull grown by one column each side (the whole row if it would cross the periodic
+// boundary; empty if all three are).
+ColumnRange grown_column_range(const std::vector<ColumnRange>& now, int j, int nx);
 
 // `range` narrowed to the columns where u or v of row j is non-zero (empty if none).
 ColumnRange trim_column_range(const VectorField& u, const VectorField& v, int j, ColumnRange range);
-
-// Split rows [0, rows) into `members` contiguous bands of about equal work, a row costing
-// its range's size plus a fixed overhead; every band gets at least two rows (needs
-// rows >= 2 members). Returns the members + 1 band boundaries.
-std::vector<int> balanced_row_bands(const std::vector<ColumnRange>& ranges, int rows, int members);
 
 } // namespace slipfront

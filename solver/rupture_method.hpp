@@ -16,6 +16,15 @@ class RuptureMethod {
 public:
   virtual ~RuptureMethod() = default;
   virtual void step(bool compute_energy) = 0; // t_n -> t_{n+1}
+  // Steps the method takes at once at most (FE: temporal blocking, one trip over the mesh
+  // for several steps). step_block(energy) advances energy.size() <= block_steps() steps,
+  // energy[k] saying whether step k of the block evaluates the energy terms; then
+  // interface_after(k) and energy_after(k) are those after step k of the block.
+  virtual int block_steps() const { return 1; }
+  virtual void step_block(const std::vector<bool>& energy) { step(energy.front()); } // 1 step
+
+  virtual const InterfaceFields& interface_after(int /*k*/) const { return interface(); }
+  virtual const EnergyBalance& energy_after(int /*k*/) const { return energy(); }
   virtual double dt() const = 0;
   virtual const InterfaceFields& interface() const = 0; // after the step: quantities of step n
   virtual const EnergyBalance& energy() const = 0;

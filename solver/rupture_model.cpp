@@ -1,6 +1,7 @@
 #include "solver/rupture_model.hpp"
 
 #include "solver/element_stiffness.hpp"
+#include "solver/level_pipeline.hpp"
 #include "solver/lumped_mass.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/nucleation.hpp"
@@ -51,9 +52,6 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   node_ = {node_mass(0), node_mass(0), dt_, dx_, params.friction};
 
   iface_ = resting_interface(params, nx_, dx_);
-  row_kinetic_.assign(ny_, 0.0);
-  row_strain_.assign(ny_, 0.0);
-  row_dissipated_.assign(ny_, 0.0);
   columns_.assign(ny_, ColumnRange{});
   next_columns_.assign(ny_, ColumnRange{});
 }
@@ -100,8 +98,9 @@ void RuptureModel::damping_force_row(const NodeStencil& s, int j, double* dx, do
   });
 }
 
-void RuptureModel::damped_interior_row(int j, const NodeStencil& s, ColumnRange cols,
-                                       bool compute_energy, std::vector<double>& scratch) {
+void RuptureModel::damped_interior_row(LevelRecord& level, int j, const NodeStencil& s,
+                                       ColumnRange cols, std::vector<double>& scratch) {
+  const bool compute_energy = level.compute_energy;
   const double* z = zero_row_.data() + 1;
   auto u = neighbour_rows(u_, j, ny_, z);
   auto w = neighbour_rows(w_, j, ny_, z);
@@ -119,20 +118,21 @@ void RuptureModel::damped_interior_row(int j, const NodeStencil& s, ColumnRange 
   double dis_sum = 0;
   for (int i = 0; i < n; ++i)
     dis_sum += dis[i];
-  row_dissipated_[j] = dis_sum;
-  if (compute_energy) store_row_energy(j, kin, str, n);
+  level.row_dissipated[j] = dis_sum;
+  if (compute_energy) store_row_energy(level, j, kin, str, n);
 }
 
 // The nodes left out of a sum hold exact zeros, whose terms are +0: leaving them out of
 // the sum in node order changes no bit of it.
-void RuptureModel::store_row_energy(int j, const double* kin, const double* str, int count) {
+void RuptureModel::store_row_energy(LevelRecord& level, int j, const double* kin, const double* str,
+                                    int count) const {
   double kin_sum = 0, str_sum = 0;
   for (int i = 0; i < count; ++i) {
     kin_sum += kin[i];
     str_sum += str[i];
   }
-  row_kinetic_[j] = 0.5 * node_mass(j) * kin_sum;
-  row_strain_[j] = 0.5 * str_sum;
+  level.row_kinetic[j] = 0.5 * node_mass(j) * kin_sum;
+  level.row_strain[j] = 0.5 * str_sum;
 }
 
 double RuptureModel::node_mass(int j) const {
@@ -140,8 +140,121 @@ double RuptureModel::node_mass(int j) const {
 }
 
 void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
+  advance(team, std::vector<bool>{compute_energy});
+}
+
+void RuptureModel::advance(ThreadTeam& team, const std::vector<bool>& energy_steps) {
+  const int count = int(energy_steps.size());
+  if (count == 0) return;
+  if (int(levels_.size()) < count) levels_.resize(count);
+  for (int k = 0; k < count; ++k) {
+    LevelRecord& level = levels_[k];
+    level.time = double(step_ + k) * dt_;
+    level.compute_energy = energy_steps[k];
+    level.row_kinetic.assign(ny_, 0.0);
+    level.row_strain.assign(ny_, 0.0);
+    level.row_dissipated.assign(ny_, 0.0);
+    level.work = 0;
+    level.swept = 0;
+  }
+  reserve_scratch(team.size());
+  run_level_pipeline(
+      team, count, ny_,
+      [&](int k, int j, int member) { velocity_row(levels_[k], j, energy_scratch_[member]); },
+      [&](int, int j, int) { displacement_row(j); });
+
+  // Sum each step's per-row terms in row order, the steps in order: the same result for any
+  // number of threads and steps per block.
+  for (int k = 0; k < count; ++k) {
+    LevelRecord& level = levels_[k];
+    double dissipated = 0;
+    for (int j = 0; j < ny_; ++j)
+      dissipated += level.row_dissipated[j];
+    energy_.dissipated += dissipated;
+    energy_.external_work += level.work;
+    if (level.compute_energy) {
+      double kinetic = 0, strain = 0;
+      for (int j = 0; j < ny_; ++j) {
+        kinetic += level.row_kinetic[j];
+        strain += level.row_strain[j];
+      }
+      energy_.kinetic = kinetic;
+      energy_.strain = strain;
+    }
+    level.energy = energy_;
+    swept_node_updates_ += level.swept;
+  }
+  for (int j = ny_ - 1; j >= active_rows_; --j) // the highest row that may be non-zero
+    if (!columns_[j].empty()) {
+      active_rows_ = j + 1;
+      break;
+    }
+  step_ += count;
+}
+
+ColumnRange RuptureModel::sweep_columns(int j) const {
+  // The interface row is always swept whole (its loads change everywhere), and so is the
+  // absorbing top once anything may reach it.
+  if (!skip_quiet_ || j == 0) return ColumnRange{0, nx_};
+  const ColumnRange grown = grown_column_range(columns_, j, nx_);
+  if (j == ny_ - 1 && params_.top == TopBoundary::absorbing && !grown.empty())
+    return ColumnRange{0, nx_};
+  return grown;
+}
+
+void RuptureModel::velocity_row(LevelRecord& level, int j, std::vector<double>& scratch) {
+  const ColumnRange cols = sweep_columns(j);
+  next_columns_[j] = cols;
+  level.swept += cols.size();
+  if (cols.empty()) return; // u and v are exact zeros around: nothing moves (terms stay 0)
+  const bool compute_energy = level.compute_energy;
+  const double* z = zero_row_.data() + 1;
+  const int b = cols.begin, n = cols.size(); // the bulk rows sweep columns [b, b + n)
+  const double* uxm = (j > 0 ? u_.x.row(j - 1) : z) + b;
+  const double* uym = (j > 0 ? u_.y.row(j - 1) : z) + b;
+  const double* uxp = (j < ny_ - 1 ? u_.x.row(j + 1) : z) + b;
+  const double* uyp = (j < ny_ - 1 ? u_.y.row(j + 1) : z) + b;
+  const double* ux0 = u_.x.row(j) + b;
+  const double* uy0 = u_.y.row(j) + b;
+  if (j == 0) {
+    for_each_node_force(stencils_.bottom, uxm, uym, ux0, uy0, uxp, uyp, nx_,
+                        [&](int i, double kx, double ky) {
+                          kx0_[i] = kx;
+                          ky0_[i] = ky;
+                        });
+    if (damping_a_ > 0) damping_force_row(stencils_.bottom, 0, kdx_.data(), kdy_.data());
+    interface_row(level);
+    level.iface = iface_;
+  } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
+    if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_top_.data(), kdy_top_.data());
+    absorbing_top_row(level, uxm, uym);
+  } else if (damping_a_ > 0) {
+    damped_interior_row(level, j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, cols,
+                        scratch);
+  } else {
+    const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
+    if (!compute_energy) {
+      stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b, n,
+                              dt_, node_mass(j));
+    } else {
+      // Per-node energy terms into this member's scratch rows, then summed in node order.
+      double* kin = scratch.data();
+      double* str = scratch.data() + nx_;
+      stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b, n,
+                              dt_, node_mass(j), kin, str);
+      store_row_energy(level, j, kin, str, n);
+    }
+  }
+}
+
+void RuptureModel::displacement_row(int j) {
+  update_displacement_row(j);
+  columns_[j] = trim_column_range(u_, v_, j, next_columns_[j]);
+}
+
+void RuptureModel::interface_row(LevelRecord& level) {
   // Load changes at the interface at t_n: nucleation (tensile) and any extra traction.
-  const double t = time();
+  const double t = level.time;
   for (int i = 0; i < nx_; ++i) {
     const double x1 = iface_.x1[i];
     InterfaceTraction extra;
@@ -151,110 +264,7 @@ void RuptureModel::step(ThreadTeam& team, bool compute_energy) {
     load1_[i] = extra.t1 * dx_;
     load2_[i] = (nucleation + extra.t2) * dx_;
   }
-
-  // Rows at and above active_rows_ + 1 are exact zeros and stay so in this step.
-  const int rows = skip_quiet_ ? std::min(ny_, active_rows_ + 1) : ny_;
-  plan_columns(rows);
-  const int members = rows >= 2 * team.size() ? team.size() : 1;
-  reserve_scratch(members);
-  const std::vector<int> bands = balanced_row_bands(next_columns_, rows, members);
-  auto chunk = [&](int m) { return RowRange{bands[m], bands[m + 1]}; };
-  team.run([&](int member, int) {
-    if (member < members) sweep_rows(chunk(member), compute_energy, energy_scratch_[member]);
-  });
-  // The first and last row of each chunk are neighbours of another chunk: their
-  // displacement is advanced only now that every member has read it.
-  for (int m = 0; m < members; ++m) {
-    const RowRange r = chunk(m);
-    update_displacement_row(r.begin);
-    if (r.end - 1 > r.begin) update_displacement_row(r.end - 1);
-  }
-  for (int j = 0; j < rows; ++j)
-    columns_[j] = trim_column_range(u_, v_, j, next_columns_[j]);
-  if (rows > active_rows_ && !columns_[rows - 1].empty()) active_rows_ = rows;
-
-  // Sum the per-row terms in row order: the same result for any number of threads.
-  double dissipated = 0;
-  for (int j = 0; j < rows; ++j)
-    dissipated += row_dissipated_[j];
-  energy_.dissipated += dissipated;
-  energy_.external_work += step_work_;
-  if (compute_energy) {
-    double kinetic = 0, strain = 0;
-    for (int j = 0; j < rows; ++j) {
-      kinetic += row_kinetic_[j];
-      strain += row_strain_[j];
-    }
-    energy_.kinetic = kinetic;
-    energy_.strain = strain;
-  }
-  ++step_;
-}
-
-void RuptureModel::plan_columns(int rows) {
-  const bool absorbing = params_.top == TopBoundary::absorbing;
-  if (!skip_quiet_) {
-    std::fill(next_columns_.begin(), next_columns_.begin() + rows, ColumnRange{0, nx_});
-    swept_node_updates_ += (long long)rows * nx_;
-    return;
-  }
-  grow_column_ranges(columns_, 1, rows, nx_, next_columns_);
-  // The interface and the absorbing top rows are always swept whole (one row each).
-  next_columns_[0] = ColumnRange{0, nx_};
-  if (absorbing && rows == ny_) next_columns_[ny_ - 1] = ColumnRange{0, nx_};
-  for (int j = 0; j < rows; ++j)
-    swept_node_updates_ += next_columns_[j].size();
-}
-
-void RuptureModel::sweep_rows(RowRange range, bool compute_energy, std::vector<double>& scratch) {
-  const double* z = zero_row_.data() + 1;
-  for (int j = range.begin; j < range.end; ++j) {
-    const ColumnRange cols = next_columns_[j];
-    const int b = cols.begin, n = cols.size(); // the bulk rows sweep columns [b, b + n)
-    const double* uxm = (j > 0 ? u_.x.row(j - 1) : z) + b;
-    const double* uym = (j > 0 ? u_.y.row(j - 1) : z) + b;
-    const double* uxp = (j < ny_ - 1 ? u_.x.row(j + 1) : z) + b;
-    const double* uyp = (j < ny_ - 1 ? u_.y.row(j + 1) : z) + b;
-    const double* ux0 = u_.x.row(j) + b;
-    const double* uy0 = u_.y.row(j) + b;
-    row_dissipated_[j] = 0.0;
-    row_kinetic_[j] = 0.0;
-    row_strain_[j] = 0.0;
-    if (j == 0) {
-      for_each_node_force(stencils_.bottom, uxm, uym, ux0, uy0, uxp, uyp, nx_,
-                          [&](int i, double kx, double ky) {
-                            kx0_[i] = kx;
-                            ky0_[i] = ky;
-                          });
-      if (damping_a_ > 0) damping_force_row(stencils_.bottom, 0, kdx_.data(), kdy_.data());
-      interface_row(compute_energy);
-    } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
-      if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_top_.data(), kdy_top_.data());
-      absorbing_top_row(uxm, uym, compute_energy);
-    } else if (damping_a_ > 0) {
-      damped_interior_row(j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, cols,
-                          compute_energy, scratch);
-    } else {
-      const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
-      if (!compute_energy) {
-        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b,
-                                n, dt_, node_mass(j));
-      } else {
-        // Per-node energy terms into this member's scratch rows, then summed in node order.
-        double* kin = scratch.data();
-        double* str = scratch.data() + nx_;
-        stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b,
-                                n, dt_, node_mass(j), kin, str);
-        store_row_energy(j, kin, str, n);
-      }
-    }
-    // Row j-1 is no longer read by this member: advance its displacement now, while it is
-    // still in cache (one streaming pass over u and v per step).
-    if (j >= range.begin + 2) update_displacement_row(j - 1);
-  }
-}
-
-void RuptureModel::interface_row(bool compute_energy) {
+  const bool compute_energy = level.compute_energy;
   // The initial contact force of the plane, C0 = dx (-tau1_0, |tau2_0|); the perturbation
   // sees C - C0.
   const double c0_1 = -params_.loading.shear_stress * dx_;
@@ -303,15 +313,16 @@ void RuptureModel::interface_row(bool compute_energy) {
       strain += kx0_[i] * (ux[i] + dt_ * v1_new) + ky0_[i] * (uy[i] + dt_ * v2_new);
     }
   }
-  step_work_ = work;
-  row_dissipated_[0] = dissipated;
+  level.work = work;
+  level.row_dissipated[0] = dissipated;
   if (compute_energy) {
-    row_kinetic_[0] = 0.5 * m * kinetic;
-    row_strain_[0] = 0.5 * strain;
+    level.row_kinetic[0] = 0.5 * m * kinetic;
+    level.row_strain[0] = 0.5 * strain;
   }
 }
 
-void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool compute_energy) {
+void RuptureModel::absorbing_top_row(LevelRecord& level, const double* uxm, const double* uym) {
+  const bool compute_energy = level.compute_energy;
   // Lysmer-Kuhlemeyer dashpots on the top nodes: force -c v with c = rho c_s dx (tangential)
   // and rho c_p dx (normal). Taken at the step's mid velocity (v^{n+1/2} + v^{n-1/2})/2,
   // which is implicit in v^{n+1/2} but diagonal:
@@ -344,10 +355,10 @@ void RuptureModel::absorbing_top_row(const double* uxm, const double* uym, bool 
           strain += kx * (ux0[i] + dt_ * vx_new) + ky * (uy0[i] + dt_ * vy_new);
         }
       });
-  row_dissipated_[j] = dissipated;
+  level.row_dissipated[j] = dissipated;
   if (compute_energy) {
-    row_kinetic_[j] = 0.5 * m * kinetic;
-    row_strain_[j] = 0.5 * strain;
+    level.row_kinetic[j] = 0.5 * m * kinetic;
+    level.row_strain[j] = 0.5 * strain;
   }
 }
 

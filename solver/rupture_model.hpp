@@ -11,6 +11,10 @@
 //   v^{n+1/2} = v^{n-1/2} + dt M^-1 (F^n - K u^n),   u^{n+1} = u^n + dt v^{n+1/2},
 // with M lumped. The stored velocity is that of the last half step.
 //
+// Several steps can be taken as one block (advance): the rows are swept once for all of
+// them, each step two rows behind the one before (solver/level_pipeline.hpp), with the same
+// bits as stepping one at a time.
+//
 // Optional mesh-scale damping (params.fe.mesh_damping = zeta > 0, docs/physics.md): a
 // stiffness-proportional (Kelvin-Voigt) force -a K v with a = zeta dx / c_s, taken at the
 // last half step's velocity v^{n-1/2} so that the step stays explicit:
@@ -39,6 +43,13 @@ public:
   // Advance from t_n to t_{n+1}. With compute_energy the kinetic and strain terms of the
   // energy balance are evaluated in the same sweep (else they keep their last value).
   void step(ThreadTeam& team, bool compute_energy);
+  // Advance energy_steps.size() steps as one block (temporal blocking over the team's
+  // threads); energy_steps[k]: evaluate the energy terms in step k of the block. The same
+  // bits as that many step() calls. After it, interface_after(k) and energy_after(k) are
+  // those after step k of the block; interface() and energy() those after the last.
+  void advance(ThreadTeam& team, const std::vector<bool>& energy_steps);
+  const InterfaceFields& interface_after(int k) const { return levels_[k].iface; }
+  const EnergyBalance& energy_after(int k) const { return levels_[k].energy; }
 
   int nx() const { return nx_; }
   int ny() const { return ny_; }
@@ -71,23 +82,34 @@ public:
   double node_mass(int j) const; // lumped mass of a node of row j [kg/m]
 
 private:
-  struct RowRange {
-    int begin, end;
+  // What one step of a block leaves behind until the block is summed up (in step order).
+  struct LevelRecord {
+    double time = 0; // t_n of the step
+    bool compute_energy = false;
+    InterfaceFields iface;                                       // the interface after the step
+    EnergyBalance energy;                                        // the balance after the step
+    std::vector<double> row_kinetic, row_strain, row_dissipated; // per row
+    double work = 0;     // work of the load changes in the step
+    long long swept = 0; // node updates made
   };
-  void sweep_rows(RowRange rows, bool compute_energy, std::vector<double>& scratch);
-  // The columns of each row this step sweeps, into next_columns_ (rows [0, rows)).
-  void plan_columns(int rows);
+  // The two parts of a row's step (solver/level_pipeline.hpp): v of row j from u of rows
+  // j-1, j, j+1; then u of row j from its new v (and the row's quiet-column range).
+  void velocity_row(LevelRecord& level, int j, std::vector<double>& scratch);
+  void displacement_row(int j);
+  // The columns of row j this step sweeps, from the ranges of rows j-1, j, j+1.
+  ColumnRange sweep_columns(int j) const;
   void reserve_scratch(int members);
-  void interface_row(bool compute_energy);
-  void absorbing_top_row(const double* uxm, const double* uym, bool compute_energy);
-  void damped_interior_row(int j, const NodeStencil& s, ColumnRange cols, bool compute_energy,
+  void interface_row(LevelRecord& level);
+  void absorbing_top_row(LevelRecord& level, const double* uxm, const double* uym);
+  void damped_interior_row(LevelRecord& level, int j, const NodeStencil& s, ColumnRange cols,
                            std::vector<double>& scratch);
   // K w - K u (= a K v^{n-1/2}) of the row j into dx, dy, from the rows of u and w.
   void damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const;
   void update_displacement_row(int j);
   void update_damping_row(int j); // w = u + a v on row j, with its ghosts
   // Row j's kinetic and strain energy from its per-node terms, summed in node order.
-  void store_row_energy(int j, const double* kin, const double* str, int count);
+  void store_row_energy(LevelRecord& level, int j, const double* kin, const double* str,
+                        int count) const;
 
   SimulationParams params_;
   int nx_, ny_;
@@ -102,17 +124,16 @@ private:
   std::vector<double> zero_row_;      // nx + 2 zeros, a neighbour for boundary rows
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   std::vector<double> kx0_, ky0_;     // K u on the interface row
-  double step_work_ = 0;              // work of the load changes in this step
   InterfaceNodeConstants node_;
   InterfaceFields iface_;
   EnergyBalance energy_;
-  std::vector<double> row_kinetic_, row_strain_, row_dissipated_;
-  std::vector<std::vector<double>> energy_scratch_; // per team member: 2 rows of energy terms
+  std::vector<LevelRecord> levels_;                 // the steps of the last block
+  std::vector<std::vector<double>> energy_scratch_; // per team member: 3 rows of energy terms
   long step_ = 0;
   int active_rows_ = 1; // rows >= active_rows_ hold exact zeros in u and v
   bool skip_quiet_ = true;
   std::vector<ColumnRange> columns_;      // per row: u and v are exact zeros outside
-  std::vector<ColumnRange> next_columns_; // per row: the columns this step sweeps
+  std::vector<ColumnRange> next_columns_; // per row: the columns its current step sweeps
   long long swept_node_updates_ = 0;
 };
 

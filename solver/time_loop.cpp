@@ -9,7 +9,9 @@
 #include "solver/progress_reporter.hpp"
 #include "solver/thread_team.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace slipfront {
 
@@ -41,36 +43,57 @@ RunResult run_time_loop(RuptureMethod& method, const SimulationParams& params,
   ArrestRule arrest(params);
   ProgressReporter progress(hooks, params.time.duration, dt, total_steps, started);
 
-  long n = 0;
-  for (; n < total_steps; ++n) {
-    if (cancel_requested(hooks)) {
-      result.cancelled = true;
-      m.message = "cancelled at t = " + std::to_string(n * dt) + " s";
-      break;
-    }
-    const bool energy_step = energy.due(n);
-    method.step(energy_step);
+  // What the loop does after step n with the method's interface (and energy) of that step;
+  // true: the run stops there.
+  auto after_step = [&](long n, const InterfaceFields& f, const EnergyBalance* e) {
     const double t_n = n * dt;
-    const InterfaceFields& f = method.interface();
     front.update(f.half_velocity, t_n + 0.5 * dt, dt);
     divergence.check(f);
     probes.record(f, t_n);
-    if (energy_step) {
-      energy.record(method.energy(), t_n);
-      divergence.check_energy(method.energy());
+    if (e) {
+      energy.record(*e, t_n);
+      divergence.check_energy(*e);
     }
     sampler.record(f, n, t_n);
     if (divergence.diverged()) {
       m.outcome = Outcome::diverged;
       m.message = divergence.message(t_n, n);
-      ++n;
-      break;
+      return true;
     }
-    if (arrest.update(t_n, front.last_new_arrival())) { // arrested, with stop_on_arrest
-      ++n;
-      break;
-    }
+    if (arrest.update(t_n, front.last_new_arrival())) return true; // stop_on_arrest
     progress.after_step(n);
+    return false;
+  };
+
+  // The method takes up to block_steps() steps at once (FE: one trip over the mesh for
+  // several steps); the loop then reads them one by one, in order, as if stepped singly. A
+  // stop inside a block leaves the later steps of that block unread: the run ends at the
+  // same step with the same records.
+  const int block = std::max(1, method.block_steps());
+  std::vector<bool> energy_steps;
+  long n = 0;
+  bool stopped = false;
+  auto cancelled = [&] { // checked before every step, also inside a block
+    if (!cancel_requested(hooks)) return false;
+    result.cancelled = true;
+    m.message = "cancelled at t = " + std::to_string(n * dt) + " s";
+    return true;
+  };
+  while (n < total_steps && !stopped && !cancelled()) {
+    const int count = int(std::min<long>(block, total_steps - n));
+    energy_steps.assign(count, false);
+    for (int k = 0; k < count; ++k)
+      energy_steps[k] = energy.due(n + k);
+    method.step_block(energy_steps);
+    for (int k = 0; k < count && !stopped; ++k) {
+      if (k > 0 && cancelled()) {
+        stopped = true;
+        break;
+      }
+      stopped = after_step(n, method.interface_after(k),
+                           energy_steps[k] ? &method.energy_after(k) : nullptr);
+      ++n;
+    }
   }
 
   m.steps = n;

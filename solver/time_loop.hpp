@@ -1,7 +1,8 @@
 // The time loop of one run, for any rupture method (the shape of a scene in uguca's
-// examples): for each step, check the cancel flag, step the method, let each observer
-// record (front, divergence, probes, energy), dump the interface when due, stop if the
-// run diverged or arrested, report progress. Then derive the metrics (docs/metrics.md).
+// examples): for each block of steps (one step, or several for a method that blocks them),
+// check the cancel flag and step the method; then for each step of the block let each
+// observer record (front, divergence, probes, energy), dump the interface when due, stop if
+// the run diverged or arrested, report progress. Then derive the metrics (docs/metrics.md).
 #pragma once
 
 #include "solver/params.hpp"

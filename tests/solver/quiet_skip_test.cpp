@@ -100,20 +100,21 @@ TEST(QuietSkipping, ChangesNoBitWithATractionTopTheWavesReach) {
 
 TEST(QuietColumns, GrowByOneColumnAndCoverTheRowAtThePeriodicBoundary) {
   const int nx = 20;
-  std::vector<ColumnRange> now(4), next(4);
+  std::vector<ColumnRange> now(5);
   now[0] = {8, 10};
   now[1] = {9, 11};
   now[2] = {};
   now[3] = {0, 3}; // touches column 0: its neighbour nx - 1 may change
-  grow_column_ranges(now, 1, 4, nx, next);
-  EXPECT_EQ(next[1].begin, 7); // hull of rows 0..2 = [8, 11), grown
-  EXPECT_EQ(next[1].end, 12);
-  EXPECT_EQ(next[2].begin, 0); // rows 1..3 touch column 0
-  EXPECT_EQ(next[2].end, nx);
-  EXPECT_EQ(next[3].size(), nx);
-  grow_column_ranges(now, 1, 2, nx, next); // rows >= 2 are zeros
-  EXPECT_EQ(next[1].begin, 7);
-  EXPECT_EQ(next[1].end, 12);
+  now[4] = {};
+  EXPECT_EQ(grown_column_range(now, 0, nx).begin, 7); // rows 0, 1 (no row below)
+  EXPECT_EQ(grown_column_range(now, 0, nx).end, 12);
+  EXPECT_EQ(grown_column_range(now, 1, nx).begin, 7); // hull of rows 0..2 = [8, 11), grown
+  EXPECT_EQ(grown_column_range(now, 1, nx).end, 12);
+  EXPECT_EQ(grown_column_range(now, 2, nx).begin, 0); // rows 1..3 touch column 0
+  EXPECT_EQ(grown_column_range(now, 2, nx).end, nx);
+  EXPECT_EQ(grown_column_range(now, 4, nx).size(), nx); // row 3 below it, no row above
+  now[3] = {};
+  EXPECT_TRUE(grown_column_range(now, 3, nx).empty()); // rows 2..4 are quiet
 }
 
 TEST(QuietColumns, TrimToTheNonZeroColumns) {
@@ -124,20 +125,6 @@ TEST(QuietColumns, TrimToTheNonZeroColumns) {
   const ColumnRange r = trim_column_range(u, v, 1, {1, 9});
   EXPECT_EQ(r.begin, 3);
   EXPECT_EQ(r.end, 7);
-}
-
-TEST(QuietColumns, BandsBalanceTheWorkAndKeepTwoRowsEach) {
-  std::vector<ColumnRange> ranges(100, ColumnRange{});
-  for (int j = 0; j < 10; ++j)
-    ranges[j] = {0, 1000}; // the work sits in the first rows
-  const std::vector<int> bands = balanced_row_bands(ranges, 100, 2);
-  ASSERT_EQ(bands.size(), 3u);
-  EXPECT_EQ(bands[0], 0);
-  EXPECT_EQ(bands[2], 100);
-  EXPECT_GT(bands[1], 2);
-  EXPECT_LT(bands[1], 10); // the first band holds the wide rows only
-  const std::vector<int> tight = balanced_row_bands(ranges, 6, 3);
-  EXPECT_EQ(tight, (std::vector<int>{0, 2, 4, 6}));
 }
 
 } // namespace
