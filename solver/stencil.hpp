@@ -42,6 +42,26 @@ struct StencilCoefficients {
   }
 };
 
+// The interior stencil of the regular mesh has the symmetries of the square element: the
+// four corner blocks share their diagonal terms and carry the off-diagonal term with
+// alternating sign, the left/right and below/above pairs are equal and have no off-diagonal
+// term, nor has the centre. Written with these, K u takes 10 multiplications and 12
+// additions per node instead of 36 fused multiply-adds (docs/performance.md §3b):
+//   (K u)_x = xx0 u_x + xx_lr (u_x,W + u_x,E) + xx_ud (u_x,S + u_x,N) + xx_c sum_corners u_x
+//           + d ((u_y,SW + u_y,NE) - (u_y,SE + u_y,NW)),
+// the same with x and y exchanged for (K u)_y. The same stencil up to the rounding of its
+// assembly (the terms that are zero come out as 1e-17 of the others), so its sums round
+// differently in the last bits: tests/solver/stencil_symmetry_test.cpp bounds that.
+struct SymmetricStencil {
+  double xx0, xx_lr, xx_ud, xx_c; // (K u)_x from u_x: centre, left/right, below/above, corners
+  double yy0, yy_lr, yy_ud, yy_c; // (K u)_y from u_y
+  double d;                       // the xy (= yx) term of the lower-left corner block
+};
+
+// `s` in the symmetric form, if it has it to a relative 1e-12 of its largest term (the
+// interior stencil has it; the bottom and top stencils, one row missing, do not).
+bool symmetric_form(const NodeStencil& s, SymmetricStencil& out);
+
 // (K u) at every node i of one row, handed to visit(i, kx, ky). The rows below/above may be
 // any row (e.g. a zero row) where the stencil's blocks for them are zero. Reads the ghost
 // nodes of the three rows: they must be current.
@@ -66,7 +86,8 @@ inline void for_each_node_force(const NodeStencil& stencil, const double* __rest
 }
 
 // The hot loop of a step, for a bulk (or top) row without dashpots:
-//   v_i <- v_i - dt/m (K u)_i.
+//   v_i <- v_i - dt/m (K u)_i,
+// with K u in the symmetric form if the stencil has it (the bulk rows), else as written.
 // Written without the visitor so that the compiler sees every pointer as restrict and
 // vectorises it. If `kinetic` and `strain` are not null, it also writes each node's energy
 // terms v_i.v_i and (K u)_i.(u_i + dt v_i) there (summed by the caller in a fixed order).
