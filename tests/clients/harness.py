@@ -27,8 +27,8 @@ TINY = {
     "probe": {"arrival_x1": 3, "spectrum_x1": 3},
 }
 
-# A job that runs for several seconds (for cancel tests); always cancelled early.
-LONG = {"geometry": {"nodes_per_meter": 30}, "time": {"duration": 16, "stop_on_arrest": False}}
+# A job that runs for about 20 s (for cancel tests); always cancelled early.
+LONG = {"geometry": {"nodes_per_meter": 50}, "time": {"duration": 16, "stop_on_arrest": False}}
 
 
 def binary_from_argv(argv):

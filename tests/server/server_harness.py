@@ -19,11 +19,12 @@ TINY = {"geometry": {"nodes_per_meter": 5}, "time": {"duration": 2.0}}
 
 
 def long_job(name="long"):
-    """A job that runs for about 10 s on one core (for cancel/progress/drain tests); the
-    tests cancel it or stop the server long before it ends."""
+    """A job that runs for about 20 s on one core (for cancel/progress/drain tests); the
+    tests cancel it or stop the server long before it ends. (n_d = 30 ran for 10 s until
+    the FE step became 2.5x faster; then it sometimes ended before its cancel.)"""
     return {
         "name": name,
-        "geometry": {"nodes_per_meter": 30},
+        "geometry": {"nodes_per_meter": 50},
         "time": {"duration": 16.0, "stop_on_arrest": False},
     }
 
