@@ -18,21 +18,18 @@ void wait_for(const std::atomic<int>& progress, int rows) {
 }
 
 // One member's levels [first, last) in one trip over the rows (the schedule of the header).
-void sweep_levels(int member, int first, int last, int rows, const RowWork& velocity,
-                  const RowWork& displacement, const std::atomic<int>* before,
-                  std::atomic<int>& mine) {
+void sweep_levels(int member, int first, int last, int rows, const RowStep& row_step,
+                  const std::atomic<int>* before, std::atomic<int>& mine) {
   const int span = last - first; // levels of this member
   const int final_front = rows + 2 * (span - 1);
   for (int front = 0; front <= final_front; ++front) {
     for (int q = 0; q < span; ++q) {
       const int level = first + q;
       const int row = front - 2 * q; // this level's velocity row
-      if (row >= 0 && row < rows) {
-        // The first level needs the previous member's last level done on rows up to row+1.
-        if (q == 0 && before) wait_for(*before, std::min(row + 2, rows));
-        velocity(level, row, member);
-      }
-      if (row - 1 >= 0 && row - 1 < rows) displacement(level, row - 1, member);
+      if (row < 0 || row > rows) continue;
+      // The first level needs the previous member's last level done on rows up to row+1.
+      if (q == 0 && before && row < rows) wait_for(*before, std::min(row + 2, rows));
+      row_step(level, row, member);
     }
     // Rows [0, front - 2 (span - 1)) are finished at this member's last level.
     mine.store(std::clamp(front - 2 * (span - 1), 0, rows), std::memory_order_release);
@@ -41,8 +38,7 @@ void sweep_levels(int member, int first, int last, int rows, const RowWork& velo
 
 } // namespace
 
-void run_level_pipeline(ThreadTeam& team, int levels, int rows, const RowWork& velocity,
-                        const RowWork& displacement) {
+void run_level_pipeline(ThreadTeam& team, int levels, int rows, const RowStep& row_step) {
   if (levels <= 0 || rows <= 0) return;
   const int members = std::min(team.size(), levels);
   std::vector<std::atomic<int>> progress(members);
@@ -53,8 +49,8 @@ void run_level_pipeline(ThreadTeam& team, int levels, int rows, const RowWork& v
     // Contiguous runs of levels of about equal length, the earlier levels to member 0.
     const int first = int(long(levels) * member / members);
     const int last = int(long(levels) * (member + 1) / members);
-    sweep_levels(member, first, last, rows, velocity, displacement,
-                 member > 0 ? &progress[member - 1] : nullptr, progress[member]);
+    sweep_levels(member, first, last, rows, row_step, member > 0 ? &progress[member - 1] : nullptr,
+                 progress[member]);
   });
 }
 

@@ -31,6 +31,7 @@ RuptureModel::RuptureModel(const SimulationParams& params) : params_(params) {
   dx_ = m.dx;
   height_ = m.height;
   stencils_ = build_stencils(q4_plane_strain_stiffness(params.material));
+  interior_symmetric_ = symmetric_form(stencils_.interior, interior_form_);
   damping_a_ = params.fe.mesh_damping * dx_ / params.material.s_wave_speed();
   stable_dt_ = damped_stable_time_step(
       stable_time_step(stencils_, nx_, ny_, dx_, params.material.density), damping_a_);
@@ -158,10 +159,9 @@ void RuptureModel::advance(ThreadTeam& team, const std::vector<bool>& energy_ste
     level.swept = 0;
   }
   reserve_scratch(team.size());
-  run_level_pipeline(
-      team, count, ny_,
-      [&](int k, int j, int member) { velocity_row(levels_[k], j, energy_scratch_[member]); },
-      [&](int, int j, int) { displacement_row(j); });
+  run_level_pipeline(team, count, ny_, [&](int k, int r, int member) {
+    row_step(levels_[k], r, energy_scratch_[member]);
+  });
 
   // Sum each step's per-row terms in row order, the steps in order: the same result for any
   // number of threads and steps per block.
@@ -202,22 +202,36 @@ ColumnRange RuptureModel::sweep_columns(int j) const {
   return grown;
 }
 
-void RuptureModel::velocity_row(LevelRecord& level, int j, std::vector<double>& scratch) {
-  const ColumnRange cols = sweep_columns(j);
-  next_columns_[j] = cols;
+void RuptureModel::row_step(LevelRecord& level, int r, std::vector<double>& scratch) {
+  if (r == ny_) { // past the top: only the displacement of the top row is left
+    update_displacement_row(r - 1);
+    finish_displacement_row(r - 1);
+    return;
+  }
+  const ColumnRange cols = sweep_columns(r);
+  next_columns_[r] = cols;
   level.swept += cols.size();
-  if (cols.empty()) return; // u and v are exact zeros around: nothing moves (terms stay 0)
-  const bool compute_energy = level.compute_energy;
+  const bool bulk =
+      r >= 1 && damping_a_ == 0 && !(r == ny_ - 1 && params_.top == TopBoundary::absorbing);
+  if (bulk) {
+    bulk_row_step(level, r, cols, scratch);
+    return;
+  }
+  // Nothing moves in a quiet row (its energy terms stay 0).
+  if (!cols.empty()) velocity_row(level, r, cols, scratch);
+  if (r >= 1) {
+    update_displacement_row(r - 1);
+    finish_displacement_row(r - 1);
+  }
+}
+
+void RuptureModel::velocity_row(LevelRecord& level, int j, ColumnRange cols,
+                                std::vector<double>& scratch) {
   const double* z = zero_row_.data() + 1;
-  const int b = cols.begin, n = cols.size(); // the bulk rows sweep columns [b, b + n)
-  const double* uxm = (j > 0 ? u_.x.row(j - 1) : z) + b;
-  const double* uym = (j > 0 ? u_.y.row(j - 1) : z) + b;
-  const double* uxp = (j < ny_ - 1 ? u_.x.row(j + 1) : z) + b;
-  const double* uyp = (j < ny_ - 1 ? u_.y.row(j + 1) : z) + b;
-  const double* ux0 = u_.x.row(j) + b;
-  const double* uy0 = u_.y.row(j) + b;
   if (j == 0) {
-    for_each_node_force(stencils_.bottom, uxm, uym, ux0, uy0, uxp, uyp, nx_,
+    const double* uxp = ny_ > 1 ? u_.x.row(1) : z;
+    const double* uyp = ny_ > 1 ? u_.y.row(1) : z;
+    for_each_node_force(stencils_.bottom, z, z, u_.x.row(0), u_.y.row(0), uxp, uyp, nx_,
                         [&](int i, double kx, double ky) {
                           kx0_[i] = kx;
                           ky0_[i] = ky;
@@ -227,28 +241,68 @@ void RuptureModel::velocity_row(LevelRecord& level, int j, std::vector<double>& 
     level.iface = iface_;
   } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
     if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_top_.data(), kdy_top_.data());
-    absorbing_top_row(level, uxm, uym);
-  } else if (damping_a_ > 0) {
+    absorbing_top_row(level, u_.x.row(j - 1), u_.y.row(j - 1));
+  } else { // a damped bulk row
     damped_interior_row(level, j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, cols,
                         scratch);
-  } else {
-    const NodeStencil& s = (j == ny_ - 1) ? stencils_.top : stencils_.interior;
-    if (!compute_energy) {
-      stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b, n,
-                              dt_, node_mass(j));
-    } else {
-      // Per-node energy terms into this member's scratch rows, then summed in node order.
-      double* kin = scratch.data();
-      double* str = scratch.data() + nx_;
-      stencil_velocity_update(s, uxm, uym, ux0, uy0, uxp, uyp, v_.x.row(j) + b, v_.y.row(j) + b, n,
-                              dt_, node_mass(j), kin, str);
-      store_row_energy(level, j, kin, str, n);
-    }
   }
 }
 
-void RuptureModel::displacement_row(int j) {
-  update_displacement_row(j);
+// The columns are taken in blocks of kColumnBlock: the velocity of the block in row r, then
+// the displacement of row r-1 as far as it is no longer read (u of row r-1 at column i is
+// read by the nodes i-1, i, i+1 of row r), so that u and v of row r-1 are advanced while
+// they are in the L1 cache. Each node's arithmetic is that of whole-row sweeps.
+void RuptureModel::bulk_row_step(LevelRecord& level, int r, ColumnRange vel,
+                                 std::vector<double>& scratch) {
+  constexpr int kColumnBlock = 256;
+  const ColumnRange dis = next_columns_[r - 1];
+  double* kin = level.compute_energy ? scratch.data() : nullptr;
+  double* str = level.compute_energy ? scratch.data() + nx_ : nullptr;
+  const int lo = std::min(vel.empty() ? nx_ : vel.begin, dis.empty() ? nx_ : dis.begin);
+  const int hi = std::max(vel.empty() ? 0 : vel.end, dis.empty() ? 0 : dis.end);
+  int next = dis.begin; // the first column of row r-1 not yet advanced
+  for (int c = lo; c < hi; c += kColumnBlock) {
+    const int e = std::min(c + kColumnBlock, hi);
+    const int a = std::max(c, vel.begin), b = std::min(e, vel.end);
+    if (a < b)
+      bulk_velocity(r, a, b - a, kin ? kin + (a - vel.begin) : nullptr,
+                    str ? str + (a - vel.begin) : nullptr);
+    const int stop = std::min(e - 1, dis.end);
+    if (!dis.empty() && stop > next) {
+      advance_displacement(r - 1, next, stop);
+      next = stop;
+    }
+  }
+  if (!dis.empty() && dis.end > next) advance_displacement(r - 1, next, dis.end);
+  finish_displacement_row(r - 1);
+  if (level.compute_energy && !vel.empty()) store_row_energy(level, r, kin, str, vel.size());
+}
+
+void RuptureModel::bulk_velocity(int r, int begin, int n, double* kin, double* str) {
+  const double* z = zero_row_.data() + 1;
+  const double* uxm = u_.x.row(r - 1) + begin;
+  const double* uym = u_.y.row(r - 1) + begin;
+  const double* uxp = (r < ny_ - 1 ? u_.x.row(r + 1) : z) + begin;
+  const double* uyp = (r < ny_ - 1 ? u_.y.row(r + 1) : z) + begin;
+  const double* ux0 = u_.x.row(r) + begin;
+  const double* uy0 = u_.y.row(r) + begin;
+  double* vx = v_.x.row(r) + begin;
+  double* vy = v_.y.row(r) + begin;
+  if (r < ny_ - 1 && interior_symmetric_)
+    symmetric_velocity_update(interior_form_, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, n, dt_,
+                              node_mass(r), kin, str);
+  else
+    stencil_velocity_update(r < ny_ - 1 ? stencils_.interior : stencils_.top, uxm, uym, ux0, uy0,
+                            uxp, uyp, vx, vy, n, dt_, node_mass(r), kin, str);
+}
+
+void RuptureModel::finish_displacement_row(int j) {
+  u_.x.refresh_ghosts(j);
+  u_.y.refresh_ghosts(j);
+  if (damping_a_ > 0) {
+    w_.x.refresh_ghosts(j);
+    w_.y.refresh_ghosts(j);
+  }
   columns_[j] = trim_column_range(u_, v_, j, next_columns_[j]);
 }
 
@@ -364,14 +418,18 @@ void RuptureModel::absorbing_top_row(LevelRecord& level, const double* uxm, cons
 
 void RuptureModel::update_displacement_row(int j) {
   // Outside the columns swept this step v is zero and u stays as it is.
-  const int b = next_columns_[j].begin, n = next_columns_[j].size();
-  double* __restrict ux = u_.x.row(j) + b;
-  double* __restrict uy = u_.y.row(j) + b;
-  const double* __restrict vx = v_.x.row(j) + b;
-  const double* __restrict vy = v_.y.row(j) + b;
+  advance_displacement(j, next_columns_[j].begin, next_columns_[j].end);
+}
+
+void RuptureModel::advance_displacement(int j, int begin, int end) {
+  const int n = end - begin;
+  double* __restrict ux = u_.x.row(j) + begin;
+  double* __restrict uy = u_.y.row(j) + begin;
+  const double* __restrict vx = v_.x.row(j) + begin;
+  const double* __restrict vy = v_.y.row(j) + begin;
   if (damping_a_ > 0) { // u and w = u + a v in one pass
-    double* __restrict wx = w_.x.row(j) + b;
-    double* __restrict wy = w_.y.row(j) + b;
+    double* __restrict wx = w_.x.row(j) + begin;
+    double* __restrict wy = w_.y.row(j) + begin;
     const double a = damping_a_;
     for (int i = 0; i < n; ++i) {
       ux[i] += dt_ * vx[i];
@@ -379,16 +437,12 @@ void RuptureModel::update_displacement_row(int j) {
       wx[i] = ux[i] + a * vx[i];
       wy[i] = uy[i] + a * vy[i];
     }
-    w_.x.refresh_ghosts(j);
-    w_.y.refresh_ghosts(j);
   } else {
     for (int i = 0; i < n; ++i) {
       ux[i] += dt_ * vx[i];
       uy[i] += dt_ * vy[i];
     }
   }
-  u_.x.refresh_ghosts(j);
-  u_.y.refresh_ghosts(j);
 }
 
 } // namespace slipfront

@@ -92,10 +92,16 @@ private:
     double work = 0;     // work of the load changes in the step
     long long swept = 0; // node updates made
   };
-  // The two parts of a row's step (solver/level_pipeline.hpp): v of row j from u of rows
-  // j-1, j, j+1; then u of row j from its new v (and the row's quiet-column range).
-  void velocity_row(LevelRecord& level, int j, std::vector<double>& scratch);
-  void displacement_row(int j);
+  // Row step r of a step (solver/level_pipeline.hpp): v of row r from u of rows r-1, r,
+  // r+1, then u of row r-1 from its new v (and that row's quiet-column range).
+  void row_step(LevelRecord& level, int r, std::vector<double>& scratch);
+  // The velocity part for the interface, the absorbing top and the damped rows.
+  void velocity_row(LevelRecord& level, int j, ColumnRange cols, std::vector<double>& scratch);
+  // A bulk row's velocity and the displacement of the row below, block of columns by block.
+  void bulk_row_step(LevelRecord& level, int r, ColumnRange cols, std::vector<double>& scratch);
+  // v of bulk row r (undamped) on columns [begin, begin + n); energy terms if kin, str.
+  void bulk_velocity(int r, int begin, int n, double* kin, double* str);
+  void finish_displacement_row(int j); // ghosts and quiet-column range of row j after its u
   // The columns of row j this step sweeps, from the ranges of rows j-1, j, j+1.
   ColumnRange sweep_columns(int j) const;
   void reserve_scratch(int members);
@@ -106,7 +112,8 @@ private:
   // K w - K u (= a K v^{n-1/2}) of the row j into dx, dy, from the rows of u and w.
   void damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const;
   void update_displacement_row(int j);
-  void update_damping_row(int j); // w = u + a v on row j, with its ghosts
+  void advance_displacement(int j, int begin, int end); // u += dt v (and w) on [begin, end)
+  void update_damping_row(int j);                       // w = u + a v on row j, with its ghosts
   // Row j's kinetic and strain energy from its per-node terms, summed in node order.
   void store_row_energy(LevelRecord& level, int j, const double* kin, const double* str,
                         int count) const;
@@ -115,6 +122,8 @@ private:
   int nx_, ny_;
   double dx_, height_, dt_, stable_dt_;
   MeshStencils stencils_;
+  SymmetricStencil interior_form_;  // the interior stencil in its symmetric form ...
+  bool interior_symmetric_ = false; // ... if it has one (solver/stencil.hpp)
   VectorField u_, v_;
   double damping_a_ = 0;          // a = zeta dx / c_s [s]; 0: undamped, w_ unused
   VectorField w_;                 // u + a v^{n-1/2}, with the damping on

@@ -99,6 +99,15 @@ void stencil_velocity_update(const NodeStencil& stencil, const double* __restric
                              double* __restrict kinetic = nullptr,
                              double* __restrict strain = nullptr);
 
+// The same with the symmetric form given (the caller found it once with symmetric_form).
+void symmetric_velocity_update(const SymmetricStencil& k, const double* __restrict uxm,
+                               const double* __restrict uym, const double* __restrict ux0,
+                               const double* __restrict uy0, const double* __restrict uxp,
+                               const double* __restrict uyp, double* __restrict vx,
+                               double* __restrict vy, int nx, double dt, double mass,
+                               double* __restrict kinetic = nullptr,
+                               double* __restrict strain = nullptr);
+
 // The same update with the mesh-scale damping force -a K v^{n-1/2} (docs/physics.md), from
 // w = u + a v^{n-1/2} kept beside u: v_i <- v_i - dt/m (K w)_i. Writes each node's damping
 // dissipation over the step, dt v_mid.(K w - K u)_i with v_mid = (v^{n-1/2} + v^{n+1/2})/2,

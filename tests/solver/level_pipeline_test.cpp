@@ -34,18 +34,18 @@ void expect_schedule_respects_dependencies(int threads, int levels, int rows) {
     return part[k * rows + j].load(std::memory_order_acquire) == 1;
   };
   ThreadTeam team(threads);
-  run_level_pipeline(
-      team, levels, rows,
-      [&](int k, int j, int) {
-        for (int r = j - 1; r <= j + 1; ++r)
-          if (!done(disp.get(), k - 1, r)) ++violations;
-        if (vel[k * rows + j].fetch_add(1, std::memory_order_acq_rel) != 0) ++violations;
-      },
-      [&](int k, int j, int) {
-        for (int r = j - 1; r <= j + 1; ++r)
-          if (!done(vel.get(), k, r)) ++violations;
-        if (disp[k * rows + j].fetch_add(1, std::memory_order_acq_rel) != 0) ++violations;
-      });
+  run_level_pipeline(team, levels, rows, [&](int k, int r, int) {
+    if (r < rows) { // the velocity part of row r
+      for (int n = r - 1; n <= r + 1; ++n)
+        if (!done(disp.get(), k - 1, n)) ++violations;
+      if (vel[k * rows + r].fetch_add(1, std::memory_order_acq_rel) != 0) ++violations;
+    }
+    if (r >= 1) { // the displacement part of row r - 1
+      for (int n = r - 2; n <= r; ++n)
+        if (!done(vel.get(), k, n)) ++violations;
+      if (disp[k * rows + r - 1].fetch_add(1, std::memory_order_acq_rel) != 0) ++violations;
+    }
+  });
   long missing = 0;
   for (int c = 0; c < cells; ++c)
     missing += (vel[c] != 1) + (disp[c] != 1);
