@@ -182,6 +182,25 @@ void stencil_damped_velocity_update(const NodeStencil& stencil, const double* __
   });
 }
 
+namespace {
+
+// velocity_update with the energy terms if both rows are given.
+template <class Force>
+void velocity_update_with(Force force, const double* __restrict uxm, const double* __restrict uym,
+                          const double* __restrict ux0, const double* __restrict uy0,
+                          const double* __restrict uxp, const double* __restrict uyp,
+                          double* __restrict vx, double* __restrict vy, int nx, double dt,
+                          double mass, double* __restrict kinetic, double* __restrict strain) {
+  if (kinetic && strain)
+    velocity_update<true>(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, kinetic,
+                          strain);
+  else
+    velocity_update<false>(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, nullptr,
+                           nullptr);
+}
+
+} // namespace
+
 void symmetric_velocity_update(const SymmetricStencil& k, const double* __restrict uxm,
                                const double* __restrict uym, const double* __restrict ux0,
                                const double* __restrict uy0, const double* __restrict uxp,
@@ -192,12 +211,7 @@ void symmetric_velocity_update(const SymmetricStencil& k, const double* __restri
                     const double* __restrict x0, const double* __restrict y0,
                     const double* __restrict xp, const double* __restrict yp,
                     int i) { return symmetric_node_force(k, xm, ym, x0, y0, xp, yp, i); };
-  if (kinetic && strain)
-    velocity_update<true>(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, kinetic,
-                          strain);
-  else
-    velocity_update<false>(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, nullptr,
-                           nullptr);
+  velocity_update_with(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, kinetic, strain);
 }
 
 void stencil_velocity_update(const NodeStencil& stencil, const double* __restrict uxm,
@@ -207,12 +221,8 @@ void stencil_velocity_update(const NodeStencil& stencil, const double* __restric
                              double* __restrict vy, int nx, double dt, double mass,
                              double* __restrict kinetic, double* __restrict strain) {
   with_node_force(stencil, [&](auto force) {
-    if (kinetic && strain)
-      velocity_update<true>(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, kinetic,
-                            strain);
-    else
-      velocity_update<false>(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, nullptr,
-                             nullptr);
+    velocity_update_with(force, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, nx, dt, mass, kinetic,
+                         strain);
   });
 }
 

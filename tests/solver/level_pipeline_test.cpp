@@ -1,6 +1,7 @@
 // Temporal blocking (solver/level_pipeline.hpp): the schedule respects every dependency of
 // the row-by-row step, and a model advanced several steps per trip, on 1, 2 or 3 threads,
 // gives the same bits after every step as the model stepped one step at a time.
+#include "bit_compare.hpp"
 #include "scene_support.hpp"
 
 #include "solver/level_pipeline.hpp"
@@ -10,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cstring>
 #include <memory>
 
 namespace slipfront {
@@ -60,36 +60,7 @@ TEST(LevelPipeline, ScheduleRespectsEveryDependency) {
         expect_schedule_respects_dependencies(threads, levels, rows);
 }
 
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof(double)) == 0;
-}
-
-long differing(const std::vector<double>& a, const std::vector<double>& b) {
-  long n = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    n += !same_bits(a[i], b[i]);
-  return n;
-}
-
-long differing_interface(const InterfaceFields& a, const InterfaceFields& b) {
-  return differing(a.velocity, b.velocity) + differing(a.half_velocity, b.half_velocity) +
-         differing(a.slip, b.slip) + differing(a.opening, b.opening) +
-         differing(a.shear_traction, b.shear_traction) + differing(a.pressure, b.pressure) +
-         differing(a.strength, b.strength) + long(a.state != b.state);
-}
-
-long differing_energy(const EnergyBalance& a, const EnergyBalance& b) {
-  return !same_bits(a.kinetic, b.kinetic) + !same_bits(a.strain, b.strain) +
-         !same_bits(a.external_work, b.external_work) + !same_bits(a.dissipated, b.dissipated);
-}
-
-long differing_nodes(const VectorField& a, const VectorField& b) {
-  long n = 0;
-  for (int j = 0; j < a.x.ny(); ++j)
-    for (int i = -1; i <= a.x.nx(); ++i) // with the ghost nodes
-      n += !same_bits(a.x.at(i, j), b.x.at(i, j)) + !same_bits(a.y.at(i, j), b.y.at(i, j));
-  return n;
-}
+using namespace bits;
 
 struct Variant {
   double mesh_damping;

@@ -2,6 +2,7 @@
 // stepped with the skipping and with every node swept at every step gives the same u, v,
 // interface and energy, with and without the mesh damping and the absorbing top; and the
 // skipping does leave columns out.
+#include "bit_compare.hpp"
 #include "scene_support.hpp"
 
 #include "solver/quiet_columns.hpp"
@@ -10,29 +11,10 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 namespace slipfront {
 namespace {
 
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof(double)) == 0;
-}
-
-long differing_nodes(const VectorField& a, const VectorField& b) {
-  long n = 0;
-  for (int j = 0; j < a.x.ny(); ++j)
-    for (int i = -1; i <= a.x.nx(); ++i) // with the ghost nodes
-      n += !same_bits(a.x.at(i, j), b.x.at(i, j)) + !same_bits(a.y.at(i, j), b.y.at(i, j));
-  return n;
-}
-
-long differing(const std::vector<double>& a, const std::vector<double>& b) {
-  long n = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    n += !same_bits(a[i], b[i]);
-  return n;
-}
+using namespace bits;
 
 struct Variant {
   double mesh_damping;
