@@ -205,7 +205,6 @@ ColumnRange RuptureModel::sweep_columns(int j) const {
 void RuptureModel::row_step(LevelRecord& level, int r, std::vector<double>& scratch) {
   if (r == ny_) { // past the top: only the displacement of the top row is left
     update_displacement_row(r - 1);
-    finish_displacement_row(r - 1);
     return;
   }
   const ColumnRange cols = sweep_columns(r);
@@ -219,10 +218,7 @@ void RuptureModel::row_step(LevelRecord& level, int r, std::vector<double>& scra
   }
   // Nothing moves in a quiet row (its energy terms stay 0).
   if (!cols.empty()) velocity_row(level, r, cols, scratch);
-  if (r >= 1) {
-    update_displacement_row(r - 1);
-    finish_displacement_row(r - 1);
-  }
+  if (r >= 1) update_displacement_row(r - 1);
 }
 
 void RuptureModel::velocity_row(LevelRecord& level, int j, ColumnRange cols,
@@ -419,6 +415,7 @@ void RuptureModel::absorbing_top_row(LevelRecord& level, const double* uxm, cons
 void RuptureModel::update_displacement_row(int j) {
   // Outside the columns swept this step v is zero and u stays as it is.
   advance_displacement(j, next_columns_[j].begin, next_columns_[j].end);
+  finish_displacement_row(j);
 }
 
 void RuptureModel::advance_displacement(int j, int begin, int end) {

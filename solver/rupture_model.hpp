@@ -111,7 +111,7 @@ private:
                            std::vector<double>& scratch);
   // K w - K u (= a K v^{n-1/2}) of the row j into dx, dy, from the rows of u and w.
   void damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const;
-  void update_displacement_row(int j);
+  void update_displacement_row(int j); // advance_displacement on its columns, then finish
   void advance_displacement(int j, int begin, int end); // u += dt v (and w) on [begin, end)
   void update_damping_row(int j);                       // w = u + a v on row j, with its ghosts
   // Row j's kinetic and strain energy from its per-node terms, summed in node order.
