@@ -16,9 +16,8 @@ int thread_count(const SimulationParams& params) {
 } // namespace
 
 FiniteElementMethod::FiniteElementMethod(const SimulationParams& params)
-    : threads_(thread_count(params)), block_steps_(threads_ * kFeStepsPerThreadPerTrip),
-      model_(params), team_(threads_), p_wave_speed_(params.material.p_wave_speed()),
-      top_(params.top) {}
+    : threads_(thread_count(params)), model_(params), team_(threads_),
+      p_wave_speed_(params.material.p_wave_speed()), top_(params.top) {}
 
 MeshInfo FiniteElementMethod::mesh_info() const {
   return {model_.nx(),        model_.ny(), model_.dx(), model_.height(),

@@ -19,7 +19,7 @@ public:
   explicit FiniteElementMethod(const SimulationParams& params);
 
   void step(bool compute_energy) override { model_.step(team_, compute_energy); }
-  int block_steps() const override { return block_steps_; }
+  int block_steps() const override { return threads_ * kFeStepsPerThreadPerTrip; }
   void step_block(const std::vector<bool>& energy) override { model_.advance(team_, energy); }
   const InterfaceFields& interface_after(int k) const override { return model_.interface_after(k); }
   const EnergyBalance& energy_after(int k) const override { return model_.energy_after(k); }
@@ -32,7 +32,6 @@ public:
 
 private:
   int threads_;
-  int block_steps_; // steps per trip over the mesh (solver/level_pipeline.hpp)
   RuptureModel model_;
   ThreadTeam team_;
   double p_wave_speed_;

@@ -89,8 +89,8 @@ TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalRuns) {
   expect_bit_identical_across_threads(0.0);
 }
 
-// With the mesh damping, w = u + a v is advanced row by row with u (also at the rows where
-// the threads' chunks meet): still bit for bit.
+// With the mesh damping, w = u + a v is advanced row by row with u (also when the threads
+// carry different steps of a block, solver/level_pipeline.hpp): still bit for bit.
 TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalRunsWithMeshDamping) {
   expect_bit_identical_across_threads(0.1);
 }
