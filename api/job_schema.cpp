@@ -149,11 +149,13 @@ std::string allowed_text(const nlohmann::json& schema) {
     return std::to_string(schema["minimum"].get<long>()) + " .. " +
            std::to_string(schema["maximum"].get<long>());
   if (type == "string")
-    return "at most " + std::to_string(schema["maxLength"].get<long>()) + " characters";
+    return "at most " + std::to_string(schema["maxLength"].get<long>()) +
+           " characters, no control characters";
   if (type == "array")
     return "at most " + std::to_string(schema["maxItems"].get<long>()) +
            " non-empty strings of at most " +
-           std::to_string(schema["items"]["maxLength"].get<long>()) + " characters";
+           std::to_string(schema["items"]["maxLength"].get<long>()) +
+           " characters, no control characters";
   if (type != "number") return "";
   const bool lo = schema.contains("minimum") || schema.contains("exclusiveMinimum");
   const bool hi = schema.contains("maximum") || schema.contains("exclusiveMaximum");

@@ -1,5 +1,7 @@
 #include "api/json_fields.hpp"
 
+#include "api/free_text.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -179,14 +181,17 @@ void ObjectReader::boolean(const std::string& key, bool& target) {
 void ObjectReader::string(const std::string& key, std::string& target, std::size_t max_length) {
   if (const nlohmann::json* member = raw(key)) {
     if (member->is_string() && member->get_ref<const std::string&>().size() <= max_length) {
-      target = member->get<std::string>();
+      if (auto reason = free_text_error(member->get_ref<const std::string&>()))
+        error(key, std::move(*reason));
+      else
+        target = member->get<std::string>();
     } else {
       error(key, "must be a string of at most " + std::to_string(max_length) + " characters, got " +
                      describe_value(*member));
     }
   }
   set_canonical(key, target);
-  record(key, {{"type", "string"}, {"maxLength", max_length}});
+  record(key, {{"type", "string"}, {"maxLength", max_length}, {"pattern", free_text_pattern}});
 }
 
 void ObjectReader::string_list(const std::string& key, std::vector<std::string>& target,
@@ -202,14 +207,20 @@ void ObjectReader::string_list(const std::string& key, std::vector<std::string>&
       bool valid = true;
       for (std::size_t i = 0; i < member->size(); ++i) {
         const nlohmann::json& item = (*member)[i];
+        const std::string at = pointer(key) + "/" + std::to_string(i);
         if (item.is_string() && !item.get_ref<const std::string&>().empty() &&
             item.get_ref<const std::string&>().size() <= max_length) {
-          items.push_back(item.get<std::string>());
+          if (auto reason = free_text_error(item.get_ref<const std::string&>())) {
+            valid = false;
+            errors_.push_back({at, std::move(*reason)});
+          } else {
+            items.push_back(item.get<std::string>());
+          }
         } else {
           valid = false;
-          errors_.push_back({pointer(key) + "/" + std::to_string(i),
-                             "must be a non-empty string of at most " + std::to_string(max_length) +
-                                 " characters, got " + describe_value(item)});
+          errors_.push_back({at, "must be a non-empty string of at most " +
+                                     std::to_string(max_length) + " characters, got " +
+                                     describe_value(item)});
         }
       }
       if (valid) target = std::move(items);
@@ -218,7 +229,11 @@ void ObjectReader::string_list(const std::string& key, std::vector<std::string>&
   set_canonical(key, target);
   record(key, {{"type", "array"},
                {"maxItems", max_items},
-               {"items", {{"type", "string"}, {"minLength", 1}, {"maxLength", max_length}}}});
+               {"items",
+                {{"type", "string"},
+                 {"minLength", 1},
+                 {"maxLength", max_length},
+                 {"pattern", free_text_pattern}}}});
 }
 
 void ObjectReader::object(const std::string& key, const std::function<void(ObjectReader&)>& read) {

@@ -64,6 +64,7 @@ public:
   void number(const std::string& key, double& target, const Interval& allowed);
   void integer(const std::string& key, int& target, int lo, int hi);
   void boolean(const std::string& key, bool& target);
+  // Free text (api/free_text.hpp): at most `max_length` bytes, no control characters.
   void string(const std::string& key, std::string& target, std::size_t max_length);
   void string_list(const std::string& key, std::vector<std::string>& target, std::size_t max_items,
                    std::size_t max_length);

@@ -22,7 +22,7 @@ struct SlurmSettings {
 
 // What one job asks of SLURM.
 struct SbatchRequest {
-  std::string job_name;    // "slipfront-<id>": what an operator sees in squeue
+  std::string job_name;    // "slipfront-<id>", never the client's name: what squeue shows
   std::string script_path; // the batch script (slurm_job_dir.hpp)
   std::string working_dir; // --chdir
   std::string log_path;    // --output (stdout and stderr of the batch script)

@@ -1,6 +1,7 @@
 #include "server/slurm/slurm_job_dir.hpp"
 
 #include "server/clock.hpp"
+#include "server/jobs/job_id.hpp"
 
 #include <sys/stat.h>
 
@@ -49,6 +50,11 @@ std::optional<std::string> read_file(const std::string& path) {
 
 void SlurmJobDir::prepare(const Job& job, const std::string& binary,
                           double max_memory_bytes) const {
+  // The script is run by a shell and read by sbatch (#SBATCH lines): it holds the operator's
+  // paths (quoted), numbers and the job id, never text a client sent (its name and tags are
+  // in spec.json, which only `slipfront run` reads, as JSON).
+  if (!is_valid_job_id(job.id))
+    throw std::runtime_error("refusing to write a batch script for job id \"" + job.id + "\"");
   std::error_code ec;
   fs::remove_all(path_, ec); // an earlier attempt's files must not be taken for this one's
   fs::create_directories(path_, ec);
@@ -56,7 +62,7 @@ void SlurmJobDir::prepare(const Job& job, const std::string& binary,
   write_file(spec(), job.spec.dump(2) + "\n");
   std::ostringstream text;
   text << "#!/bin/sh\n"
-       << "# slipfront job " << job.id << " (" << job.name << "), written by slipfront serve.\n"
+       << "# slipfront job " << job.id << ", written by slipfront serve.\n"
        << "# It runs on a compute node; its files are all it shares with the server.\n"
        << "cd " << shell_quote(path_) << " || exit 1\n"
        << shell_quote(binary) << " run spec.json --output result.h5 --quiet"

@@ -30,7 +30,9 @@ public:
 
   // Creates the directory (emptied of an earlier attempt's files) with spec.json and job.sh:
   // `binary run spec.json --output result.h5 --progress-file ... --report-file ...`, then
-  // the exit status into exit_code. Throws std::runtime_error naming the path.
+  // the exit status into exit_code. The script holds no text from the client (not the job's
+  // name or tags: those are in spec.json). Throws std::runtime_error naming the path, or if
+  // the job's id is not one the server makes.
   void prepare(const Job& job, const std::string& binary, double max_memory_bytes) const;
 
   // The progress the run last wrote; nullopt if none yet or unreadable (being replaced).

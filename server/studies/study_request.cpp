@@ -1,5 +1,6 @@
 #include "server/studies/study_request.hpp"
 
+#include "api/free_text.hpp"
 #include "api/number_text.hpp"
 
 #include <algorithm>
@@ -155,6 +156,8 @@ StudyRequestParse parse_study_request(const json& body) {
   if (auto it = body.find("name"); it != body.end()) {
     if (!it->is_string() || it->get<std::string>().size() > 200)
       errors.push_back({"/name", "must be a string of at most 200 characters"});
+    else if (auto reason = api::free_text_error(it->get<std::string>()))
+      errors.push_back({"/name", std::move(*reason)});
     else
       r.name = it->get<std::string>();
   }
@@ -163,10 +166,13 @@ StudyRequestParse parse_study_request(const json& body) {
       errors.push_back({"/tags", "must be an array of strings"});
     } else {
       for (std::size_t i = 0; i < it->size(); ++i) {
-        if ((*it)[i].is_string())
-          r.tags.push_back((*it)[i].get<std::string>());
+        const std::string at = "/tags/" + std::to_string(i);
+        if (!(*it)[i].is_string())
+          errors.push_back({at, "must be a string"});
+        else if (auto reason = api::free_text_error((*it)[i].get<std::string>()))
+          errors.push_back({at, std::move(*reason)});
         else
-          errors.push_back({"/tags/" + std::to_string(i), "must be a string"});
+          r.tags.push_back((*it)[i].get<std::string>());
       }
     }
   }

@@ -127,6 +127,56 @@ TEST(SlurmJobDir, BatchScriptRunsTheJobAndRecordsItsExitCode) {
 }
 
 namespace {
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+} // namespace
+
+// Issue 22, item 1: the job's name used to be written into a comment line of the script, so a
+// name holding a newline ran commands on the compute node or added #SBATCH options.
+TEST(SlurmJobDir, BatchScriptHoldsNoTextFromTheClient) {
+  TempDir dir("slipfront-slurm-");
+  Job plain;
+  plain.id = new_job_id();
+  plain.spec = {{"method", "spectral_bi"}};
+  SlurmJobDir files(dir.str(), plain.id);
+  files.prepare(plain, "/opt/slipfront", 2.0e9);
+  const std::string expected = read_text(files.script());
+
+  const std::vector<std::string> hostile = {
+      "x)\nid > INJECTED\n# (", "x\n#SBATCH --wrap=INJECTED\n",
+      "x\r\ntouch INJECTED",    "$(touch INJECTED) `touch INJECTED` ; touch INJECTED",
+      "x\u2028touch INJECTED",
+  };
+  for (const std::string& text : hostile) {
+    Job job = plain;
+    job.name = text;
+    job.tags = {text, "tag-INJECTED"};
+    job.spec["name"] = text;
+    job.spec["tags"] = job.tags;
+    files.prepare(job, "/opt/slipfront", 2.0e9);
+    const std::string script = read_text(files.script());
+    EXPECT_EQ(script, expected) << "the name changed the script: " << text;
+    EXPECT_EQ(script.find("INJECTED"), std::string::npos) << script;
+    EXPECT_EQ(script.find("#SBATCH"), std::string::npos) << script;
+    // The run still gets the name: in spec.json, which only `slipfront run` reads, as JSON.
+    EXPECT_EQ(nlohmann::json::parse(read_text(files.spec()))["name"], text);
+  }
+}
+
+TEST(SlurmJobDir, NoScriptForAnIdTheServerDidNotMake) {
+  TempDir dir("slipfront-slurm-");
+  Job job;
+  job.id = "x\ntouch INJECTED";
+  job.spec = nlohmann::json::object();
+  EXPECT_THROW(SlurmJobDir(dir.str(), job.id).prepare(job, "/opt/slipfront", 1e9),
+               std::runtime_error);
+}
+
+namespace {
 Job queued_job(JobStore& store) {
   Job job;
   job.id = new_job_id();

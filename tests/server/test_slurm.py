@@ -1,10 +1,10 @@
 """The SLURM executor on a real, single-host SLURM (docs/cluster.md): munged, slurmctld and
 slurmd started on this machine by tests/server/slurm_cluster.py (no systemd), the server on
 an ephemeral loopback port with `--executor slurm`. Submit → progress → succeeded with
-metrics and a readable HDF5 file; cancel (scancel); a job cancelled outside slipfront; a
-SLURM time limit (TIMEOUT); a study whose runs go through SLURM; the server killed and
-restarted while a job is in SLURM (re-attached, not run again); a job SLURM lost and a node
-failure (NODE_FAIL), both queued again.
+metrics and a readable HDF5 file; no client text in the batch script (issue 22); cancel
+(scancel); a job cancelled outside slipfront; a SLURM time limit (TIMEOUT); a study whose
+runs go through SLURM; the server killed and restarted while a job is in SLURM (re-attached,
+not run again); a job SLURM lost and a node failure (NODE_FAIL), both queued again.
 
 Skips, with the reason, only where the daemons cannot start (not root, packages missing);
 with SLIPFRONT_REQUIRE_SLURM=1 (scripts/test.sh sets it when run as root, as CI does) that
@@ -166,6 +166,40 @@ class SlurmExecutorTest(unittest.TestCase):
         again = self.server.submit(spec).json()
         self.assertEqual(again["cached_from"], job_id)
         self.assertIsNone(again["slurm_job_id"])
+
+    def test_client_text_never_reaches_the_batch_script(self):
+        # Issue 22, item 1: the job's name went into a comment line of job.sh, so a newline
+        # in it ran commands on the compute node or added #SBATCH options.
+        marks = tempfile.mkdtemp(prefix="slipfront-injected-")
+        ran = os.path.join(marks, "ran")
+        for name in (f"x)\nid > {ran}\n# (", f"x\n#SBATCH --error={ran}\n#"):
+            r = self.server.submit({**TINY, "name": name}, params={"fresh": "true"})
+            if r.status_code == 201:  # (before the fix) let it run through SLURM
+                self.server.wait_status(r.json()["id"], {"succeeded", "failed", "cancelled"},
+                                        timeout=90)
+            self.assertFalse(os.path.exists(ran), f"the name {name!r} ran on the compute node")
+            self.assertEqual(r.status_code, 422, r.text)
+            self.assertIn("/name", [e["pointer"] for e in r.json()["errors"]])
+        study = {"name": f"s\nid > {ran}", "grid": {"L": [1e-4], "n_d": [5]}}
+        r = self.server.post("/api/v1/studies", json=study)
+        self.assertEqual(r.status_code, 422, r.text)
+        # Shell syntax without control characters is a fine name; it stays out of the script.
+        shell = f"$(id > {ran}) `id > {ran}`; id > {ran} #"
+        r = self.server.submit({**long_job(shell), "tags": [f"$(id > {ran})"]})
+        self.assertEqual(r.status_code, 201, r.text)
+        job_id = r.json()["id"]
+        running = wait_for("RUNNING in SLURM", lambda: (
+            lambda j: j if (j["slurm_state"] or "").startswith("RUNNING") else None)(
+                self.job(job_id)), 90)
+        with open(os.path.join(self.server.data_dir, "slurm", "jobs", job_id, "job.sh")) as f:
+            script = f.read()
+        self.assertNotIn(ran, script)
+        self.assertNotIn("id >", script)
+        self.assertEqual(scontrol_job(running["slurm_job_id"]).get("JobName"), "slipfront-" + job_id)
+        self.server.post(f"/api/v1/jobs/{job_id}/cancel")
+        self.server.wait_status(job_id, {"cancelled"}, timeout=60)
+        self.assertFalse(os.path.exists(ran))
+        self.assertEqual(self.job(job_id)["name"], shell)
 
     def test_cancel_through_the_api_scancels(self):
         r = self.server.submit(long_job("to cancel"))
