@@ -63,12 +63,13 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
     check_whole_elements("/geometry/height", "height", g.height, g.nodes_per_meter, 1.0, errors);
   }
   const SimulationParams& p = job.params;
-  if (has_height && g.auto_height &&
+  const double c_p = p.material.p_wave_speed(); // not finite: api/run_bounds.cpp tells
+  if (has_height && g.auto_height && std::isfinite(c_p) &&
       !any_error(errors, {"/time/duration", "/material/density", "/material/young_modulus",
                           "/material/poisson_ratio"})) {
     // "auto" height grows with the duration: h = c_p * duration / 2.
-    const double elements = 0.5 * p.material.p_wave_speed() * p.time.duration * g.nodes_per_meter;
-    if (elements > max_elements_per_axis) {
+    const double elements = 0.5 * c_p * p.time.duration * g.nodes_per_meter;
+    if (!(elements <= max_elements_per_axis)) {
       errors.push_back({"/geometry/height",
                         "\"auto\" gives c_p * duration / 2 * nodes_per_meter = " + text(elements) +
                             " elements, more than the " + text(max_elements_per_axis) +
@@ -122,7 +123,7 @@ void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) 
 
 void check_memory(const JobSpec& job, const ValidationLimits& limits,
                   std::vector<FieldError>& errors) {
-  if (job.memory_estimate_bytes > limits.max_memory_bytes) {
+  if (!(job.memory_estimate_bytes <= limits.max_memory_bytes)) { // NaN too
     errors.push_back(
         {"/geometry/nodes_per_meter",
          "the run would need about " + text(job.memory_estimate_bytes / 1e9) +

@@ -5,6 +5,7 @@
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
 #include "api/result_estimate.hpp"
+#include "api/run_bounds.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
@@ -21,6 +22,9 @@ ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& li
   read_job_fields(reader, job);
   reader.finish();
   check_job_consistency(job, result.errors);
+  if (!result.errors.empty()) return result;
+  // The wave speeds, the time step and the step count before any estimate uses them.
+  check_run_bounds(job, result.errors);
   if (!result.errors.empty()) return result;
 
   job.memory_estimate_bytes = estimated_memory_bytes(job.params);

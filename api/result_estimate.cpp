@@ -24,7 +24,7 @@ double estimated_result_bytes(const SimulationParams& params) {
 
 void check_result_size(const JobSpec& job, const ValidationLimits& limits,
                        std::vector<FieldError>& errors) {
-  if (job.result_estimate_bytes <= limits.max_result_bytes) return;
+  if (job.result_estimate_bytes <= limits.max_result_bytes) return; // NaN is refused
   std::ostringstream out;
   out.precision(3);
   out << "the result file would hold about " << job.result_estimate_bytes / 1e9

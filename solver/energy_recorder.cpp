@@ -1,12 +1,10 @@
 #include "solver/energy_recorder.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include "solver/step_count.hpp"
 
 namespace slipfront {
 
-EnergyRecorder::EnergyRecorder(double dt)
-    : dt_(dt), every_(std::max(1, int(std::lround(0.05 / dt)))) {}
+EnergyRecorder::EnergyRecorder(double dt) : dt_(dt), every_(steps_per_interval(0.05, dt)) {}
 
 void EnergyRecorder::record(const EnergyBalance& e, double t_n) {
   // The kinetic term holds v^{n+1/2}, the strain term u^n K u^{n+1}: both sit at t_{n+1/2}.

@@ -1,5 +1,7 @@
 #include "solver/interface_sampler.hpp"
 
+#include "solver/step_count.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,7 +23,7 @@ InterfaceSample make_sample(const InterfaceFields& f, double t, int stride) {
 
 InterfaceSampler::InterfaceSampler(SampleSink* sink, const OutputSampling& output, double dt,
                                    long total_steps, const std::vector<double>& x1)
-    : sink_(sink), every_(std::max(1, int(std::lround(output.interval / dt)))),
+    : sink_(sink), every_(steps_per_interval(output.interval, dt)),
       stride_(std::max(1, output.space_stride)) {
   if (!sink_) return;
   InterfaceLayout layout;

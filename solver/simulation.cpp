@@ -33,16 +33,23 @@ double estimated_memory_bytes(const SimulationParams& params) {
   return fields + interface + records + sample_buffer + baseline;
 }
 
-double step_count_bound(const SimulationParams& params) {
-  if (params.method == Method::spectral_bi)
-    return double(spectral::SpectralModel::max_steps(params));
-  // The stable step of a regular Q4 mesh is above 0.5 dx / c_p; the damped bound decreases
-  // with dt0, so that lower bound of dt0 gives a lower bound of the damped step too.
-  const double dx = mesh_size(params).dx;
+TimeStepBounds time_step_bounds(const SimulationParams& params) {
+  if (params.method == Method::spectral_bi) {
+    const double dt = spectral::SpectralModel::time_step(params);
+    return {dt, dt};
+  }
+  // The damped step decreases with dt0 (stable_time_step.hpp), so the lower bound of dt0
+  // gives a lower bound of the damped step too.
+  const double dx = 1.0 / params.geometry.nodes_per_meter;
+  const double c_p = params.material.p_wave_speed();
   const double damping_a = params.fe.mesh_damping * dx / params.material.s_wave_speed();
-  return params.time.duration /
-         (params.time.safety_factor *
-          damped_stable_time_step(0.5 * dx / params.material.p_wave_speed(), damping_a));
+  const double safety = params.time.safety_factor;
+  return {safety * damped_stable_time_step(0.5 * dx / c_p, damping_a), safety * dx / c_p};
+}
+
+double step_count_bound(const SimulationParams& params) {
+  if (params.method == Method::spectral_bi) return spectral::SpectralModel::step_bound(params);
+  return params.time.duration / time_step_bounds(params).shortest;
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {

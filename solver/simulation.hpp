@@ -87,8 +87,20 @@ double resolved_height(const SimulationParams& params);
 // validation to refuse jobs above a limit before they start.
 double estimated_memory_bytes(const SimulationParams& params);
 
-// An upper bound of the steps of a run that goes to `duration`: FE's stable step is above
-// 0.5 dx / c_p, BI's step is time_step_factor dx / c_s.
+// The time step of a run before it starts. BI's is exact: time_step_factor dx / c_s. FE's is
+// safety_factor times the stable step of the mesh, found by power iteration when the run
+// starts (solver/stable_time_step.hpp). Undamped that step is dx / c_p on every mesh
+// (tests/solver/stable_time_step_test.cpp): the longest; the shortest takes half of it, the
+// margin the memory and result-size estimates have always kept, and the mesh damping's
+// shortening. In double: inf or 0 for an impossible job.
+struct TimeStepBounds {
+  double shortest = 0.0; // [s]
+  double longest = 0.0;  // [s]
+};
+TimeStepBounds time_step_bounds(const SimulationParams& params);
+
+// An upper bound of the steps of a run that goes to `duration` (duration / the shortest
+// step; BI: its exact count), in double: beyond every integer type for an impossible job.
 double step_count_bound(const SimulationParams& params);
 
 // The version string compiled into this build (project version + git describe).

@@ -7,6 +7,7 @@
 #include "solver/interface_sampler.hpp"
 #include "solver/probe_recorder.hpp"
 #include "solver/progress_reporter.hpp"
+#include "solver/step_count.hpp"
 #include "solver/thread_team.hpp"
 
 #include <algorithm>
@@ -32,7 +33,7 @@ RunResult run_time_loop(RuptureMethod& method, const SimulationParams& params,
   const double dt = method.dt();
   m.front_threshold = params.probes.front_threshold;
   m.dt = dt;
-  const long total_steps = long(std::ceil(params.time.duration / dt - 1e-9));
+  const long total_steps = checked_step_count(steps_to_reach(params.time.duration, dt));
   const std::vector<double>& x1 = method.interface().x1;
 
   ProbeRecorder probes(params.probes, params.geometry.x_min, result.mesh.dx, x1);

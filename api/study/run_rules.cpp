@@ -49,9 +49,17 @@ double metric(const StudyRun& run, const char* key) {
   return it != run.metrics->end() && it->is_number() ? it->get<double>() : not_available;
 }
 
+// A run whose metrics say it took no step or simulated no time: whatever its status and
+// outcome, it measured nothing (issue 22: a run of 0 steps once ended "succeeded" with outcome
+// no_rupture, and a study took it for a converged result).
+bool simulated_nothing(const StudyRun& run) {
+  const double steps = metric(run, "steps"), time = metric(run, "simulated_time");
+  return (!std::isnan(steps) && steps <= 0.0) || (!std::isnan(time) && time <= 0.0);
+}
+
 RunState state_of(const StudyRun& run) {
   if (run.status == JobStatus::queued || run.status == JobStatus::running) return RunState::pending;
-  if (run.status == JobStatus::cancelled) return RunState::void_run;
+  if (run.status == JobStatus::cancelled || simulated_nothing(run)) return RunState::void_run;
   const std::string outcome = outcome_of(run);
   if (outcome == "diverged") return RunState::diverged;
   if (run.status == JobStatus::succeeded && !outcome.empty()) return RunState::measured;

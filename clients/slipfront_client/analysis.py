@@ -1,6 +1,6 @@
 """Client-side convergence and error estimates from run summaries (rows of
 `results.run_row`: id, L, n_d, status, outcome, propagation_distance,
-arrival_time_at_probe, wall_time_s).
+arrival_time_at_probe, steps, simulated_time, wall_time_s).
 
 Convergence: the server's rules, one for one (docs/studies.md, "Convergence status of a
 run"; api/study/convergence.cpp), so that a local plot colours a run as the server's
@@ -42,11 +42,18 @@ def _outcome(row):
     return outcome if isinstance(outcome, str) else ""
 
 
+def _simulated_nothing(row):
+    """The metrics say the run took 0 steps or simulated no time: it measured nothing,
+    whatever its status and outcome."""
+    return any(not math.isnan(_metric(row, key)) and _metric(row, key) <= 0
+               for key in ("steps", "simulated_time"))
+
+
 def _state(row):
     status = row.get("status") or "succeeded"
     if status in ("queued", "running"):
         return _PENDING
-    if status == "cancelled":
+    if status == "cancelled" or _simulated_nothing(row):
         return _VOID
     if _outcome(row) == "diverged":
         return _DIVERGED  # the server keeps a diverged run as job status "failed"
@@ -127,7 +134,8 @@ def convergence_statuses(rows):
 
 
 def _finished(row):
-    return row.get("status") in (None, "succeeded") and row.get("outcome") != "diverged"
+    return (row.get("status") in (None, "succeeded") and row.get("outcome") != "diverged"
+            and not _simulated_nothing(row))
 
 
 def _error_change(value, reference):

@@ -137,6 +137,8 @@ def run_row(spec, metrics, wall_time_s=None, job_id=None, status=None):
         "outcome": metrics.get("outcome"),
         "propagation_distance": metrics.get("propagation_distance"),
         "arrival_time_at_probe": metrics.get("arrival_time_at_probe"),
+        "steps": metrics.get("steps"),
+        "simulated_time": metrics.get("simulated_time"),
         "stable_dt": metrics.get("stable_dt"),
         "wall_time_s": metrics.get("wall_time_s", wall_time_s),
     }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace slipfront::spectral {
 
@@ -50,7 +51,8 @@ ModeStiffness static_stiffness(double r) {
 
 HalfSpaceKernels::HalfSpaceKernels(double r, double t_max) : r_(r), t_max_(t_max) {
   if (!(r > 0.0 && r < 1.0)) throw std::invalid_argument("c_s / c_p must lie in (0, 1)");
-  if (!(t_max > 0.0)) throw std::invalid_argument("kernel table length must be > 0");
+  if (!(t_max > 0.0 && t_max < 1e9))
+    throw std::invalid_argument("kernel table length must be in (0, 1e9)");
   const ModeStiffness k0 = static_stiffness(r);
   k0_11_ = k0.k11.real();
   k0_22_ = k0.k22.real();
@@ -94,8 +96,15 @@ void HalfSpaceKernels::build_nodes(double t_max) {
   // Panel [1, 1/r]: w = 1 + (1/r - 1) sin^2(phi/2) makes sqrt(w^2 - 1) and
   // sqrt(1 - r^2 w^2) smooth at both ends. Sub-panels keep w T within ~8 rad per panel.
   const double r = r_, r2 = r * r, span = 1.0 / r - 1.0;
-  const int panels1 = 2 + int(std::ceil(0.5 * pi * t_max / 8.0));
-  const int panels2 = 2 + int(std::ceil(pi * 0.5 * span * t_max / 8.0));
+  // Counted in double, and checked before they become integers (api/run_bounds.cpp keeps a
+  // job's c_p / c_s <= 100, some 30 000 panels at the longest table).
+  const double panel_counts[2] = {2.0 + std::ceil(0.5 * pi * t_max / 8.0),
+                                  2.0 + std::ceil(pi * 0.5 * span * t_max / 8.0)};
+  for (double count : panel_counts)
+    if (!(count <= 1e7))
+      throw std::invalid_argument("the kernel quadrature would need " + std::to_string(count) +
+                                  " panels (c_p / c_s or the table length too large)");
+  const int panels1 = int(panel_counts[0]), panels2 = int(panel_counts[1]);
   for (int m = 0; m < panels1; ++m) {
     const double lo = 0.5 * pi * m / panels1, hi = 0.5 * pi * (m + 1) / panels1;
     gauss_legendre_20(lo, hi, [&](double theta, double weight) {

@@ -39,7 +39,10 @@ long ModeMemory::memory_length(int n, double width, double dt, double shear_spee
   if (n == 0) return 0;
   const double k = 2.0 * std::numbers::pi * n / width;
   const double window = memory_periods * 2.0 * std::numbers::pi / (k * shear_speed); // [s]
-  return std::clamp(long(std::ceil(window / dt)), 1L, std::max(1L, max_steps));
+  // Clamped in double: window / dt may be beyond every integer type (a tiny dt).
+  const double lags = std::ceil(window / dt);
+  const double most = double(std::max(1L, max_steps));
+  return lags >= 1.0 ? long(std::min(lags, most)) : 1L;
 }
 
 ModeMemory::ModeMemory(int modes, double width, double dt, double shear_speed, double impedance_s,

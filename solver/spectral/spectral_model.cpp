@@ -2,6 +2,7 @@
 
 #include "solver/mesh_size.hpp"
 #include "solver/nucleation.hpp"
+#include "solver/step_count.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,11 +35,16 @@ std::vector<int> split_modes(const ModeMemory& memory, long steps, int parts) {
 } // namespace
 
 double SpectralModel::time_step(const SimulationParams& p) {
-  return p.spectral.time_step_factor * mesh_size(p).dx / p.material.s_wave_speed();
+  const double dx = 1.0 / p.geometry.nodes_per_meter; // as mesh_size(p).dx, without the mesh
+  return p.spectral.time_step_factor * dx / p.material.s_wave_speed();
+}
+
+double SpectralModel::step_bound(const SimulationParams& p) {
+  return steps_to_reach(p.time.duration, time_step(p)) + 1.0;
 }
 
 long SpectralModel::max_steps(const SimulationParams& p) {
-  return long(std::ceil(p.time.duration / time_step(p) - 1e-9)) + 1;
+  return checked_step_count(step_bound(p));
 }
 
 double SpectralModel::estimated_memory_bytes(const SimulationParams& p) {
@@ -63,7 +69,7 @@ double SpectralModel::kernel_span(const SimulationParams& p) {
   // never beyond the run: (max_steps + 1/2) |k_max| c_s dt with |k_max| = pi / dx.
   const double beta = p.spectral.time_step_factor;
   const double window = two_pi * p.spectral.memory_periods + 1.5 * std::numbers::pi * beta;
-  const double run = (double(max_steps(p)) + 1.5) * std::numbers::pi * beta;
+  const double run = (step_bound(p) + 1.5) * std::numbers::pi * beta;
   return std::min(window, run) + 0.5;
 }
 

@@ -55,7 +55,10 @@ public:
   static double time_step(const SimulationParams& params);
   // Kernel table length needed for these parameters (scaled time).
   static double kernel_span(const SimulationParams& params);
-  // Steps of a run that goes to `duration`.
+  // Steps of a run that goes to `duration`, in double (may be inf for an impossible job).
+  static double step_bound(const SimulationParams& params);
+  // The same as an integer; throws std::invalid_argument above max_run_steps
+  // (solver/step_count.hpp), which the job validation never lets through.
   static long max_steps(const SimulationParams& params);
   // Bytes the run will hold (memory of the modes, interface fields, probe records).
   static double estimated_memory_bytes(const SimulationParams& params);

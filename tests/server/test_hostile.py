@@ -275,6 +275,27 @@ class HostileInput(unittest.TestCase):
             self.assertNotIn("FORGED", line)
             self.assertNotIn("\x1b", line)
 
+    # --- issue 22, item 2: jobs whose fields imply an impossible run -------------------
+    def test_impossible_runs_are_422_naming_the_field(self):
+        bi = {"method": "spectral_bi"}
+        cases = [
+            (dict(bi, spectral_bi={"time_step_factor": 1e-300}), "/spectral_bi/time_step_factor"),
+            ({"time": {"duration": 1e19}}, "/time/duration"),
+            (dict(bi, time={"duration": 1e19}), "/time/duration"),
+            ({"material": {"young_modulus": 1e300}}, "/material/young_modulus"),
+            ({"material": {"density": 5e-324}}, "/material/density"),
+            (dict(bi, material={"density": 5e-324}), "/material/density"),
+            ({"material": {"density": 1.7e308}}, "/material/density"),
+        ]
+        for body, pointer in cases:
+            with self.subTest(body=body):
+                self.assertRejected(self.server.submit(body), 422, pointer)
+        # The convergence study of the issue, which reported L_c = 1e-4 from runs of 0 steps.
+        study = {"convergence": {"L": [5e-5, 1e-4], "n_d": [5, 10]},
+                 "base": dict(bi, spectral_bi={"time_step_factor": 1e-300})}
+        self.assertRejected(self.server.post(STUDIES, json=study), 422,
+                            "/base/spectral_bi/time_step_factor")
+
     # --- breadth: every endpoint, bad fields, ids, queries, headers, methods -------------
     def assertClientError(self, r, pointer=None):
         """Any 4xx in problem+json form (naming `pointer` if given), never a 5xx."""
@@ -301,7 +322,7 @@ class HostileInput(unittest.TestCase):
             ({"friction": {"law": "magic"}}, "/friction/law"),
             ({"friction": {"L": 0}}, "/friction/L"), ({"friction": {"mu": -0.1}}, "/friction/mu"),
             ({"time": {"duration": 0}}, "/time/duration"),
-            ({"time": {"duration": 1e300}}, "/geometry/nodes_per_meter"),
+            ({"time": {"duration": 1e300}}, "/time/duration"),
             ({"time": {"safety_factor": 3}}, "/time/safety_factor"),
             ({"output": {"interval": -1}}, "/output/interval"),
             ({"output": {"space_stride": 0}}, "/output/space_stride"),

@@ -1,0 +1,153 @@
+#include "api/run_bounds.hpp"
+
+#include "api/number_text.hpp"
+#include "solver/simulation.hpp"
+#include "solver/step_count.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace slipfront::api {
+
+namespace {
+
+// A field that the bounded quantities depend on, and how to give it the job's value.
+struct Input {
+  const char* pointer;
+  void (*take)(SimulationParams& params, const SimulationParams& job);
+};
+
+// Every such field (a field the job's method does not read changes nothing: never named).
+const Input inputs[] = {
+    {"/material/density",
+     [](auto& p, const auto& job) { p.material.density = job.material.density; }},
+    {"/material/young_modulus",
+     [](auto& p, const auto& job) { p.material.young_modulus = job.material.young_modulus; }},
+    {"/material/poisson_ratio",
+     [](auto& p, const auto& job) { p.material.poisson_ratio = job.material.poisson_ratio; }},
+    {"/geometry/nodes_per_meter",
+     [](auto& p, const auto& job) { p.geometry.nodes_per_meter = job.geometry.nodes_per_meter; }},
+    {"/time/duration", [](auto& p, const auto& job) { p.time.duration = job.time.duration; }},
+    {"/time/safety_factor",
+     [](auto& p, const auto& job) { p.time.safety_factor = job.time.safety_factor; }},
+    {"/fe/mesh_damping", [](auto& p, const auto& job) { p.fe.mesh_damping = job.fe.mesh_damping; }},
+    {"/spectral_bi/time_step_factor",
+     [](auto& p, const auto& job) { p.spectral.time_step_factor = job.spectral.time_step_factor; }},
+};
+
+using Quantity = double (*)(const SimulationParams&);
+enum class Direction { too_large, too_small };
+
+// The field that, alone given the job's value in the paper's scene (with the job's method),
+// moves `quantity` furthest in `direction`: the one an error about the quantity names.
+const char* culprit(const SimulationParams& job, Quantity quantity, Direction direction) {
+  SimulationParams scene;
+  scene.method = job.method;
+  const double base = std::log(quantity(scene));
+  const char* named = inputs[0].pointer;
+  double furthest = -std::numeric_limits<double>::infinity();
+  for (const Input& input : inputs) {
+    SimulationParams one = scene;
+    input.take(one, job);
+    double shift = std::log(quantity(one)) - base; // +-inf where the quantity overflows or is 0
+    if (direction == Direction::too_small) shift = -shift;
+    if (std::isnan(shift)) shift = std::numeric_limits<double>::infinity();
+    if (shift > furthest) {
+      furthest = shift;
+      named = input.pointer;
+    }
+  }
+  return named;
+}
+
+std::string text(double value) {
+  return number_text(value, 3);
+}
+
+double s_wave_speed(const SimulationParams& p) {
+  return p.material.s_wave_speed();
+}
+double p_wave_speed(const SimulationParams& p) {
+  return p.material.p_wave_speed();
+}
+// rho c_p: the dashpot of the absorbing top and of the half-space's radiation damping.
+double p_impedance(const SimulationParams& p) {
+  return p.material.density * p.material.p_wave_speed();
+}
+double shortest_step(const SimulationParams& p) {
+  return time_step_bounds(p).shortest;
+}
+// The duration in units of the longest step the run could take.
+double duration_in_steps(const SimulationParams& p) {
+  return p.time.duration / time_step_bounds(p).longest;
+}
+
+bool finite_positive(double value) {
+  return std::isfinite(value) && value > 0.0;
+}
+
+// c_s = sqrt(mu / rho) and c_p = sqrt((lambda + 2 mu) / rho) (docs/physics.md), finite and
+// > 0, and so is rho c_p. False if not (the error is appended).
+bool check_wave_speeds(const SimulationParams& p, std::vector<FieldError>& errors) {
+  const double c_s = p.material.s_wave_speed(), c_p = p.material.p_wave_speed();
+  const std::string speeds = "c_s = " + text(c_s) + " m/s, c_p = " + text(c_p) + " m/s";
+  if (!finite_positive(c_s) || !finite_positive(c_p)) {
+    const Quantity speed = finite_positive(c_s) ? p_wave_speed : s_wave_speed;
+    const bool overflow = !std::isfinite(speed(p));
+    errors.push_back({culprit(p, speed, overflow ? Direction::too_large : Direction::too_small),
+                      "the wave speeds (" + speeds +
+                          ") must be finite and > 0: young_modulus / density is " +
+                          (overflow ? "too large" : "too small") + " for a double"});
+    return false;
+  }
+  if (!std::isfinite(p_impedance(p))) {
+    errors.push_back({culprit(p, p_impedance, Direction::too_large),
+                      "the impedance density * c_p is not a finite number (" + speeds + ")"});
+    return false;
+  }
+  if (p.method == Method::spectral_bi && c_p / c_s > max_bi_wave_speed_ratio) {
+    errors.push_back({"/material/poisson_ratio",
+                      "c_p / c_s = " + text(c_p / c_s) + " is more than the " +
+                          text(max_bi_wave_speed_ratio) +
+                          " the spectral_bi kernel allows (poisson_ratio at most 0.49995)"});
+    return false;
+  }
+  return true;
+}
+
+// The time step and the number of steps (solver/simulation.hpp: time_step_bounds,
+// step_count_bound), all in double: checked before anything becomes an integer.
+void check_time_steps(const SimulationParams& p, std::vector<FieldError>& errors) {
+  const TimeStepBounds dt = time_step_bounds(p);
+  const bool exact = p.method == Method::spectral_bi; // FE: bounds of the stable step
+  if (!(dt.shortest >= min_time_step)) {
+    errors.push_back({culprit(p, shortest_step, Direction::too_small),
+                      "the time step would be " + std::string(exact ? "" : "as short as ") +
+                          text(dt.shortest) + " s, less than the limit " + text(min_time_step) +
+                          " s"});
+    return;
+  }
+  const double steps = step_count_bound(p);
+  if (!(steps <= max_run_steps)) {
+    errors.push_back({culprit(p, step_count_bound, Direction::too_large),
+                      "the run would take " + std::string(exact ? "" : "up to ") + text(steps) +
+                          " time steps (duration " + text(p.time.duration) + " s / dt " +
+                          text(dt.shortest) + " s), more than the limit " + text(max_run_steps)});
+    return;
+  }
+  if (!(duration_in_steps(p) >= 1.0)) {
+    errors.push_back({culprit(p, duration_in_steps, Direction::too_small),
+                      "the duration " + text(p.time.duration) +
+                          " s is shorter than one time step (" + (exact ? "dt = " : "dt up to ") +
+                          text(dt.longest) + " s): the run would simulate nothing"});
+  }
+}
+
+} // namespace
+
+void check_run_bounds(const JobSpec& job, std::vector<FieldError>& errors) {
+  if (check_wave_speeds(job.params, errors)) check_time_steps(job.params, errors);
+}
+
+} // namespace slipfront::api
