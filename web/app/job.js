@@ -4,7 +4,7 @@ import { h, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTab
 import { get, getJSON } from './api.js';
 import { drawFigures } from './job_figures.js';
 import { cancelJob, jobL, jobNd } from './jobs.js';
-import { cellText, statusBadge } from './convergence_grid.js';
+import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
 
 const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
 
@@ -62,7 +62,7 @@ export async function jobPage(view, page, id) {
         const scene = await get(`/api/v1/convergence-map?scene=${job.scene_hash}`);
         convergence = (scene.runs || []).find((r) => r.job_id === job.id)?.convergence || null;
         source = `the scene's shared map (${scene.count} run${scene.count === 1 ? '' : 's'})`;
-        finished = false; // any later run of the scene may add a finer mesh
+        finished = mapIsFinal(scene.convergence_map); // as the study page's shared map says
       }
     } catch (e) { convergence = { status: 'unknown', reason: e.message }; }
     fill(cols, 

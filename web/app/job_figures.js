@@ -61,7 +61,9 @@ function colourRange(values, scale) {
   if (!(peak > 0)) peak = 1;
   if (scale === 'log') return { zmin: Math.log10(peak) - LOG_DECADES, zmax: Math.log10(peak), clipped: false };
   const moving = values.filter((v) => v > peak * 1e-3).sort((a, b) => a - b);
-  const top = moving.length ? moving[Math.min(moving.length - 1, Math.floor(CLIP_PERCENTILE * (moving.length - 1)))] : peak;
+  // The percentile with linear interpolation between the sorted values (numpy's default).
+  const at = CLIP_PERCENTILE * (moving.length - 1), lo = Math.floor(at);
+  const top = moving.length ? moving[lo] + (at - lo) * ((moving[Math.min(lo + 1, moving.length - 1)]) - moving[lo]) : peak;
   return { zmin: 0, zmax: top, clipped: top < peak };
 }
 
@@ -133,7 +135,7 @@ export async function drawFigures(figs, job) {
     const heat = {
       type: 'heatmap', x, y: t, z, customdata: absV, zmin, zmax, zauto: false, colorscale: colourscale, showscale: false,
       zsmooth: 'fast', // not false: Plotly would set a style attribute, which the CSP refuses
-      hoverongaps: false, hovertemplate: 'x1 = %{x:.3f} m<br>t = %{y:.4g} s<br>|V| = %{customdata:.3g} mm/s<extra></extra>',
+      hoverongaps: true, hovertemplate: 'x1 = %{x:.3f} m<br>t = %{y:.4g} s<br>|V| = %{customdata:.3g} mm/s<extra></extra>',
     };
     const levels = Array.from({ length: 256 }, (_, i) => zmin + ((zmax - zmin) * i) / 255);
     const bar = {

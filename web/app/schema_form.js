@@ -29,6 +29,9 @@ export function kindOf(schema) {
   return 'json';
 }
 
+// A bound as written: whole numbers in full (1000000, not 1.00e6), others as fmt.
+const bound = (v) => (Number.isInteger(v) && Math.abs(v) < 1e15 ? String(v) : fmt(v));
+
 // "in (0, 0.5)", ">= 1", "at most 200 characters": the allowed values in a few words.
 export function rangeText(schema) {
   const kind = kindOf(schema);
@@ -37,9 +40,9 @@ export function rangeText(schema) {
     const hi = schema.exclusiveMaximum ?? schema.maximum;
     const loOpen = schema.exclusiveMinimum !== undefined, hiOpen = schema.exclusiveMaximum !== undefined;
     const int = schema.type === 'integer' ? 'whole number ' : '';
-    if (lo !== undefined && hi !== undefined) return `${int}in ${loOpen ? '(' : '['}${fmt(lo)}, ${fmt(hi)}${hiOpen ? ')' : ']'}`;
-    if (lo !== undefined) return `${int}${loOpen ? '>' : '≥'} ${fmt(lo)}`;
-    if (hi !== undefined) return `${int}${hiOpen ? '<' : '≤'} ${fmt(hi)}`;
+    if (lo !== undefined && hi !== undefined) return `${int}in ${loOpen ? '(' : '['}${bound(lo)}, ${bound(hi)}${hiOpen ? ')' : ']'}`;
+    if (lo !== undefined) return `${int}${loOpen ? '>' : '≥'} ${bound(lo)}`;
+    if (hi !== undefined) return `${int}${hiOpen ? '<' : '≤'} ${bound(hi)}`;
     return int.trim();
   }
   if (kind === 'choice') return (schema.oneOf || schema.anyOf).map((s) => (s.const !== undefined ? JSON.stringify(s.const) : s.enum ? s.enum.map((v) => JSON.stringify(v)).join(' or ') : rangeText(s) || s.type)).join(', or ');

@@ -10,10 +10,10 @@ import { axis, chart, chartMessage, PALETTE } from './plots.js';
 
 // [key, the menu's text, the chart title's text]
 export const METRICS = [
-  ['max', 'larger of the distance and arrival-time errors (as the CLI)', 'larger of the distance and arrival-time errors'],
-  ['propagation_distance', 'error of the propagation distance', 'error of the propagation distance'],
-  ['arrival_time', 'error of the arrival time at the probe', 'error of the arrival time at the probe'],
-  ['slip_velocity_l2', 'L2 error of V at the spectrum probe', 'L2 error of V(t) at the spectrum probe'],
+  ['max', 'larger of the distance and arrival-time errors (as the CLI)', 'Relative error (the larger of distance and arrival time)'],
+  ['propagation_distance', 'error of the propagation distance', 'Relative error of the propagation distance'],
+  ['arrival_time', 'error of the arrival time at the probe', 'Relative error of the arrival time at the probe'],
+  ['slip_velocity_l2', 'L2 error of V at the spectrum probe', 'Relative L2 error of V(t) at the spectrum probe'],
 ];
 
 // The error of an entry of GET /studies/{id}/speed-accuracy under `metric`; null when none.
@@ -89,7 +89,7 @@ export async function drawSpeedChart(box, entries, metric, fallbackMethod, filen
     data: traces, height: 360, filename,
     layout: {
       margin: { l: 80, r: 190, t: 40, b: 50, autoexpand: false }, hovermode: 'closest',
-      title: { text: `Relative ${label} against wall time (point labels: n_d)`, font: { size: 13 }, x: 0, xref: 'paper', xanchor: 'left' },
+      title: { text: `${label} against wall time (point labels: n_d)`, font: { size: 13 }, x: 0, xref: 'paper', xanchor: 'left' },
       xaxis: axis('wall time [s]', { type: 'log', dtick: 'D2' }), yaxis: axis('relative error', { type: 'log', dtick: 'D2' }),
       legend: { x: 1.02, xanchor: 'left', y: 1 },
     },
