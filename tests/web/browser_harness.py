@@ -158,8 +158,10 @@ class BrowserCase(unittest.TestCase):
         if not shots:
             return
         os.makedirs(shots, exist_ok=True)
-        height = self.js("return Math.max(document.body.scrollHeight, document.documentElement.scrollHeight)")
-        self.driver.set_window_size(1400, min(max(int(height) + 40, 900), 4000))
+        # The window's size includes what is not page (headless Chromium's frame): add it.
+        height, frame = self.js("return [Math.max(document.body.scrollHeight, document.documentElement.scrollHeight),"
+                                " window.outerHeight - window.innerHeight]")
+        self.driver.set_window_size(1400, min(max(int(height) + int(frame) + 20, 900), 4000))
         self.js("window.scrollTo(0, 0)")
         time.sleep(0.5)
         self.driver.save_screenshot(os.path.join(shots, f"{name}.png"))

@@ -32,7 +32,7 @@ export function cellText(cell, tolerances, finished) {
   if (cell.status === 'unknown' && cell.partner_n_d == null) {
     if (finished) {
       label = 'finest mesh';
-      title = 'The finest mesh of this L: no finer run to compare it with (it is the reference of the coarser meshes).';
+      title = 'The finest mesh of this L: no finer run to compare it with (the coarser meshes, if any, are judged against it).';
     }
   } else if (cell.status === 'unknown') {
     label = `waiting for n_d = ${fmt(cell.partner_n_d)}`;

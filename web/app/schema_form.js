@@ -85,7 +85,9 @@ function scalarInput(pointer, schema, kind) {
   const id = idOf(pointer);
   let input;
   if (kind === 'enum') {
-    input = h('select', { id }, schema.enum.map((v) => h('option', { value: JSON.stringify(v), text: `${v}${JSON.stringify(v) === JSON.stringify(schema.default) ? ' (default)' : ''}` })));
+    // Without a default the first choice is "not set" (the field is then not sent).
+    const unset = schema.default === undefined ? [h('option', { value: '', text: '— (not set)' })] : [];
+    input = h('select', { id }, unset, schema.enum.map((v) => h('option', { value: JSON.stringify(v), text: `${v}${JSON.stringify(v) === JSON.stringify(schema.default) ? ' (default)' : ''}` })));
   } else if (kind === 'boolean') {
     input = h('input', { type: 'checkbox', id });
   } else if (kind === 'number') {
@@ -100,7 +102,7 @@ function scalarInput(pointer, schema, kind) {
   input.dataset.kind = kind;
   const read = () => {
     if (kind === 'boolean') return input.checked;
-    if (kind === 'enum') return JSON.parse(input.value);
+    if (kind === 'enum') return input.value === '' ? undefined : JSON.parse(input.value);
     const text = input.value.trim();
     if (text === '') return kind === 'strings' || kind === 'numbers' ? [] : undefined;
     if (kind === 'number') return Number(text);
@@ -112,7 +114,7 @@ function scalarInput(pointer, schema, kind) {
   };
   const write = (value) => {
     if (kind === 'boolean') input.checked = !!value;
-    else if (kind === 'enum') input.value = JSON.stringify(value ?? schema.default ?? schema.enum[0]);
+    else if (kind === 'enum') input.value = value === undefined ? (schema.default === undefined ? '' : JSON.stringify(schema.default)) : JSON.stringify(value);
     else input.value = textOf(value);
   };
   return { input, read, write };
@@ -233,8 +235,9 @@ export class SchemaForm {
     for (const f of this.fields) {
       if (f.element.hidden) continue;
       const v = f.read();
-      if (v === undefined) continue;
       const d = valueAt(base, f.pointer) ?? f.schema.default;
+      // Nothing typed into a field without a default: not sent.
+      if (v === undefined || (d === undefined && ((Array.isArray(v) && !v.length) || v === false))) continue;
       if (JSON.stringify(v) !== JSON.stringify(d)) setAt(out, f.pointer, v);
     }
     return out;
