@@ -185,13 +185,13 @@ export async function drawFigures(figs, job) {
       marks = series.map((s) => ({ x: s.x, color: s.color }));
       await drawMap();
       if (!series.length) { chartMessage(vtBox, 'No position inside the domain.'); return; }
-      const window = signalWindow(series);
+      const signal = signalWindow(series);
       await chart(vtBox, {
         data: series.map((s) => ({ type: 'scatter', mode: 'lines', x: s.t, y: s.v, name: `x1 = ${fmt(s.x, 4)} m`, line: { color: s.color, width: 1.6 }, hovertemplate: '%{y:.3g} mm/s' })),
         height: 320, filename: `${stem}-velocity`,
         layout: {
           hovermode: 'x unified', margin: { l: 80, r: 24, t: 30, b: 50, autoexpand: false },
-          xaxis: axis(window ? 't [s] (zoomed to the signal; double-click: the whole run)' : 't [s]', window ? { range: window, autorange: false } : {}),
+          xaxis: axis(signal ? 't [s] (zoomed to the signal; double-click: the whole run)' : 't [s]', signal ? { range: signal, autorange: false } : {}),
           yaxis: axis('|V| [mm/s]', { rangemode: 'tozero' }),
           legend: { x: 0.99, xanchor: 'right', y: 0.99 },
         },

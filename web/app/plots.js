@@ -54,6 +54,7 @@ export async function chart(box, { data, layout = {}, filename = 'slipfront-char
     margin: { l: 80, r: 24, t: 30, b: 50, autoexpand: false },
     hoverlabel: { font: { family: FONT.family, size: 12 } },
     legend: { bgcolor: 'rgba(255,255,255,0.85)', bordercolor: '#c9d1da', borderwidth: 1 },
+    uirevision: filename, // a redraw (another colour scale, more V(t) positions) keeps the zoom
     ...layout,
   };
   const config = {
