@@ -3,7 +3,7 @@
 // metric is undefined (NaN, e.g. a front that never arrived) and stored as NULL.
 #pragma once
 
-#include "solver/metrics.hpp"
+#include "solver/run/metrics.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -53,7 +53,7 @@ enum class FrictionLaw {
 };
 
 // How the strength ODE d(tau_s)/dt = -(|V|+V*)/L (tau_s - mu p) is advanced over a step
-// (solver/friction.hpp has the formulas, docs/physics.md the accuracy of each).
+// (solver/interface/friction.hpp has the formulas, docs/physics.md the accuracy of each).
 enum class StrengthUpdate {
   exponential_ramp, // exact for |V| frozen and p linear over the step: second order, stable
   exponential,      // exact for |V| and p frozen (p of the step's end): first order, stable

@@ -2,12 +2,12 @@
 // and memory estimates of a run.
 #include "solver/simulation.hpp"
 
+#include "solver/fe/stable_time_step.hpp"
 #include "solver/make_rupture_method.hpp"
 #include "solver/mesh_size.hpp"
-#include "solver/spectral/spectral_model.hpp"
-#include "solver/stable_time_step.hpp"
+#include "solver/run/time_loop.hpp"
+#include "solver/spectral/spectral_method.hpp"
 #include "solver/thread_team.hpp"
-#include "solver/time_loop.hpp"
 
 #include <chrono>
 #include <memory>
@@ -20,7 +20,7 @@ double resolved_height(const SimulationParams& params) {
 
 double estimated_memory_bytes(const SimulationParams& params) {
   if (params.method == Method::spectral_bi)
-    return spectral::SpectralModel::estimated_memory_bytes(params);
+    return spectral::SpectralMethod::estimated_memory_bytes(params);
   const MeshSize m = mesh_size(params);
   const double nodes = double(m.nx + 2) * m.ny;
   // u and v, two components each; with the mesh damping also w = u + a v.
@@ -35,18 +35,18 @@ double estimated_memory_bytes(const SimulationParams& params) {
 
 double step_count_bound(const SimulationParams& params) {
   if (params.method == Method::spectral_bi)
-    return double(spectral::SpectralModel::max_steps(params));
+    return double(spectral::SpectralMethod::max_steps(params));
   // The stable step of a regular Q4 mesh is above 0.5 dx / c_p; the damped bound decreases
   // with dt0, so that lower bound of dt0 gives a lower bound of the damped step too.
   const double dx = mesh_size(params).dx;
   const double damping_a = params.fe.mesh_damping * dx / params.material.s_wave_speed();
   return params.time.duration /
          (params.time.safety_factor *
-          damped_stable_time_step(0.5 * dx / params.material.p_wave_speed(), damping_a));
+          fe::damped_stable_time_step(0.5 * dx / params.material.p_wave_speed(), damping_a));
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {
-  // The wall time counts the set-up (the stable step's power iteration) too; the model is
+  // The wall time counts the set-up (the stable step's power iteration) too; the method is
   // built with denormals flushed, as it is stepped.
   const auto started = std::chrono::steady_clock::now();
   FloatModeGuard float_mode;

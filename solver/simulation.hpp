@@ -9,11 +9,11 @@
 // and returns the metrics of SPEC §2 with the front profile and the probe records.
 #pragma once
 
-#include "solver/interface_fields.hpp"
+#include "solver/interface/interface_fields.hpp"
 #include "solver/mesh_info.hpp"
-#include "solver/metrics.hpp"
 #include "solver/params.hpp"
-#include "solver/records.hpp"
+#include "solver/run/metrics.hpp"
+#include "solver/run/records.hpp"
 
 #include <atomic>
 #include <cstdint>

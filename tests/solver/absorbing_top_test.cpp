@@ -6,7 +6,7 @@
 // missing half-space for a normally incident plane wave).
 #include "verification_support.hpp"
 
-#include "solver/rupture_model.hpp"
+#include "solver/fe/mesh_stepper.hpp"
 #include "solver/thread_team.hpp"
 
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 using verification::measure;
@@ -25,21 +25,21 @@ struct Velocities {
 
 // Mean u-rate of the interface (component 0: slip, 1: opening) over [t0, t1].
 Velocities interface_rates(SimulationParams p, int component, double t_return, double t_end) {
-  RuptureModel model(p);
+  MeshStepper mesh(p);
   ThreadTeam team(1);
   double ua = NAN, ub = NAN, uc = NAN, ud = NAN; // u at the sample times sa..sd
   double sa = NAN, sb = NAN, sc = NAN, sd = NAN;
   const double ta = 1.0, tb = t_return - 0.3, tc = t_return + 1.0, td = t_end;
   double energy_err = 0;
-  while (model.time() < t_end + model.dt()) {
-    model.step(team, true);
-    const double t = model.time() - model.dt();
-    const double u = component == 0 ? model.interface().slip[0] : model.interface().opening[0];
+  while (mesh.time() < t_end + mesh.dt()) {
+    mesh.step(team, true);
+    const double t = mesh.time() - mesh.dt();
+    const double u = component == 0 ? mesh.interface().slip[0] : mesh.interface().opening[0];
     if (std::isnan(ua) && t >= ta) ua = u, sa = t;
     if (t <= tb) ub = u, sb = t;
     if (std::isnan(uc) && t >= tc) uc = u, sc = t;
     if (t <= td) ud = u, sd = t;
-    const EnergyBalance& e = model.energy();
+    const EnergyBalance& e = mesh.energy();
     const double stored = e.kinetic + e.strain, net = e.external_work - e.dissipated;
     energy_err = std::max(energy_err, std::abs(stored - net) / std::abs(e.external_work));
   }
@@ -88,4 +88,4 @@ TEST(AbsorbingTop, NormallyIncidentPWaveLeavesTheBlock) {
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

@@ -8,8 +8,8 @@
 #include "dense_symmetric.hpp"
 #include "verification_support.hpp"
 
-#include "solver/element_stiffness.hpp"
-#include "solver/stencil.hpp"
+#include "solver/fe/element_stiffness.hpp"
+#include "solver/fe/stencil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 #include <array>
 #include <cmath>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 using verification::measure;
@@ -228,4 +228,4 @@ TEST(MeshPatch, RigidTranslationAndRotationGiveZeroForce) {
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

@@ -15,7 +15,7 @@
 // pressure linear over the step: exact for a linear input, second order for this one.
 #include "verification_support.hpp"
 
-#include "solver/friction.hpp"
+#include "solver/interface/friction.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// The interface law of one node (solver/interface_law.hpp) with a different mass along x1
+// The interface law of one node (solver/interface/interface_law.hpp) with a different mass along x1
 // and x2 (as the boundary-integral method uses it): contact, stick, slip and opening.
-#include "solver/interface_law.hpp"
+#include "solver/interface/interface_law.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-// Temporal blocking (solver/level_pipeline.hpp): the schedule respects every dependency of
-// the row-by-row step, and a model advanced several steps per trip, on 1, 2 or 3 threads,
-// gives the same bits after every step as the model stepped one step at a time.
+// Temporal blocking (solver/fe/level_pipeline.hpp): the schedule respects every dependency of
+// the row-by-row step, and a mesh advanced several steps per trip, on 1, 2 or 3 threads,
+// gives the same bits after every step as the mesh stepped one step at a time.
 #include "bit_compare.hpp"
 #include "scene_support.hpp"
 
-#include "solver/level_pipeline.hpp"
-#include "solver/rupture_model.hpp"
+#include "solver/fe/level_pipeline.hpp"
+#include "solver/fe/mesh_stepper.hpp"
 #include "solver/thread_team.hpp"
 
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include <atomic>
 #include <memory>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 // Every (level, row) part made once, and each only when what it reads is ready and what it
@@ -76,7 +76,7 @@ void expect_blocks_change_no_bit(const Variant& variant, int block, int threads)
   p.fe.mesh_damping = variant.mesh_damping;
   p.top = variant.top;
   p.geometry.height = variant.height;
-  RuptureModel single(p), blocked(p);
+  MeshStepper single(p), blocked(p);
   single.set_skip_quiet(variant.skip_quiet);
   blocked.set_skip_quiet(variant.skip_quiet);
   ThreadTeam one(1), team(threads);
@@ -129,4 +129,4 @@ TEST(TemporalBlocking, ChangesNoBitWithATractionTopTheWavesReachAndEveryNodeSwep
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

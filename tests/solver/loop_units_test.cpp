@@ -1,15 +1,15 @@
-// The units of the time loop (solver/time_loop.cpp), each on its own: front tracking,
+// The units of the time loop (solver/run/time_loop.cpp), each on its own: front tracking,
 // probe, energy and interface sampling, the divergence check, the arrest rule, progress.
 #include "verification_support.hpp"
 
-#include "solver/arrest_rule.hpp"
-#include "solver/divergence_check.hpp"
-#include "solver/energy_recorder.hpp"
-#include "solver/front_tracker.hpp"
-#include "solver/interface_sampler.hpp"
-#include "solver/nucleation.hpp"
-#include "solver/probe_recorder.hpp"
-#include "solver/progress_reporter.hpp"
+#include "solver/interface/nucleation.hpp"
+#include "solver/run/arrest_rule.hpp"
+#include "solver/run/divergence_check.hpp"
+#include "solver/run/energy_recorder.hpp"
+#include "solver/run/front_tracker.hpp"
+#include "solver/run/interface_sampler.hpp"
+#include "solver/run/probe_recorder.hpp"
+#include "solver/run/progress_reporter.hpp"
 
 #include <gtest/gtest.h>
 

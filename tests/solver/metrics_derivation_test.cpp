@@ -1,7 +1,7 @@
-// The metric derivations of a run (solver/metrics.hpp) on hand-made records: nodal lookup
+// The metric derivations of a run (solver/run/metrics.hpp) on hand-made records: nodal lookup
 // on the periodic line, the front metrics, the energy-balance error.
-#include "solver/metrics.hpp"
-#include "solver/periodic_index.hpp"
+#include "solver/run/metrics.hpp"
+#include "solver/run/periodic_index.hpp"
 
 #include <gtest/gtest.h>
 

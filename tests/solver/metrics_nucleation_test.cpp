@@ -3,8 +3,8 @@
 // across the periodic seam, the filter law inverse, the spectral cut-off of a sine.
 #include "verification_support.hpp"
 
-#include "solver/metrics.hpp"
-#include "solver/nucleation.hpp"
+#include "solver/interface/nucleation.hpp"
+#include "solver/run/metrics.hpp"
 
 #include <gtest/gtest.h>
 

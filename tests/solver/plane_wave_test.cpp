@@ -18,7 +18,7 @@
 // a_{n+1} + a_{n-1} = 2 cos(Omega dt) a_n (least squares over every step).
 #include "verification_support.hpp"
 
-#include "solver/rupture_model.hpp"
+#include "solver/fe/mesh_stepper.hpp"
 #include "solver/thread_team.hpp"
 
 #include <gtest/gtest.h>
@@ -28,7 +28,7 @@
 #include <numbers>
 #include <vector>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 using verification::measure;
@@ -50,19 +50,19 @@ WaveResult standing_wave(int component, double nodes_per_meter, double height, i
   p.loading.shear_stress = 0.0;
   p.friction.law = FrictionLaw::coulomb;
   p.friction.mu = 1000.0;
-  RuptureModel model(p);
+  MeshStepper mesh(p);
   ThreadTeam team(1);
 
-  const double dx = model.dx(), dt = model.dt(), h = model.height();
-  const int nx = model.nx(), ny = model.ny();
+  const double dx = mesh.dx(), dt = mesh.dt(), h = mesh.height();
+  const int nx = mesh.nx(), ny = mesh.ny();
   const double c = component == 0 ? p.material.s_wave_speed() : p.material.p_wave_speed();
   const double k = (2 * mode - 1) * std::numbers::pi / (2 * h);
   const double omega_h = 2 * c / dx * std::sin(k * dx / 2);
   const double cos_Odt = 1 - 0.5 * omega_h * omega_h * dt * dt;
   const double A = 1e-3;
 
-  NodalField& u = component == 0 ? model.displacement().x : model.displacement().y;
-  NodalField& v = component == 0 ? model.velocity().x : model.velocity().y;
+  NodalField& u = component == 0 ? mesh.displacement().x : mesh.displacement().y;
+  NodalField& v = component == 0 ? mesh.velocity().x : mesh.velocity().y;
   std::vector<double> s(ny);
   double ss = 0;
   for (int j = 0; j < ny; ++j) {
@@ -75,9 +75,9 @@ WaveResult standing_wave(int component, double nodes_per_meter, double height, i
   }
   for (int i = 0; i < nx; ++i)
     u.at(i, 0) = v.at(i, 0) = 0.0; // the held interface (s_0 = 0)
-  model.displacement().x.refresh_all_ghosts();
-  model.displacement().y.refresh_all_ghosts();
-  model.activate_all_rows();
+  mesh.displacement().x.refresh_all_ghosts();
+  mesh.displacement().y.refresh_all_ghosts();
+  mesh.activate_all_rows();
 
   WaveResult r;
   const long steps = long(duration / dt);
@@ -93,7 +93,7 @@ WaveResult standing_wave(int component, double nodes_per_meter, double height, i
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; i += std::max(1, nx / 4))
         r.mode_residual = std::max(r.mode_residual, std::abs(u.at(i, j) - proj * s[j]) / A);
-    if (n < steps) model.step(team, false);
+    if (n < steps) mesh.step(team, false);
   }
   double num = 0, den = 0;
   for (std::size_t n = 1; n + 1 < a.size(); ++n) {
@@ -149,4 +149,4 @@ TEST(PlaneWave, SWaveAlongX2ConvergesAtSecondOrderToCs) {
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

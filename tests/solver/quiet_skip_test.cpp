@@ -1,17 +1,17 @@
-// Skipping the quiet far field (solver/quiet_columns.hpp) changes no bit: the paper's scene
+// Skipping the quiet far field (solver/fe/quiet_columns.hpp) changes no bit: the paper's scene
 // stepped with the skipping and with every node swept at every step gives the same u, v,
 // interface and energy, with and without the mesh damping and the absorbing top; and the
 // skipping does leave columns out.
 #include "bit_compare.hpp"
 #include "scene_support.hpp"
 
-#include "solver/quiet_columns.hpp"
-#include "solver/rupture_model.hpp"
+#include "solver/fe/mesh_stepper.hpp"
+#include "solver/fe/quiet_columns.hpp"
 #include "solver/thread_team.hpp"
 
 #include <gtest/gtest.h>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 using namespace bits;
@@ -27,7 +27,7 @@ void expect_skipping_changes_no_bit(const Variant& variant) {
   p.fe.mesh_damping = variant.mesh_damping;
   p.top = variant.top;
   p.geometry.height = variant.height;
-  RuptureModel skipping(p), sweeping(p);
+  MeshStepper skipping(p), sweeping(p);
   sweeping.set_skip_quiet(false);
   ThreadTeam team(2);
   const int nx = skipping.nx();
@@ -110,4 +110,4 @@ TEST(QuietColumns, TrimToTheNonZeroColumns) {
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

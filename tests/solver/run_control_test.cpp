@@ -90,7 +90,7 @@ TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalRuns) {
 }
 
 // With the mesh damping, w = u + a v is advanced row by row with u (also when the threads
-// carry different steps of a block, solver/level_pipeline.hpp): still bit for bit.
+// carry different steps of a block, solver/fe/level_pipeline.hpp): still bit for bit.
 TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalRunsWithMeshDamping) {
   expect_bit_identical_across_threads(0.1);
 }

@@ -4,7 +4,7 @@
 
 #include "verification_support.hpp"
 
-#include "solver/nucleation.hpp"
+#include "solver/interface/nucleation.hpp"
 #include "solver/simulation.hpp"
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 // mesh-converged in the slip velocity. Tolerances, and why, are in docs/verification.md.
 #include "scene_support.hpp"
 
-#include "solver/friction.hpp"
+#include "solver/interface/friction.hpp"
 
 #include <gtest/gtest.h>
 

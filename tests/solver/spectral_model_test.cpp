@@ -1,4 +1,4 @@
-// Cases 17-19: the spectral boundary-integral model (solver/spectral/spectral_model.hpp) on
+// Cases 17-19: the spectral boundary-integral method (solver/spectral/spectral_method.hpp) on
 // problems with analytical solutions.
 //   17. uniform slip: a strength drop everywhere slides the interface at V = dtau/(rho c_s)
 //       at once and for ever (the uniform mode has no memory: exact, no start-up ringing);
@@ -9,7 +9,7 @@
 //       solution u2 = (1 - nu) P/(mu k) cos, u1 = -(1 - 2 nu) P/(2 mu k) sin.
 #include "verification_support.hpp"
 
-#include "solver/spectral/spectral_model.hpp"
+#include "solver/spectral/spectral_method.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,12 +35,12 @@ TEST(SpectralUniformSlip, SlidesAtTheImpedanceVelocityExactlyFromTheFirstStep) {
   const double p0 = std::abs(p.loading.normal_stress), tau_r = p.friction.mu * p0;
   const double V =
       (p.loading.shear_stress - tau_r) / (p.material.density * p.material.s_wave_speed());
-  spectral::SpectralModel model(p);
+  spectral::SpectralMethod method(p);
   double worst = 0, traction = 0, pressure = 0;
   for (int n = 0; n < 400; ++n) {
-    model.step(false);
-    const InterfaceFields& f = model.interface();
-    for (int i = 0; i < model.nx(); ++i) {
+    method.step(false);
+    const InterfaceFields& f = method.interface();
+    for (int i = 0; i < method.nx(); ++i) {
       worst = std::max(worst, std::abs(f.half_velocity[i] / V - 1));
       traction = std::max(traction, std::abs(f.shear_traction[i] - tau_r) / tau_r);
       pressure = std::max(pressure, std::abs(f.pressure[i] - p0) / p0);
@@ -63,17 +63,17 @@ TEST(SpectralUniformOpening, OpensAtTheImpedanceVelocitiesExactly) {
   const double p0 = std::abs(p.loading.normal_stress);
   const double V2 = (pull - p0) / (mat.density * mat.p_wave_speed());
   const double V1 = p.loading.shear_stress / (mat.density * mat.s_wave_speed());
-  spectral::SpectralModel model(p);
+  spectral::SpectralMethod method(p);
   double e1 = 0, e2 = 0, traction = 0;
   for (int n = 0; n < 400; ++n) {
-    model.step(false);
-    const InterfaceFields& f = model.interface();
-    for (int i = 0; i < model.nx(); ++i) {
+    method.step(false);
+    const InterfaceFields& f = method.interface();
+    for (int i = 0; i < method.nx(); ++i) {
       e1 = std::max(e1, std::abs(f.half_velocity[i] / V1 - 1));
       traction = std::max({traction, std::abs(f.shear_traction[i]), std::abs(f.pressure[i])});
       EXPECT_EQ(f.state[i], std::int8_t(NodeState::open));
     }
-    if (n > 0) e2 = std::max(e2, std::abs((f.opening[0] / (n * model.dt())) / V2 - 1));
+    if (n > 0) e2 = std::max(e2, std::abs((f.opening[0] / (n * method.dt())) / V2 - 1));
   }
   EXPECT_LT(e1, 1e-12);
   EXPECT_LT(e2, 1e-12);
@@ -99,19 +99,19 @@ TEST(SpectralFreeMode, OneModeRingsAtTheRayleighFrequencyAroundTheStaticSolution
   const double u1_static = (1 - 2 * nu) * P / (2 * mu * k);
   p.time.duration = 12 * period;
 
-  spectral::SpectralModel model(p);
+  spectral::SpectralMethod method(p);
   // Mode 1 of the opening and slip from the nodal fields: the uniform part removed.
-  const int nx = model.nx();
+  const int nx = method.nx();
   std::vector<double> t, u2, u1;
-  while (model.time() < p.time.duration) {
-    model.step(false);
-    const InterfaceFields& f = model.interface();
+  while (method.time() < p.time.duration) {
+    method.step(false);
+    const InterfaceFields& f = method.interface();
     double c2 = 0, s1 = 0;
     for (int i = 0; i < nx; ++i) {
       c2 += f.opening[i] * std::cos(k * f.x1[i]) * 2.0 / nx;
       s1 += f.slip[i] * std::sin(k * f.x1[i]) * 2.0 / nx;
     }
-    t.push_back(model.time() - model.dt()); // opening/slip are those of t_n
+    t.push_back(method.time() - method.dt()); // opening/slip are those of t_n
     u2.push_back(c2);
     u1.push_back(-s1); // u1 = -A sin(k x1): A > 0 means towards the load maximum at x1 = 0
   }
@@ -144,14 +144,14 @@ TEST(SpectralFreeMode, OneModeRingsAtTheRayleighFrequencyAroundTheStaticSolution
 TEST(SpectralModelWarnings, CoulombAtLongStepsIsFlagged) {
   SimulationParams p = bi_strip(2.0, 10.0);
   p.friction.law = FrictionLaw::coulomb;
-  const auto flagged = spectral::SpectralModel(p).end_warnings(1.0);
+  const auto flagged = spectral::SpectralMethod(p).end_warnings(1.0);
   ASSERT_EQ(flagged.size(), 1u);
   EXPECT_NE(flagged[0].find("time_step_factor = 0.5"), std::string::npos) << flagged[0];
   p.spectral.time_step_factor = 0.25;
-  EXPECT_TRUE(spectral::SpectralModel(p).end_warnings(1.0).empty());
+  EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
   p.spectral.time_step_factor = 0.5;
   p.friction.law = FrictionLaw::prakash_clifton;
-  EXPECT_TRUE(spectral::SpectralModel(p).end_warnings(1.0).empty());
+  EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
 }
 
 } // namespace

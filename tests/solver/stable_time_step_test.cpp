@@ -13,16 +13,16 @@
 #include "dense_symmetric.hpp"
 #include "verification_support.hpp"
 
-#include "solver/element_stiffness.hpp"
-#include "solver/stable_time_step.hpp"
-#include "solver/stencil.hpp"
+#include "solver/fe/element_stiffness.hpp"
+#include "solver/fe/stable_time_step.hpp"
+#include "solver/fe/stencil.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 using verification::measure;
@@ -180,4 +180,4 @@ TEST(StableTimeStep, DampedRunAboveTheDampedStableStepDivergesBelowItDoesNot) {
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

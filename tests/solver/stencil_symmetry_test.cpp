@@ -1,10 +1,10 @@
-// The bulk rows' K u in the symmetric form of the square element (solver/stencil.hpp): the
+// The bulk rows' K u in the symmetric form of the square element (solver/fe/stencil.hpp): the
 // interior stencil has that form for any elastic material, the bottom and top stencils do
 // not, and the velocity update with it differs from the stencil as assembled only by
 // rounding (a few units in the last place of the largest term).
-#include "solver/element_stiffness.hpp"
+#include "solver/fe/element_stiffness.hpp"
+#include "solver/fe/stencil.hpp"
 #include "solver/params.hpp"
-#include "solver/stencil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <random>
 #include <vector>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 MeshStencils stencils_of(double poisson) {
@@ -102,4 +102,4 @@ TEST(StencilSymmetry, VelocityUpdateDiffersFromTheAssembledStencilOnlyByRounding
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

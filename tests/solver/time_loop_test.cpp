@@ -2,7 +2,7 @@
 // cancel, end of the duration), what it records, and the method's end warnings.
 #include "verification_support.hpp"
 
-#include "solver/time_loop.hpp"
+#include "solver/run/time_loop.hpp"
 
 #include <gtest/gtest.h>
 

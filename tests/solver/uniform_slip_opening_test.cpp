@@ -17,7 +17,7 @@
 // value, which is exact for the chain at low frequency.
 #include "verification_support.hpp"
 
-#include "solver/rupture_model.hpp"
+#include "solver/fe/mesh_stepper.hpp"
 #include "solver/thread_team.hpp"
 
 #include <gtest/gtest.h>
@@ -25,7 +25,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slipfront {
+namespace slipfront::fe {
 namespace {
 
 using verification::measure;
@@ -107,16 +107,16 @@ TEST(UniformOpening, TensileStepOpensTheInterfaceAtTheImpedanceVelocities) {
   const double V1 = p.loading.shear_stress / (mat.density * mat.s_wave_speed());
   const double t_return = 2 * height / mat.p_wave_speed(); // P reflection first: 4.62 s
 
-  RuptureModel model(p);
+  MeshStepper mesh(p);
   ThreadTeam team(1);
   const Window w{1.0, t_return - 0.3};
   double u1a = NAN, u2a = NAN, ta = NAN, u1b = NAN, u2b = NAN, tb = NAN;
   bool all_open = true;
   double traction = 0;
-  while (model.time() < t_return + 0.5) {
-    model.step(team, false);
-    const InterfaceFields& f = model.interface();
-    const double t = model.time() - model.dt(); // the step just done was at t_n
+  while (mesh.time() < t_return + 0.5) {
+    mesh.step(team, false);
+    const InterfaceFields& f = mesh.interface();
+    const double t = mesh.time() - mesh.dt(); // the step just done was at t_n
     if (t < t_return - 0.3) {
       for (std::size_t i = 0; i < f.state.size(); ++i) {
         all_open = all_open && f.state[i] == std::int8_t(NodeState::open);
@@ -138,4 +138,4 @@ TEST(UniformOpening, TensileStepOpensTheInterfaceAtTheImpedanceVelocities) {
 }
 
 } // namespace
-} // namespace slipfront
+} // namespace slipfront::fe

@@ -1,0 +1,20 @@
+#include "solver/run/energy_recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slipfront {
+
+EnergyRecorder::EnergyRecorder(double dt)
+    : dt_(dt), every_(std::max(1, int(std::lround(0.05 / dt)))) {}
+
+void EnergyRecorder::record(const EnergyBalance& e, double t_n) {
+  // The kinetic term holds v^{n+1/2}, the strain term u^n K u^{n+1}: both sit at t_{n+1/2}.
+  records_.time.push_back(t_n + 0.5 * dt_);
+  records_.kinetic.push_back(e.kinetic);
+  records_.strain.push_back(e.strain);
+  records_.external_work.push_back(e.external_work);
+  records_.dissipated.push_back(e.dissipated);
+}
+
+} // namespace slipfront
