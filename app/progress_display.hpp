@@ -3,7 +3,7 @@
 #pragma once
 
 #include "solver/run/metrics.hpp"
-#include "solver/simulation.hpp"
+#include "solver/run/run_hooks.hpp"
 
 #include <chrono>
 #include <iosfwd>

@@ -4,7 +4,7 @@
 
 #include "solver/interface/interface_fields.hpp"
 #include "solver/params.hpp"
-#include "solver/simulation.hpp"
+#include "solver/run/sample_sink.hpp"
 
 namespace slipfront {
 

@@ -4,7 +4,7 @@
 // report and at the end).
 #pragma once
 
-#include "solver/simulation.hpp"
+#include "solver/run/run_hooks.hpp"
 
 #include <chrono>
 #include <functional>

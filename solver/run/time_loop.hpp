@@ -6,8 +6,9 @@
 #pragma once
 
 #include "solver/params.hpp"
+#include "solver/run/run_hooks.hpp"
+#include "solver/run/run_result.hpp"
 #include "solver/rupture_method.hpp"
-#include "solver/simulation.hpp"
 
 #include <chrono>
 

@@ -5,6 +5,7 @@
 #include "scene_support.hpp"
 
 #include "solver/interface/friction.hpp"
+#include "solver/interface/interface_fields.hpp"
 
 #include <gtest/gtest.h>
 

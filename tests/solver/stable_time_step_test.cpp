@@ -16,6 +16,7 @@
 #include "solver/fe/element_stiffness.hpp"
 #include "solver/fe/stable_time_step.hpp"
 #include "solver/fe/stencil.hpp"
+#include "solver/simulation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -18,6 +18,7 @@
 #include "verification_support.hpp"
 
 #include "solver/fe/mesh_stepper.hpp"
+#include "solver/simulation.hpp"
 #include "solver/thread_team.hpp"
 
 #include <gtest/gtest.h>
