@@ -1,7 +1,7 @@
 // The metrics of SPEC §2 and the front profile as JSON (names are part of the API).
 #include "api/json_number.hpp"
 #include "api/run_job.hpp"
-#include "solver/interface/friction.hpp"
+#include "solver/interface/prakash_clifton.hpp"
 
 #include <cmath>
 #include <cstdio>

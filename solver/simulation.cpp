@@ -2,7 +2,7 @@
 // and memory estimates of a run.
 #include "solver/simulation.hpp"
 
-#include "solver/fe/stable_time_step.hpp"
+#include "solver/fe/finite_element_method.hpp"
 #include "solver/make_rupture_method.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/run/time_loop.hpp"
@@ -21,28 +21,13 @@ double resolved_height(const SimulationParams& params) {
 double estimated_memory_bytes(const SimulationParams& params) {
   if (params.method == Method::spectral_bi)
     return spectral::SpectralMethod::estimated_memory_bytes(params);
-  const MeshSize m = mesh_size(params);
-  const double nodes = double(m.nx + 2) * m.ny;
-  // u and v, two components each; with the mesh damping also w = u + a v.
-  const double fields = (params.fe.mesh_damping > 0 ? 6.0 : 4.0) * 8.0 * nodes;
-  const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
-  // Probe records (4 doubles a step) for the longest possible run.
-  const double records = 4.0 * 8.0 * step_count_bound(params);
-  const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer
-  const double baseline = 16.0e6;                       // code, libraries, HDF5 caches
-  return fields + interface + records + sample_buffer + baseline;
+  return fe::FiniteElementMethod::estimated_memory_bytes(params);
 }
 
 double step_count_bound(const SimulationParams& params) {
   if (params.method == Method::spectral_bi)
     return double(spectral::SpectralMethod::max_steps(params));
-  // The stable step of a regular Q4 mesh is above 0.5 dx / c_p; the damped bound decreases
-  // with dt0, so that lower bound of dt0 gives a lower bound of the damped step too.
-  const double dx = mesh_size(params).dx;
-  const double damping_a = params.fe.mesh_damping * dx / params.material.s_wave_speed();
-  return params.time.duration /
-         (params.time.safety_factor *
-          fe::damped_stable_time_step(0.5 * dx / params.material.p_wave_speed(), damping_a));
+  return fe::FiniteElementMethod::step_count_bound(params);
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {

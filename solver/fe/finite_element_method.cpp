@@ -1,5 +1,8 @@
 #include "solver/fe/finite_element_method.hpp"
 
+#include "solver/fe/stable_time_step.hpp"
+#include "solver/mesh_size.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <thread>
@@ -18,6 +21,29 @@ int thread_count(const SimulationParams& params) {
 FiniteElementMethod::FiniteElementMethod(const SimulationParams& params)
     : threads_(thread_count(params)), mesh_(params), team_(threads_),
       p_wave_speed_(params.material.p_wave_speed()), top_(params.top) {}
+
+double FiniteElementMethod::step_count_bound(const SimulationParams& params) {
+  // The stable step of a regular Q4 mesh is above 0.5 dx / c_p; the damped bound decreases
+  // with dt0, so that lower bound of dt0 gives a lower bound of the damped step too.
+  const double dx = mesh_size(params).dx;
+  const double damping_a = params.fe.mesh_damping * dx / params.material.s_wave_speed();
+  return params.time.duration /
+         (params.time.safety_factor *
+          damped_stable_time_step(0.5 * dx / params.material.p_wave_speed(), damping_a));
+}
+
+double FiniteElementMethod::estimated_memory_bytes(const SimulationParams& params) {
+  const MeshSize m = mesh_size(params);
+  const double nodes = double(m.nx + 2) * m.ny;
+  // u and v, two components each; with the mesh damping also w = u + a v.
+  const double fields = (params.fe.mesh_damping > 0 ? 6.0 : 4.0) * 8.0 * nodes;
+  const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
+  // Probe records (4 doubles a step) for the longest possible run.
+  const double records = 4.0 * 8.0 * step_count_bound(params);
+  const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer
+  const double baseline = 16.0e6;                       // code, libraries, HDF5 caches
+  return fields + interface + records + sample_buffer + baseline;
+}
 
 MeshInfo FiniteElementMethod::mesh_info() const {
   return {mesh_.nx(),        mesh_.ny(), mesh_.dx(), mesh_.height(),

@@ -31,6 +31,11 @@ public:
   // A P wave reflected by the top reaches the interface at t = 2h/c_p.
   std::vector<std::string> end_warnings(double simulated_time) const override;
 
+  // An upper bound of the steps of a run that goes to `duration` (the stable step is above
+  // 0.5 dx / c_p), and the bytes the run will hold (fields, interface, records, buffers).
+  static double step_count_bound(const SimulationParams& params);
+  static double estimated_memory_bytes(const SimulationParams& params);
+
 private:
   int threads_;
   MeshStepper mesh_;

@@ -1,24 +1,19 @@
-// The frictional strength tau_s and its evolution (paper eq. 1, SPEC §1):
-//   d(tau_s)/dt = -(|V| + V*) / L * (tau_s - mu max(0, p))      (simplified Prakash-Clifton)
-//   tau_s = mu max(0, p)                                         (Coulomb)
+// The frictional strength tau_s of the law a job chose (params.friction.law), advanced over
+// one step; each law in a file of its own beside this one:
+//   coulomb          tau_s = mu max(0, p) at every instant;
+//   prakash_clifton  the regularised strength of paper eq. 1 (prakash_clifton.hpp).
+// The interface law (interface_law.hpp) asks for the strength here and nowhere else, so a
+// new law is a value of FrictionLaw (params.hpp), its file here and its case in
+// advance_strength (docs/physics.md "Friction").
 #pragma once
 
 #include "solver/params.hpp"
 
 namespace slipfront {
 
-const char* to_string(StrengthUpdate update); // the job JSON spelling
-
-// Advances tau_s over one step dt. The slip speed |V| is that of the step (the leapfrog
-// velocity over it); the pressure goes from p_start to p_end. With k = (|V| + V*) / L,
-// c = mu max(0, p) and x = k dt:
-//   exponential_ramp (default): exact when c varies linearly from c_start to c_end,
-//     tau_end = c_end + (tau - c_start) exp(-x) - (c_end - c_start) (1 - exp(-x)) / x;
-//     second order in dt, and a convex combination of tau, c_start and c_end (stable).
-//   exponential (the scheme of SPEC §1): exact when c stays at c_end over the step,
-//     tau_end = c_end + (tau - c_end) exp(-x); first order in dt (the target leads by
-//     dt/2), a contraction for every x.
-//   explicit_euler (failure studies): tau_end = tau - x (tau - c_end); unstable once x > 2.
+// tau_s after one step dt from `strength` before it: the pressure goes from pressure_start
+// to pressure_end over the step, slip_speed is |V| over it (how each law uses them: its
+// file).
 double advance_strength(const Friction& friction, double strength, double pressure_start,
                         double pressure_end, double slip_speed, double dt);
 

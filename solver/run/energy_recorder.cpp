@@ -17,4 +17,14 @@ void EnergyRecorder::record(const EnergyBalance& e, double t_n) {
   records_.dissipated.push_back(e.dissipated);
 }
 
+double energy_balance_error(const EnergyRecords& e) {
+  // E - E(0) = W - D with E(0) = 0 (docs/physics.md).
+  if (e.time.empty()) return 0.0;
+  const std::size_t k = e.time.size() - 1;
+  const double stored = e.kinetic[k] + e.strain[k];
+  const double net = e.external_work[k] - e.dissipated[k];
+  const double scale = std::max({std::abs(e.external_work[k]), std::abs(stored), 1e-300});
+  return std::abs(stored - net) / scale;
+}
+
 } // namespace slipfront

@@ -1,5 +1,7 @@
 // Records the energy balance every 0.05 s of simulated time (the kinetic and strain sums
-// are a sweep that does not vectorise, so the method evaluates them only on these steps).
+// are a sweep that does not vectorise, so the method evaluates them only on these steps),
+// and the balance's error at the last record (the energy_error metric, docs/physics.md
+// "Energy balance").
 #pragma once
 
 #include "solver/interface/interface_fields.hpp"
@@ -23,5 +25,9 @@ private:
   int every_;
   EnergyRecords records_;
 };
+
+// Energy balance at the last record: |E - (W - D)| / max(|W|, |E|), E = kinetic + strain
+// (E(0) = 0); 0 without records.
+double energy_balance_error(const EnergyRecords& energy);
 
 } // namespace slipfront

@@ -1,6 +1,6 @@
 #include "solver/run/probe_recorder.hpp"
 
-#include "solver/run/metrics.hpp"
+#include "solver/run/periodic_line.hpp"
 
 namespace slipfront {
 

@@ -1,8 +1,10 @@
 #include "solver/run/time_loop.hpp"
 
 #include "solver/run/arrest_rule.hpp"
+#include "solver/run/critical_length_estimate.hpp"
 #include "solver/run/divergence_check.hpp"
 #include "solver/run/energy_recorder.hpp"
+#include "solver/run/front_metrics.hpp"
 #include "solver/run/front_tracker.hpp"
 #include "solver/run/interface_sampler.hpp"
 #include "solver/run/probe_recorder.hpp"

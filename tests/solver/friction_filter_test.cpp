@@ -16,6 +16,7 @@
 #include "verification_support.hpp"
 
 #include "solver/interface/friction.hpp"
+#include "solver/interface/prakash_clifton.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

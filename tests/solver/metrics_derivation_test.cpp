@@ -1,7 +1,8 @@
 // The metric derivations of a run (solver/run/metrics.hpp) on hand-made records: nodal lookup
 // on the periodic line, the front metrics, the energy-balance error.
-#include "solver/run/metrics.hpp"
-#include "solver/run/periodic_index.hpp"
+#include "solver/run/energy_recorder.hpp"
+#include "solver/run/front_metrics.hpp"
+#include "solver/run/periodic_line.hpp"
 
 #include <gtest/gtest.h>
 

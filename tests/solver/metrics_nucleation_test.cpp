@@ -4,7 +4,8 @@
 #include "verification_support.hpp"
 
 #include "solver/interface/nucleation.hpp"
-#include "solver/run/metrics.hpp"
+#include "solver/run/critical_length_estimate.hpp"
+#include "solver/run/front_metrics.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // mesh-converged in the slip velocity. Tolerances, and why, are in docs/verification.md.
 #include "scene_support.hpp"
 
-#include "solver/interface/friction.hpp"
 #include "solver/interface/interface_fields.hpp"
+#include "solver/interface/prakash_clifton.hpp"
 
 #include <gtest/gtest.h>
 
