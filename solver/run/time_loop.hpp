@@ -1,8 +1,9 @@
 // The time loop of one run, for any rupture method (the shape of a scene in uguca's
-// examples): for each block of steps (one step, or several for a method that blocks them),
-// check the cancel flag and step the method; then for each step of the block let each
-// observer record (front, divergence, probes, energy), dump the interface when due, stop if
-// the run diverged or arrested, report progress. Then derive the metrics (docs/metrics.md).
+// examples), in five named phases (time_loop.cpp): set up the observers (front, divergence,
+// probes, energy, interface samples, arrest, progress); step a block of steps (one step, or
+// several for a method that blocks them); record each step of the block; apply the stop
+// rules (cancel, divergence, arrest) and report progress; derive the metrics
+// (docs/metrics.md).
 #pragma once
 
 #include "solver/params.hpp"
