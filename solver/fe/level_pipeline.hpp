@@ -16,7 +16,7 @@
 // before it, waiting (briefly spinning, then yielding) on that thread's progress: the
 // number of rows its last level has finished. There are no band edges: every row operation
 // is the one of a step-by-step sweep, made once, so the result has the same bits for any
-// number of levels per trip and any number of threads (tests/solver/level_pipeline_test.cpp).
+// number of levels per trip and any number of threads (tests/solver/fe/level_pipeline_test.cpp).
 #pragma once
 
 #include "solver/thread_team.hpp"

@@ -51,7 +51,7 @@ struct StencilCoefficients {
 //           + d ((u_y,SW + u_y,NE) - (u_y,SE + u_y,NW)),
 // the same with x and y exchanged for (K u)_y. The same stencil up to the rounding of its
 // assembly (the terms that are zero come out as 1e-17 of the others), so its sums round
-// differently in the last bits: tests/solver/stencil_symmetry_test.cpp bounds that.
+// differently in the last bits: tests/solver/fe/stencil_symmetry_test.cpp bounds that.
 struct SymmetricStencil {
   double xx0, xx_lr, xx_ud, xx_c; // (K u)_x from u_x: centre, left/right, below/above, corners
   double yy0, yy_lr, yy_ud, yy_c; // (K u)_y from u_y
