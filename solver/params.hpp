@@ -30,7 +30,7 @@ struct Material {
 struct Geometry {
   double width = 40.0;
   double height = 20.0;
-  bool auto_height = false; // "height": "auto": smallest h free of top reflections (see mesh.hpp)
+  bool auto_height = false; // "height": "auto": smallest h free of top reflections (mesh_size.hpp)
   double x_min = -10.0;
   double nodes_per_meter = 40.0; // n_d; the element size is 1/n_d
 };
