@@ -1,4 +1,4 @@
-// The HDF5 result file of SPEC §4 (layout: docs/hdf5-layout.md).
+// The HDF5 result file of a run (its layout: docs/hdf5-layout.md).
 #pragma once
 
 #include "solver/run/run_result.hpp"

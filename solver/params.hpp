@@ -1,5 +1,5 @@
 // Parameters of one rupture simulation. Every default is the paper's scene
-// (Kammer et al. 2014, Sec. 2; SPEC §1). The job JSON of api/ maps onto these
+// (Kammer et al. 2014, Sec. 2; docs/physics.md "The scene"). The job JSON of api/ maps onto these
 // structs one to one; the solver itself knows nothing of JSON.
 #pragma once
 
@@ -105,9 +105,10 @@ struct InterfaceTraction {
 };
 using ExtraInterfaceLoad = std::function<InterfaceTraction(double x1, double t)>;
 
-// The numerical method (SPEC §4 "method"): a result always says which one produced it.
+// The numerical method (the job's "method"; docs/physics.md "Methods"): a result always says which
+// one produced it.
 enum class Method {
-  finite_element, // "fe": Q4 elements of the block, explicit central differences (SPEC §1)
+  finite_element, // "fe": Q4 elements of the block, explicit central differences (the paper's)
   spectral_bi,    // "spectral_bi": the elastic half-space by the spectral boundary-integral method
 };
 

@@ -1,7 +1,8 @@
 // The two boundary rows of the FE step (solver/fe/mesh_stepper.hpp): the interface row, where
-// the contact and friction law of the plane acts (paper eq. 1-3, SPEC §1), and the absorbing
-// top with its Lysmer-Kuhlemeyer dashpots. Each gets K u of its row from the caller and
-// writes its velocities and its energy terms for the step's record.
+// the contact and friction law of the plane acts (paper eq. 1-3;
+// docs/physics.md "The step at an interface node"), and the absorbing top with its
+// Lysmer-Kuhlemeyer dashpots. Each gets K u of its row from the caller and writes its
+// velocities and its energy terms for the step's record.
 #include "solver/fe/mesh_stepper.hpp"
 #include "solver/interface/nucleation.hpp"
 

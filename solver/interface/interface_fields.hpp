@@ -27,7 +27,8 @@ struct InterfaceFields {
 };
 
 // The uniform, stuck, pre-stressed initial state of nx interface nodes spaced dx from
-// x_min: no motion, tau1 = tau1_0, p = |tau2_0|, tau_s(0) = mu p0 (SPEC §1).
+// x_min: no motion, tau1 = tau1_0, p = |tau2_0|, tau_s(0) = mu p0 (docs/physics.md "Load",
+// "Regularisation").
 inline InterfaceFields resting_interface(const SimulationParams& params, int nx, double dx) {
   const double p0 = std::abs(params.loading.normal_stress);
   InterfaceFields f;

@@ -1,12 +1,13 @@
 // Unilateral contact with the rigid plane and friction, for one interface node and one
-// time step (the scheme of SPEC §1), shared by the rupture methods:
+// time step (docs/physics.md "The step at an interface node"), shared by the rupture methods:
 //   1. the caller gives the trial motion, from every force except contact and friction:
 //      the velocities v1_trial, v2_trial of the next half step;
 //   2. normal: the reaction that makes the next normal displacement exactly zero; if it is
 //      compressive the node is in contact with p = reaction/dx, otherwise open with p = 0;
 //   3. strength: tau_s advanced from the last step to this one with the slip speed of that
 //      interval (given by the caller) and the pressure going from the last step's p to
-//      this step's (default) or frozen at this step's (SPEC §1), see friction.hpp;
+//      this step's (default) or frozen at this step's (the reference scheme of
+//      docs/physics.md), see friction.hpp;
 //   4. tangential: the force that makes the next tangential velocity zero; if its size is
 //      at most tau_s dx the node sticks, otherwise it slips with tau_s dx opposing the trial
 //      slip direction. An open node carries no traction.

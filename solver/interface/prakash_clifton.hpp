@@ -17,7 +17,7 @@ const char* to_string(StrengthUpdate update); // the job JSON spelling
 //   exponential_ramp (default): exact when c varies linearly from c_start to c_end,
 //     tau_end = c_end + (tau - c_start) exp(-x) - (c_end - c_start) (1 - exp(-x)) / x;
 //     second order in dt, and a convex combination of tau, c_start and c_end (stable).
-//   exponential (the scheme of SPEC §1): exact when c stays at c_end over the step,
+//   exponential (the reference scheme, docs/physics.md): exact when c stays at c_end over the step,
 //     tau_end = c_end + (tau - c_end) exp(-x); first order in dt (the target leads by
 //     dt/2), a contraction for every x.
 //   explicit_euler (failure studies): tau_end = tau - x (tau - c_end); unstable once x > 2.

@@ -1,6 +1,7 @@
-// The spectral estimate of the critical length (docs/metrics.md "Spectral estimate of the
-// critical length"): the paper's filter law (eq. 6), the frequency content of the strength
-// record at the spectrum probe, and the estimate derived from both at the end of a run.
+// The spectral estimate of the critical length
+// (docs/metrics.md "Spectral estimate of the critical length"): the paper's filter law
+// (eq. 6), the frequency content of the strength record at the spectrum probe, and the
+// estimate derived from both at the end of a run.
 #pragma once
 
 #include "solver/params.hpp"

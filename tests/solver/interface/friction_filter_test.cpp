@@ -5,9 +5,9 @@
 //   y = x0 + A sin(omega t + phi),  A/A0 = 1/sqrt(1 + (omega/C)^2),  phi = atan(omega/C) < 0
 // (paper eq. B.6 with C < 0: the output lags).
 //
-// The "exponential" update (SPEC §1's scheme) advances tau_s^n = advance(tau_s^{n-1}, p^n)
-// with the pressure of the step's end frozen over the step. For that recursion
-// y_n = a y_{n-1} + (1 - a) x_n, a = exp(-r dt), r = -C, the exact discrete transfer
+// The "exponential" update (the reference scheme of docs/physics.md) advances tau_s^n =
+// advance(tau_s^{n-1}, p^n) with the pressure of the step's end frozen over the step. For that
+// recursion y_n = a y_{n-1} + (1 - a) x_n, a = exp(-r dt), r = -C, the exact discrete transfer
 // function is H = (1 - a) / (1 - a exp(-i omega dt)) = H_continuum (1 + i omega dt / 2 + ...):
 // a phase LEAD of omega dt / 2 (first order) and an amplitude error of second order. The
 // test checks the measured response against H to round-off and against the paper's formula

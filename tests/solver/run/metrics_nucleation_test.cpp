@@ -38,7 +38,7 @@ TEST(Nucleation, TractionIsAppendixAFormulaAndPatchBoundsAreTight) {
   EXPECT_LT(err, 1e-18);
   EXPECT_LE(peak, n.alpha * std::abs(tau2) * (1 + 1e-15)); // (1 - alpha) tau2 at the centre
   const Interval patch = nucleation_patch(n);
-  EXPECT_NEAR(patch.lo, 0.0, 1e-12); // the ellipse touches x1 = 0 (SPEC §1)
+  EXPECT_NEAR(patch.lo, 0.0, 1e-12); // the ellipse touches x1 = 0 (docs/physics.md)
   EXPECT_LE(patch.lo, lo);
   EXPECT_GE(patch.hi, hi);
   EXPECT_LT(hi, patch.hi + 1e-9);
