@@ -1,4 +1,4 @@
-// The mapping between the job JSON (SPEC §4, docs/api-job-spec.md) and SimulationParams:
+// The mapping between the job JSON (docs/api-job-spec.md) and SimulationParams:
 // which member fills which parameter, with its type and allowed range.
 #pragma once
 

@@ -24,7 +24,8 @@ const std::map<std::string, Words>& field_words() {
   static const std::map<std::string, Words> words = {
       {"/method",
        {"",
-        "`\"fe\"`: the explicit Q4 finite elements of SPEC §1 (a block of height h); "
+        "`\"fe\"`: the explicit Q4 finite elements of the paper (a block of height h; "
+        "docs/physics.md); "
         "`\"spectral_bi\"`: the elastic half-space by the spectral boundary-integral method, only "
         "the interface discretised (docs/spectral-bi.md)"}},
       {"/spectral_bi/time_step_factor",
@@ -64,7 +65,8 @@ const std::map<std::string, Words>& field_words() {
       {"/friction/strength_update",
        {"", "how the strength ODE is advanced in a step (docs/physics.md): exact for \\|V\\| "
             "frozen and p linear over the step (second order); exact for \\|V\\| and p frozen at "
-            "the step's end (SPEC §1's scheme, first order); or forward Euler (unstable once "
+            "the step's end (the reference scheme of docs/physics.md, first order); or forward "
+            "Euler (unstable once "
             "dt (\\|V\\|+V*)/L > 2; for failure studies)"}},
       {"/nucleation/enabled",
        {"", "apply the nucleation load (the moving ellipse of the paper's "
@@ -215,7 +217,7 @@ nlohmann::json job_json_schema() {
       {"$schema", "https://json-schema.org/draft/2020-12/schema"},
       {"$id", "/api/v1/schema/job.json"},
       {"title", "slipfront job"},
-      {"description", "One simulation (SPEC §4, docs/api-job-spec.md). Every field is optional "
+      {"description", "One simulation (docs/api-job-spec.md). Every field is optional "
                       "and defaults to the paper's scene; unknown fields are errors, and so are "
                       "fields the chosen method does not use (x-methods)."},
       {"type", "object"},

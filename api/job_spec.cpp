@@ -72,8 +72,8 @@ std::string spec_hash(const nlohmann::json& canonical) {
   return sha256_hex(canonical_text(physics_canonical(canonical)));
 }
 
-// Scene of SPEC §2 "Critical length": everything but L and n_d (and what never changes
-// the metrics, as in spec_hash).
+// The scene of a study (docs/metrics.md "Critical length"): everything but L and n_d (and what
+// never changes the metrics, as in spec_hash).
 std::string scene_hash(const nlohmann::json& canonical) {
   nlohmann::json scene = physics_canonical(canonical); // so the method separates scenes
   if (scene.contains("friction") && scene["friction"].is_object()) scene["friction"].erase("L");

@@ -1,4 +1,4 @@
-// The job JSON of SPEC §4: parsing, validation, defaults and canonical form.
+// The job JSON (docs/api-job-spec.md): parsing, validation, defaults and canonical form.
 //
 // Every field is optional and defaults to the paper's scene. Unknown fields, wrong types
 // and out-of-range values are errors; all errors of a spec are reported together, each

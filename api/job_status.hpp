@@ -1,4 +1,5 @@
-// The status of a job (SPEC §3): what the server records and the study analysis reads.
+// The status of a job (docs/server.md "Job states"): what the server records and the study analysis
+// reads.
 #pragma once
 
 #include <optional>

@@ -1,7 +1,8 @@
-// The metrics of SPEC §2 and the front profile as JSON (names are part of the API).
+// The metrics and the front profile as JSON (docs/metrics.md "Metric names": the names are
+// part of the API).
 #include "api/json_number.hpp"
 #include "api/run_job.hpp"
-#include "solver/friction.hpp"
+#include "solver/interface/prakash_clifton.hpp"
 
 #include <cmath>
 #include <cstdio>

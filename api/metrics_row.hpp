@@ -3,7 +3,7 @@
 // metric is undefined (NaN, e.g. a front that never arrived) and stored as NULL.
 #pragma once
 
-#include "solver/metrics.hpp"
+#include "solver/run/metrics.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -31,7 +31,7 @@ struct MetricsRow {
 // From the solver's metrics: what a run in this process hands down.
 MetricsRow metrics_row(const Metrics& metrics);
 
-// From the metrics JSON of SPEC §2 (metrics_json()): for runs whose metrics arrive as JSON
+// From the metrics JSON (docs/metrics.md, metrics_json()): for runs whose metrics arrive as JSON
 // (a SLURM job's report file, a test runner). Missing or non-numeric entries are unset; the
 // rupture speeds are read from "rupture_speed": {"max", "mean"} (or flat "max_rupture_speed",
 // "mean_rupture_speed").

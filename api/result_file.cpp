@@ -3,6 +3,7 @@
 #include "api/hdf5_objects.hpp"
 #include "api/job_spec.hpp"
 #include "api/result_layout.hpp"
+#include "solver/simulation.hpp"
 
 #include <fcntl.h>
 #include <sys/mman.h>

@@ -1,7 +1,8 @@
-// The HDF5 result file of SPEC §4 (layout: docs/hdf5-layout.md).
+// The HDF5 result file of a run (its layout: docs/hdf5-layout.md).
 #pragma once
 
-#include "solver/simulation.hpp"
+#include "solver/run/run_result.hpp"
+#include "solver/run/sample_sink.hpp"
 
 #include <nlohmann/json.hpp>
 

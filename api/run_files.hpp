@@ -6,7 +6,7 @@
 // reader (also over a shared file system) never sees half a file.
 #pragma once
 
-#include "solver/simulation.hpp"
+#include "solver/run/run_hooks.hpp"
 
 #include <nlohmann/json.hpp>
 

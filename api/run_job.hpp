@@ -25,8 +25,8 @@ struct JobOutput {
 // cancelled or diverged: then no file is left behind).
 JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunHooks& hooks = {});
 
-// The metrics of SPEC §2 as one JSON object (names are part of the API), including the
-// cost (wall_time_s, steps, dt), mesh facts and the code version.
+// The metrics (docs/metrics.md "Metric names") as one JSON object (names are part of the API),
+// including the cost (wall_time_s, steps, dt), mesh facts and the code version.
 nlohmann::json metrics_json(const RunResult& result);
 
 // As above, with "method" ("fe" or "spectral_bi", the job field's spelling) and

@@ -1,7 +1,7 @@
-// Study analysis (SPEC §2), one include for all of it: mesh convergence (api/study/
-// convergence.hpp), the critical length (api/study/critical_length.hpp), speed/accuracy
-// (api/study/speed_accuracy.hpp) and the failure-regime presets. The rules and their edge
-// cases are documented in docs/studies.md.
+// Study analysis (docs/metrics.md "Convergence status", "Critical length"), one include for all of
+// it: mesh convergence (api/study/ convergence.hpp), the critical length
+// (api/study/critical_length.hpp), speed/accuracy (api/study/speed_accuracy.hpp) and the
+// failure-regime presets. The rules and their edge cases are documented in docs/studies.md.
 #pragma once
 
 #include "api/study/convergence.hpp"

@@ -1,4 +1,5 @@
-// The `slipfront` executable: run, validate, serve (SPEC §4; usage in app/usage.cpp).
+// The `slipfront` executable: run, validate, serve (docs/api-job-spec.md "The CLI", docs/server.md;
+// usage in app/usage.cpp).
 #include "app/commands.hpp"
 
 #include "server/serve.hpp"

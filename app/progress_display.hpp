@@ -2,8 +2,8 @@
 // stderr is a terminal, otherwise one plain line every few seconds (logs, pipes).
 #pragma once
 
-#include "solver/metrics.hpp"
-#include "solver/simulation.hpp"
+#include "solver/run/metrics.hpp"
+#include "solver/run/run_hooks.hpp"
 
 #include <chrono>
 #include <iosfwd>

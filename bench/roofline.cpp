@@ -8,7 +8,7 @@
 //   3. the floor (node updates per second) that bandwidth / 64 implies;
 //   4. the solver's node updates per second on the paper's grid (n_d = 40: 1600 x 801
 //      nodes, every row active) with 1 and 2 threads, for 1, 2, 4, 8 and 16 steps per
-//      thread in a trip over the mesh (temporal blocking, solver/level_pipeline.hpp; 1 is
+//      thread in a trip over the mesh (temporal blocking, solver/fe/level_pipeline.hpp; 1 is
 //      one step per trip), and the ratio actual / floor;
 //   5. the effective rate of the paper's run from rest (nucleation on, the quiet far field
 //      skipped, the run's steps per trip): every node of the grid counted at every step, as
@@ -17,8 +17,8 @@
 //
 // Usage: slipfront_roofline [--nodes-per-meter 40] [--steps 64] [--repeats 5]
 //                           [--paper-steps 1793]
-#include "solver/fe_method.hpp"
-#include "solver/rupture_model.hpp"
+#include "solver/fe/finite_element_method.hpp"
+#include "solver/fe/mesh_stepper.hpp"
 #include "solver/thread_team.hpp"
 
 #include <algorithm>
@@ -32,6 +32,7 @@
 #include <vector>
 
 using namespace slipfront;
+using namespace slipfront::fe;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -73,48 +74,48 @@ double triad_bandwidth(int threads, std::size_t n, int repeats) {
 
 // `steps` steps in trips of `per_trip` steps (the last trip shorter); energy terms in the
 // steps `energy_every` apart (0: none).
-void advance(RuptureModel& model, ThreadTeam& team, int per_trip, int steps, int energy_every) {
+void advance(MeshStepper& mesh, ThreadTeam& team, int per_trip, int steps, int energy_every) {
   std::vector<bool> energy;
   for (int done = 0; done < steps;) {
     const int count = std::min(per_trip, steps - done);
     energy.assign(count, false);
     for (int k = 0; k < count && energy_every > 0; ++k)
       energy[k] = (done + k) % energy_every == 0;
-    model.advance(team, energy);
+    mesh.advance(team, energy);
     done += count;
   }
 }
 
-// Best-of-`repeats` node updates per second of RuptureModel::advance on the paper's grid,
+// Best-of-`repeats` node updates per second of MeshStepper::advance on the paper's grid,
 // `per_thread` steps per thread in each trip.
 double solver_node_updates(double nodes_per_meter, int threads, int per_thread, int steps,
                            int repeats) {
   SimulationParams p;
   p.geometry.nodes_per_meter = nodes_per_meter;
   p.nucleation.enabled = false;
-  RuptureModel model(p);
+  MeshStepper mesh(p);
   // A smooth, non-zero field everywhere so that every row is active and no value is a
   // denormal (the real run's far field is flushed to zero).
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> small(-1e-6, 1e-6);
-  for (int j = 1; j < model.ny(); ++j)
-    for (int i = 0; i < model.nx(); ++i) {
-      model.displacement().x.at(i, j) = small(rng);
-      model.displacement().y.at(i, j) = small(rng);
+  for (int j = 1; j < mesh.ny(); ++j)
+    for (int i = 0; i < mesh.nx(); ++i) {
+      mesh.displacement().x.at(i, j) = small(rng);
+      mesh.displacement().y.at(i, j) = small(rng);
     }
-  model.displacement().x.refresh_all_ghosts();
-  model.displacement().y.refresh_all_ghosts();
-  model.activate_all_rows();
+  mesh.displacement().x.refresh_all_ghosts();
+  mesh.displacement().y.refresh_all_ghosts();
+  mesh.activate_all_rows();
   ThreadTeam team(threads);
   const int per_trip = threads * per_thread;
-  advance(model, team, per_trip, per_trip, 0); // warm up
+  advance(mesh, team, per_trip, per_trip, 0); // warm up
   double best = 1e30;
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = Clock::now();
-    advance(model, team, per_trip, steps, 0);
+    advance(mesh, team, per_trip, steps, 0);
     best = std::min(best, seconds_since(t0) / steps);
   }
-  return double(model.nx()) * model.ny() / best;
+  return double(mesh.nx()) * mesh.ny() / best;
 }
 
 struct PaperRun {
@@ -128,8 +129,8 @@ struct PaperRun {
 PaperRun paper_run(double nodes_per_meter, int threads, int steps) {
   SimulationParams p; // the paper's scene
   p.geometry.nodes_per_meter = nodes_per_meter;
-  FloatModeGuard float_mode; // as run_simulation: the model is built with denormals flushed
-  RuptureModel model(p);
+  FloatModeGuard float_mode; // as run_simulation: the stepper is built with denormals flushed
+  MeshStepper mesh(p);
   ThreadTeam team(threads);
   double row_skip_updates = 0;
   const int per_trip = threads * kFeStepsPerThreadPerTrip;
@@ -138,17 +139,16 @@ PaperRun paper_run(double nodes_per_meter, int threads, int steps) {
   std::vector<bool> energy;
   for (int s = 0; s < steps; s += per_trip) {
     const int count = std::min(per_trip, steps - s);
-    row_skip_updates +=
-        double(count) * std::min(model.ny(), model.active_rows() + count) * model.nx();
+    row_skip_updates += double(count) * std::min(mesh.ny(), mesh.active_rows() + count) * mesh.nx();
     energy.assign(count, false);
     for (int k = 0; k < count; ++k)
       energy[k] = (s + k) % 7 == 0; // the energy terms about as often as a run evaluates them
-    model.advance(team, energy);
+    mesh.advance(team, energy);
   }
   const double wall = seconds_since(t0);
   const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-  const double all = double(model.nx()) * model.ny() * steps;
-  return {all / wall, all / cpu, double(model.swept_node_updates()) / all, row_skip_updates / all};
+  const double all = double(mesh.nx()) * mesh.ny() * steps;
+  return {all / wall, all / cpu, double(mesh.swept_node_updates()) / all, row_skip_updates / all};
 }
 
 } // namespace

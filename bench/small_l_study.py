@@ -3,7 +3,7 @@
 
 For L = 5e-6 and 1e-5 m (and plain Coulomb friction) the paper's scene is run at several
 mesh densities n_d and time-step safety factors with the `slipfront` CLI. For each run it
-prints the SPEC §2 metrics and a measure of the mesh-scale oscillation of the slip velocity
+prints the metrics (docs/metrics.md) and a measure of the mesh-scale oscillation of the slip velocity
 inside the slipping zone:
 
   * the residual r = V - (V averaged over 0.3 m) along x1 at each sampled time, over the
@@ -30,7 +30,7 @@ import sys
 import h5py
 import numpy as np
 
-# (friction, n_d, safety factor). SPEC §1's strength update ("exponential", the pressure of
+# (friction, n_d, safety factor). The reference scheme's strength update ("exponential", the pressure of
 # the step's end frozen over the step): the time-step ladder at n_d = 40 and 80, the finest
 # mesh at the default and at half the default step. The default update ("exponential_ramp",
 # the pressure linear over the step): the same ladder. Plain Coulomb friction on 3 meshes.

@@ -15,7 +15,7 @@ Sections (all by default; --only picks some):
   a  BI convergence, L = 5e-5 and 5e-6 m: n_d (10..160), time step beta (0.75, 0.5, 0.25,
      0.125 at n_d = 40), memory truncation q (2..32 periods at n_d = 40)
   b  BI against FE where FE converges (L = 1e-4, 5e-5 m; FE n_d = 40 and 80), and L = 1e-3 m
-  c  small L by BI: L = 1e-4 .. 1e-6 m along the n_d ladder until SPEC §2 convergence;
+  c  small L by BI: L = 1e-4 .. 1e-6 m along the n_d ladder until convergence (docs/metrics.md);
      plain Coulomb friction too
   d  the targets of issue 9 item 6 (L = 5e-6 m converged < 60 s, the five-L ladder < 2 min,
      L = 5e-5 m at FE n_d = 40 accuracy < 1 s)
@@ -24,9 +24,10 @@ Sections (all by default; --only picks some):
      FE n_d = 80 and BI n_d >= 160), median wall time, CPU time and the load of each
 
 --quick (the CTest check, about 20-40 s on 2 cores): BI at L = 5e-5 m, n_d = 10, 20, 40 and
-FE at n_d = 40; exits non-zero unless BI n_d = 20 -> 40 meets SPEC §2 (propagation distance
-< 0.5 %, arrival at the probe < 0.1 %) and BI n_d = 40 agrees with FE n_d = 40 within 1 %
-(arrest position), 0.5 % (arrival at the probe) and 3 % (peak |V| at x1 = 6 m).
+FE at n_d = 40; exits non-zero unless BI n_d = 20 -> 40 meets the convergence rule of
+docs/metrics.md (propagation distance < 0.5 %, arrival at the probe < 0.1 %) and BI n_d = 40
+agrees with FE n_d = 40 within 1 % (arrest position), 0.5 % (arrival at the probe) and 3 %
+(peak |V| at x1 = 6 m).
 
 usage: /usr/bin/python3 bench/spectral_bi.py [--binary build/slipfront]
            [--work /tmp/slipfront-bi-bench] [--json bench/results/spectral_bi.json]
@@ -40,7 +41,7 @@ import subprocess
 import sys
 import time
 
-# SPEC §2 convergence rule (between n_d and 2 n_d).
+# The convergence rule of docs/metrics.md "Convergence status" (between n_d and 2 n_d).
 TOL_DISTANCE, TOL_ARRIVAL = 0.005, 0.001
 # Issue 9 item 3: BI against FE on the paper's scene.
 TOL_ARREST, TOL_PROBE_ARRIVAL, TOL_PEAK_V = 0.01, 0.005, 0.03
@@ -306,7 +307,8 @@ def converged_pair(a, b):
 
 
 def ladder(runner, args, L, law="prakash_clifton", method="spectral_bi", output=False, probe=None):
-    """Runs the n_d ladder until n_d and 2 n_d meet SPEC §2; returns (runs, converged n_d)."""
+    """Runs the n_d ladder until n_d and 2 n_d meet the convergence rule; returns (runs,
+    converged n_d)."""
     nds = list(ND_LADDER) + ([320] if args.with_320 else [])
     runs, found = [], None
     for nd in nds:
@@ -322,7 +324,7 @@ def ladder(runner, args, L, law="prakash_clifton", method="spectral_bi", output=
 
 
 def section_c(runner, args, out):
-    print("\n#### c. Small L by BI (beta 0.5, q 8): the n_d ladder until SPEC §2 convergence\n")
+    print("\n#### c. Small L by BI (beta 0.5, q 8): the n_d ladder until convergence (docs/metrics.md)\n")
     print("| friction | n_d | outcome | arrest [m] | propagation [m] | Δ to next n_d | arrival at 11 m [s] "
           "| Δ to next n_d | peak V at 6 m [mm/s] | wall [s] | load |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
@@ -522,7 +524,7 @@ def quick(runner):
     print(f"\nBI n_d 20 → 40: propagation {pct(dd)} (< 0.5 %), arrival {pct(da, 4)} (< 0.1 %): "
           f"{'converged' if ok else 'NOT converged'}")
     if not ok:
-        failures.append("BI n_d = 20 -> 40 does not meet SPEC §2")
+        failures.append("BI n_d = 20 -> 40 does not meet the convergence rule")
     for r in bi + [fe]:
         if r["metrics"]["outcome"] != "arrested":
             failures.append(f"{r['name']}: outcome {r['metrics']['outcome']}")

@@ -6,7 +6,7 @@
 //   build/bench/slipfront_spectral_memory --benchmark_min_time=1
 #include "solver/params.hpp"
 #include "solver/spectral/mode_memory.hpp"
-#include "solver/spectral/spectral_model.hpp"
+#include "solver/spectral/spectral_method.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -26,11 +26,11 @@ void memory_sums(benchmark::State& state) {
   p.geometry.nodes_per_meter = double(state.range(0));
   p.spectral.time_step_factor = double(state.range(1)) / 1000.0;
   const int nx = int(p.geometry.width * p.geometry.nodes_per_meter), modes = nx / 2 + 1;
-  const double dt = spectral::SpectralModel::time_step(p);
-  const long steps = spectral::SpectralModel::max_steps(p);
+  const double dt = spectral::SpectralMethod::time_step(p);
+  const long steps = spectral::SpectralMethod::max_steps(p);
   const double cs = p.material.s_wave_speed();
   const spectral::HalfSpaceKernels kernels(cs / p.material.p_wave_speed(),
-                                           spectral::SpectralModel::kernel_span(p));
+                                           spectral::SpectralMethod::kernel_span(p));
   spectral::ModeMemory memory(modes, p.geometry.width, dt, cs, p.material.density * cs,
                               p.spectral.memory_periods, steps, kernels);
 

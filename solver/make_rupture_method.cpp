@@ -1,7 +1,7 @@
 #include "solver/make_rupture_method.hpp"
 
-#include "solver/fe_method.hpp"
-#include "solver/spectral/spectral_model.hpp"
+#include "solver/fe/finite_element_method.hpp"
+#include "solver/spectral/spectral_method.hpp"
 
 #include <algorithm>
 #include <thread>
@@ -12,9 +12,9 @@ std::unique_ptr<RuptureMethod> make_rupture_method(const SimulationParams& param
   if (params.method == Method::spectral_bi) {
     const int threads = params.threads > 0 ? params.threads
                                            : int(std::max(1u, std::thread::hardware_concurrency()));
-    return std::make_unique<spectral::SpectralModel>(params, threads);
+    return std::make_unique<spectral::SpectralMethod>(params, threads);
   }
-  return std::make_unique<FiniteElementMethod>(params);
+  return std::make_unique<fe::FiniteElementMethod>(params);
 }
 
 } // namespace slipfront

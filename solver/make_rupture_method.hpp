@@ -1,4 +1,5 @@
-// Builds the rupture method a job asks for (today always the finite elements).
+// Builds the rupture method a job asks for (params.method): the finite elements or the
+// spectral boundary-integral method.
 #pragma once
 
 #include "solver/params.hpp"

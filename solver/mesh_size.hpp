@@ -1,4 +1,5 @@
-// Node counts of the regular mesh from the geometry (shared by the model and estimates).
+// Node counts of the regular mesh from the geometry: the FE mesh, the BI interface (its row
+// 0) and the size estimates of a run all take them from here.
 #pragma once
 
 #include "solver/params.hpp"

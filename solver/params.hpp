@@ -1,5 +1,5 @@
 // Parameters of one rupture simulation. Every default is the paper's scene
-// (Kammer et al. 2014, Sec. 2; SPEC §1). The job JSON of api/ maps onto these
+// (Kammer et al. 2014, Sec. 2; docs/physics.md "The scene"). The job JSON of api/ maps onto these
 // structs one to one; the solver itself knows nothing of JSON.
 #pragma once
 
@@ -30,7 +30,7 @@ struct Material {
 struct Geometry {
   double width = 40.0;
   double height = 20.0;
-  bool auto_height = false; // "height": "auto": smallest h free of top reflections (see mesh.hpp)
+  bool auto_height = false; // "height": "auto": smallest h free of top reflections (mesh_size.hpp)
   double x_min = -10.0;
   double nodes_per_meter = 40.0; // n_d; the element size is 1/n_d
 };
@@ -53,7 +53,7 @@ enum class FrictionLaw {
 };
 
 // How the strength ODE d(tau_s)/dt = -(|V|+V*)/L (tau_s - mu p) is advanced over a step
-// (solver/friction.hpp has the formulas, docs/physics.md the accuracy of each).
+// (solver/interface/friction.hpp has the formulas, docs/physics.md the accuracy of each).
 enum class StrengthUpdate {
   exponential_ramp, // exact for |V| frozen and p linear over the step: second order, stable
   exponential,      // exact for |V| and p frozen (p of the step's end): first order, stable
@@ -105,9 +105,10 @@ struct InterfaceTraction {
 };
 using ExtraInterfaceLoad = std::function<InterfaceTraction(double x1, double t)>;
 
-// The numerical method (SPEC §4 "method"): a result always says which one produced it.
+// The numerical method (the job's "method"; docs/physics.md "Methods"): a result always says which
+// one produced it.
 enum class Method {
-  finite_element, // "fe": Q4 elements of the block, explicit central differences (SPEC §1)
+  finite_element, // "fe": Q4 elements of the block, explicit central differences (the paper's)
   spectral_bi,    // "spectral_bi": the elastic half-space by the spectral boundary-integral method
 };
 

@@ -1,9 +1,11 @@
-// The interface every rupture method offers to the time loop (solver/time_loop.hpp):
-// the explicit finite elements today (solver/fe_method.hpp), a spectral boundary-integral
-// method next. The loop steps the method and reads the interface after each step.
+// The interface every rupture method offers to the time loop (solver/run/time_loop.hpp): the
+// explicit finite elements (solver/fe/finite_element_method.hpp) and the spectral
+// boundary-integral method (solver/spectral/spectral_method.hpp) implement it; a "method" in
+// this code is always one of these. The loop steps the method and reads the interface after
+// each step.
 #pragma once
 
-#include "solver/interface_fields.hpp"
+#include "solver/interface/interface_fields.hpp"
 #include "solver/mesh_info.hpp"
 
 #include <string>
@@ -11,7 +13,7 @@
 
 namespace slipfront {
 
-// One discretised interface problem advanced in time (FE today, spectral BI next).
+// One discretised interface problem advanced in time.
 class RuptureMethod {
 public:
   virtual ~RuptureMethod() = default;

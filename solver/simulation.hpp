@@ -2,79 +2,20 @@
 //
 //   RunResult r = run_simulation(params, hooks);
 //
-// It builds the rupture method (make_rupture_method.hpp) and runs the time loop on it
-// (time_loop.hpp).
-// The run reports progress through a callback, stops cooperatively when the cancel flag
-// is set, streams sampled interface fields to an optional SampleSink (the HDF5 writer),
-// and returns the metrics of SPEC §2 with the front profile and the probe records.
+// It builds the rupture method the job asks for (make_rupture_method.hpp) and runs the time
+// loop on it (run/time_loop.hpp). The run reports progress through a callback, stops
+// cooperatively when the cancel flag is set, streams sampled interface fields to an
+// optional SampleSink (the HDF5 writer; run/run_hooks.hpp), and returns the metrics of
+// docs/metrics.md with the front profile and the probe records (run/run_result.hpp).
+// Also the size estimates of a run that the job validation uses before it starts.
 #pragma once
 
-#include "solver/interface_fields.hpp"
-#include "solver/mesh_info.hpp"
-#include "solver/metrics.hpp"
 #include "solver/params.hpp"
-#include "solver/records.hpp"
-
-#include <atomic>
-#include <cstdint>
-#include <functional>
-#include <string>
-#include <vector>
+#include "solver/step_count.hpp"
+#include "solver/run/run_hooks.hpp"
+#include "solver/run/run_result.hpp"
 
 namespace slipfront {
-
-struct Progress {
-  double time = 0.0;     // simulated time reached [s]
-  double duration = 0.0; // simulated time requested [s]
-  long step = 0;
-  long total_steps = 0; // steps if the run goes to `duration`
-  double fraction = 0.0;
-  double wall_s = 0.0;
-  double steps_per_s = 0.0;
-  double eta_s = 0.0; // wall time left if the run goes to `duration`
-};
-
-// The sampled interface nodes (every `space_stride`-th node).
-struct InterfaceLayout {
-  std::vector<double> x1;
-  long expected_samples = 0; // if the run goes to `duration`
-  double sample_interval = 0.0;
-};
-
-// One time sample of the interface fields at the sampled nodes (SPEC §2 names).
-struct InterfaceSample {
-  double time = 0.0;
-  std::vector<double> slip_velocity;    // V [m/s], positive towards +x1
-  std::vector<double> slip;             // u1 at the interface [m]
-  std::vector<double> shear_traction;   // tau1 [Pa] (initially tau1_0)
-  std::vector<double> contact_pressure; // p [Pa] (initially |tau2_0|)
-  std::vector<double> strength;         // tau_s [Pa]
-  std::vector<std::int8_t> state;       // NodeState
-};
-
-// Receives the sampled interface fields as the run produces them.
-class SampleSink {
-public:
-  virtual ~SampleSink() = default;
-  virtual void begin(const InterfaceLayout& layout) = 0;
-  virtual void write(const InterfaceSample& sample) = 0;
-};
-
-struct RunHooks {
-  std::function<void(const Progress&)> on_progress; // called about every progress_interval_s
-  double progress_interval_s = 0.5;
-  const std::atomic<bool>* cancel = nullptr; // checked every step; run ends within one step
-  SampleSink* sink = nullptr;
-};
-
-struct RunResult {
-  Metrics metrics;
-  FrontProfile front;
-  ProbeRecords probes;
-  EnergyRecords energy;
-  MeshInfo mesh;
-  bool cancelled = false;
-};
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks = {});
 
@@ -89,14 +30,11 @@ double estimated_memory_bytes(const SimulationParams& params);
 
 // The time step of a run before it starts. BI's is exact: time_step_factor dx / c_s. FE's is
 // safety_factor times the stable step of the mesh, found by power iteration when the run
-// starts (solver/stable_time_step.hpp). Undamped that step is dx / c_p on every mesh
+// starts (solver/fe/stable_time_step.hpp). Undamped that step is dx / c_p on every mesh
 // (tests/solver/stable_time_step_test.cpp): the longest; the shortest takes half of it, the
 // margin the memory and result-size estimates have always kept, and the mesh damping's
 // shortening. In double: inf or 0 for an impossible job.
-struct TimeStepBounds {
-  double shortest = 0.0; // [s]
-  double longest = 0.0;  // [s]
-};
+// (TimeStepBounds: solver/step_count.hpp.)
 TimeStepBounds time_step_bounds(const SimulationParams& params);
 
 // An upper bound of the steps of a run that goes to `duration` (duration / the shortest

@@ -11,6 +11,13 @@
 
 namespace slipfront {
 
+// The shortest and longest time step a run may take, known before it starts
+// (solver/simulation.hpp, time_step_bounds). In double: inf or 0 for an impossible job.
+struct TimeStepBounds {
+  double shortest = 0.0; // [s]
+  double longest = 0.0;  // [s]
+};
+
 // The most time steps a run may take (docs/api-job-spec.md, "Limits of a run"): the job
 // validation refuses a job that could take more, and a run never counts beyond it.
 constexpr double max_run_steps = 1e9;

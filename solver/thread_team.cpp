@@ -1,3 +1,4 @@
+// The thread team (thread_team.hpp) and the floating-point mode of the calling thread.
 #include "solver/thread_team.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)

@@ -1,5 +1,6 @@
-// SPEC §2 mesh convergence: the status of each run, the L × n_d convergence map and the
-// refinement plan of a convergence request. The rules are spelled out in docs/studies.md.
+// Mesh convergence (docs/metrics.md "Convergence status"): the status of each run, the L × n_d
+// convergence map and the refinement plan of a convergence request. The rules are spelled out in
+// docs/studies.md.
 #include "api/study/convergence.hpp"
 
 #include "api/json_number.hpp"
@@ -18,8 +19,9 @@ namespace {
 
 using nlohmann::json;
 
-// SPEC §2: the partner of a run is the run of the same L at the next finer n_d present in
-// the study; meshes whose runs all failed or were cancelled are skipped (no measurement).
+// docs/metrics.md "Convergence status": the partner of a run is the run of the same L at the next
+// finer n_d present in the study; meshes whose runs all failed or were cancelled are skipped (no
+// measurement).
 const StudyRun* find_partner(const std::vector<StudyRun>& runs, const StudyRun& run) {
   std::vector<double> finer_meshes;
   for (const StudyRun& other : runs)
@@ -110,7 +112,7 @@ std::string to_string(ConvergenceStatus status) {
   return "unknown";
 }
 
-// SPEC §2 "Convergence status of a run".
+// docs/metrics.md "Convergence status"; docs/studies.md "Mesh-convergence status of a run".
 std::vector<RunConvergence> convergence_statuses(const std::vector<StudyRun>& runs,
                                                  const ConvergenceTolerances& tol) {
   std::vector<RunConvergence> statuses;
@@ -156,7 +158,7 @@ std::string to_string(RefinementPlan::State state) {
   return "run_next";
 }
 
-// SPEC §2 criterion applied along a mesh ladder: refine until two successive meshes agree.
+// The convergence criterion applied along a mesh ladder: refine until two successive meshes agree.
 RefinementPlan refinement_plan(double L, const std::vector<StudyRun>& runs,
                                const std::vector<double>& ladder, double cap,
                                const ConvergenceTolerances& tol) {

@@ -1,5 +1,5 @@
-// SPEC §2 mesh convergence: the status of each run of a study, the L × n_d convergence map
-// (paper Fig. 3c) and the next mesh of a convergence request.
+// Mesh convergence (docs/metrics.md "Convergence status"): the status of each run of a study, the L
+// × n_d convergence map (paper Fig. 3c) and the next mesh of a convergence request.
 //
 // Pure functions on the runs of one study (runs that differ only in friction.L and
 // geometry.nodes_per_meter, i.e. that share a scene_hash): no I/O, no database.

@@ -1,5 +1,5 @@
-// SPEC §2 "Critical length L_c" and the same L by both methods: comparisons of the
-// reference runs of mesh-converged L (docs/studies.md).
+// The critical length L_c (docs/metrics.md "Critical length") and the same L by both methods:
+// comparisons of the reference runs of mesh-converged L (docs/studies.md).
 #include "api/study/critical_length.hpp"
 
 #include "api/json_number.hpp"
@@ -31,8 +31,8 @@ struct Reference {
   const StudyRun* run;
 };
 
-// SPEC §2 read as the paper does (§4: "every simulation with L <= L_c obeys the same
-// behaviour"): the number of smallest references that all agree pairwise.
+// The rule of docs/metrics.md "Critical length" read as the paper does (§4: "every simulation with
+// L <= L_c obeys the same behaviour"): the number of smallest references that all agree pairwise.
 std::size_t agreeing_prefix(const std::vector<std::vector<bool>>& agree) {
   std::size_t prefix = agree.empty() ? 0 : 1;
   while (prefix < agree.size() && std::all_of(agree[prefix].begin(), agree[prefix].begin() + prefix,
@@ -105,7 +105,7 @@ void explain_critical_length(json& result, const std::vector<Reference>& refs, s
 
 } // namespace
 
-// SPEC §2 "Critical length L_c" and the spectral estimate beside it (docs/metrics.md).
+// docs/metrics.md "Critical length", and the spectral estimate beside it.
 nlohmann::json critical_length(const std::vector<StudyRun>& runs,
                                const ConvergenceTolerances& tol) {
   const auto statuses = convergence_statuses(runs, tol);

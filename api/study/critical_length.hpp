@@ -1,5 +1,6 @@
-// SPEC §2 "Critical length L_c" of a study, and the same L by both methods: comparisons of
-// the reference runs of mesh-converged L (rules: docs/studies.md). Pure functions.
+// The critical length L_c of a study (docs/metrics.md "Critical length"), and the same L by both
+// methods: comparisons of the reference runs of mesh-converged L (rules: docs/studies.md). Pure
+// functions.
 #pragma once
 
 #include "api/study/study_run.hpp"
@@ -10,8 +11,8 @@
 
 namespace slipfront::api {
 
-// L_c of the study (SPEC §2) with the per-L reference runs, the comparison table and the
-// spectral estimate of the smallest mesh-converged L.
+// L_c of the study (docs/metrics.md "Critical length") with the per-L reference runs, the
+// comparison table and the spectral estimate of the smallest mesh-converged L.
 nlohmann::json critical_length(const std::vector<StudyRun>& runs,
                                const ConvergenceTolerances& tol = {});
 

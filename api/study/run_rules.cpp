@@ -1,5 +1,6 @@
 // The rules every study analysis shares (docs/studies.md): what a run contributes, which
-// run stands for a cell, how two runs compare under the SPEC §2 criterion.
+// run stands for a cell, how two runs compare under the convergence criterion
+// (docs/metrics.md "Convergence status").
 #include "api/study/run_rules.hpp"
 
 #include "api/json_number.hpp"
@@ -42,7 +43,7 @@ std::string outcome_of(const StudyRun& run) {
   return it != run.metrics->end() && it->is_string() ? it->get<std::string>() : "";
 }
 
-// A metric of SPEC §2; NaN when absent or null (e.g. arrival_time_at_probe never reached).
+// A metric (docs/metrics.md); NaN when absent or null (e.g. arrival_time_at_probe never reached).
 double metric(const StudyRun& run, const char* key) {
   if (!run.metrics || !run.metrics->is_object()) return not_available;
   const auto it = run.metrics->find(key);
@@ -99,7 +100,8 @@ std::string criterion_text(double change, double tolerance) {
 
 } // namespace
 
-// SPEC §2 criterion between a run and its reference (the finer mesh, or the smaller L):
+// The convergence criterion (docs/metrics.md "Convergence status") between a run and its
+// reference (the finer mesh, or the smaller L):
 // same outcome; no_rupture in both agrees; otherwise propagation_distance within
 // tol.propagation_distance and arrival_time_at_probe within tol.arrival_time, the latter
 // judged only when the front reached the probe in both runs (in neither: distance alone).

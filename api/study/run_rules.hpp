@@ -1,5 +1,5 @@
 // The rules the study analyses share (docs/studies.md): what a run contributes, which run
-// stands for an (L, n_d) cell, how two runs compare under the SPEC §2 criterion, and the
+// stands for an (L, n_d) cell, how two runs compare under the convergence criterion, and the
 // reference run of an L. Used by api/study/*.cpp only; the server calls the analyses.
 #pragma once
 
@@ -25,7 +25,8 @@ std::vector<double> unique_sorted(std::vector<double> values);
 // "2.8 %": a fraction in percent, three significant digits.
 std::string percent(double fraction);
 
-// The metrics' outcome ("" without metrics) and a metric of SPEC §2 (NaN when absent or null).
+// The metrics' outcome ("" without metrics) and a metric (docs/metrics.md; NaN when absent or
+// null).
 std::string outcome_of(const StudyRun& run);
 double metric(const StudyRun& run, const char* key);
 
@@ -50,7 +51,8 @@ struct Comparison {
   std::string reason;
 };
 
-// SPEC §2 criterion between a run and its reference (the finer mesh, or the smaller L).
+// The convergence criterion (docs/metrics.md "Convergence status") between a run and its
+// reference (the finer mesh, or the smaller L).
 Comparison compare(const StudyRun& run, const StudyRun& reference,
                    const ConvergenceTolerances& tol);
 

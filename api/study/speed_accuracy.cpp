@@ -34,7 +34,7 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& v, d
   return v[i - 1] + weight * (v[i] - v[i - 1]);
 }
 
-// SPEC intro: "every result says how accurate it is and what it cost".
+// Every result says how accurate it is and what it cost (docs/studies.md "Speed and accuracy").
 // One speed-accuracy entry: the run's cost and its errors against `ref` (null: no reference).
 json speed_accuracy_entry(const StudyRun& run, const StudyRun* ref) {
   const bool judged = ref && state_of(run) == RunState::measured;

@@ -1,6 +1,7 @@
-// Speed and accuracy of the runs of a study (SPEC intro: "every result says how accurate it
-// is and what it cost"): cost against the errors relative to the reference run of each L,
-// and the relative L2 error of a time record (docs/studies.md). Pure functions.
+// Speed and accuracy of the runs of a study (every result says how accurate it is and
+// what it cost; docs/studies.md "Speed and accuracy"): cost against the errors relative to the
+// reference run of each L, and the relative L2 error of a time record (docs/studies.md). Pure
+// functions.
 #pragma once
 
 #include "api/study/study_run.hpp"

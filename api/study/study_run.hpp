@@ -1,4 +1,4 @@
-// The runs a study analyses (SPEC §2): one job of a study as the server knows it, and the
+// The runs a study analyses (docs/studies.md): one job of a study as the server knows it, and the
 // tolerances of the mesh-convergence criterion.
 #pragma once
 
@@ -18,13 +18,13 @@ struct StudyRun {
   double L = 0.0;   // friction.L (m)
   double n_d = 0.0; // geometry.nodes_per_meter
   JobStatus status = JobStatus::queued;
-  std::optional<nlohmann::json> metrics; // the metrics JSON of SPEC §2, when the run has one
+  std::optional<nlohmann::json> metrics; // the metrics JSON (docs/metrics.md), when it has one
   double wall_time_s = 0.0;
   double memory_bytes = 0.0;
 };
 
-// SPEC §2 / paper §3.1: refining the mesh changes propagation_distance by < 0.5 % and
-// arrival_time_at_probe by < 0.1 %. Relative changes, strict inequalities.
+// docs/metrics.md "Convergence status", paper §3.1: refining the mesh changes propagation_distance
+// by < 0.5 % and arrival_time_at_probe by < 0.1 %. Relative changes, strict inequalities.
 struct ConvergenceTolerances {
   double propagation_distance = 0.005;
   double arrival_time = 0.001;

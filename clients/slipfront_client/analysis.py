@@ -72,7 +72,7 @@ def _relative_change(value, reference):
 
 
 def _agree(row, ref):
-    """SPEC §2 criterion between a run and its partner (the next finer mesh)."""
+    """The convergence criterion (docs/metrics.md "Convergence status") between a run and its partner (the next finer mesh)."""
     mine, theirs = _outcome(row), _outcome(ref)
     if theirs == "diverged" or mine != theirs:
         return False

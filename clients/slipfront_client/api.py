@@ -1,4 +1,4 @@
-"""A thin HTTP client of the slipfront API (SPEC §4, under /api/v1).
+"""A thin HTTP client of the slipfront API (docs/server.md, under /api/v1).
 
 Every request goes through `Api.request`, which
 - sends the bearer token when one is configured,

@@ -1,4 +1,4 @@
-"""`study create|wait|show|cancel`: a grid of runs over L × n_d (SPEC §4 studies API)."""
+"""`study create|wait|show|cancel`: a grid of runs over L × n_d (docs/studies-api.md)."""
 
 from . import jobspec, studies
 from .errors import ServerError, UsageError

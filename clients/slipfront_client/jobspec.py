@@ -1,6 +1,6 @@
 """Job files and inline overrides (`--set friction.L=1e-5`).
 
-The job JSON is that of SPEC §4; the server validates it. The client only checks what it
+The job JSON is that of docs/api-job-spec.md; the server validates it. The client only checks what it
 must to build the document: the file parses, it is an object, and every override is
 `dotted.path=value` where the value is JSON (a number, true, "text", [1, 2]) or, if it
 does not parse as JSON, a plain string.

@@ -4,7 +4,7 @@ clients/reproduce_paper.py).
 Two convergence studies of the same scene, one per method (FE and the spectral boundary
 integral, `"base": {"method": "spectral_bi"}`), over the same L; the report leads with each
 method's L_c verdict and the cross-method table (report.py), then our numbers beside the
-paper's (SPEC §3), the FE convergence map, figures (slipfront_client.plots) and every run.
+paper's (docs/physics.md), the FE convergence map, figures (slipfront_client.plots) and every run.
 With `quick` the scene is small and coarse and `check_shape` asserts the maps' shape.
 """
 

@@ -1,6 +1,6 @@
 """Measurements of the paper's study from its runs: the run chosen per L, Fig. 2 values
 (peak slip velocity, front times, rupture speed), the cost rows of the speed-accuracy chart
-and the comparison with SPEC §3 (library of clients/reproduce_paper.py)."""
+and the comparison with the paper's published values (docs/physics.md; library of clients/reproduce_paper.py)."""
 
 from .report import converged_n_d, fmt
 
@@ -31,7 +31,7 @@ def chosen_run(study, L):
 
 
 def figure2_run(study):
-    """The run of the paper's Fig. 2 values (SPEC §3 quotes them at n_d = 40): L = 5e-5 m at
+    """The run of the paper's Fig. 2 values (the paper quotes them at n_d = 40): L = 5e-5 m at
     n_d = 40 when the study has it, else the run drawn for L = 5e-5 m."""
     for r in runs_by_L(study).get(5e-5, []):
         if abs(float(r["n_d"]) - 40) < 1e-9 and r.get("job_status") == "succeeded":
@@ -97,7 +97,8 @@ PAPER_CONVERGED_ND = {1e-4: 20, 5e-5: 20, 1e-5: 40}
 
 
 def differences(study, metrics, chosen):
-    """Plain statements where the study disagrees with SPEC §3's qualitative claims."""
+    """Plain statements where the study disagrees with the paper's qualitative claims
+    (docs/physics.md "The paper's published values")."""
     out = []
     by_L = runs_by_L(study)
     for L, paper_nd in PAPER_CONVERGED_ND.items():
@@ -122,7 +123,7 @@ def differences(study, metrics, chosen):
 
 
 def comparison_rows(study, chosen, results, metrics, fig2=(None, None)):
-    """SPEC §3 against our runs. `fig2` = (run, result) of figure2_run(); the Fig. 3 rows use
+    """The paper's published values (docs/physics.md) against our runs. `fig2` = (run, result) of figure2_run(); the Fig. 3 rows use
     the run drawn for each L (the coarsest mesh-converged one, the paper's triangle)."""
     rows = []
 

@@ -87,7 +87,8 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
         f"study `{study.get('id')}`"
         + (f" and the spectral BI study `{bi_study.get('id')}`" if bi_study else "")
         + f" of the same scene (FE scene hash `{str(study.get('scene_hash'))[:16]}…`). "
-        "Every number below is computed from those studies' runs; the paper's values are SPEC §3.\n")
+        "Every number below is computed from those studies' runs; the paper's values are "
+        "those of docs/physics.md \"The paper's published values\".\n")
     if args.quick:
         add("> **This is the CI-short version** (`--quick`): a 20 m × 8 m scene, "
             f"duration {args.base['time']['duration']} s, L ∈ {{{', '.join(f'{L:g}' for L in args.L)}}} m, "
@@ -100,9 +101,9 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
                          f"{report_mod.verdict_text(s)}** (spectral estimate "
                          f"{fmt(s.get('spectral_critical_length'), unit='m')})"
                          for s in (study, bi_study) if s) + ".\n")
-    add("The rule (SPEC §2, docs/studies.md): L_c is the largest L whose mesh-converged "
-        "reference agrees with that of every smaller L (propagation distance within 0.5 %, "
-        "arrival time at the probe within 0.1 %). Each method has its own convergence map "
+    add("The rule (docs/metrics.md \"Critical length\", docs/studies.md): L_c is the largest L "
+        "whose mesh-converged reference agrees with that of every smaller L (propagation "
+        "distance within 0.5 %, arrival time at the probe within 0.1 %). Each method has its own convergence map "
         "and verdict.\n")
     for s in (study, bi_study):
         if s:
@@ -136,12 +137,12 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
 
     # values table
     add("## Our numbers beside the paper's\n")
-    add("| quantity | paper (SPEC §3) | ours | run |")
+    add("| quantity | paper | ours | run |")
     add("| --- | --- | --- | --- |")
     for row in comparison_rows(study, chosen, results, metrics, fig2):
         add("| " + " | ".join(row) + " |")
     add("")
-    add("The Fig. 2 rows (L = 5e-5 m) use the n_d = 40 run when the study has one, as SPEC §3 "
+    add("The Fig. 2 rows (L = 5e-5 m) use the n_d = 40 run when the study has one, as the paper "
         "quotes them at n_d = 40. "
         "The drawn run of an L is its coarsest mesh-converged run (the paper's triangle); "
         "where an L has no converged run, its finest finished run, marked *(not converged)*. "
@@ -190,7 +191,7 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
         add(f"![convergence map, spectral BI]({rel(figures['convergence_bi'], out_dir)})\n")
 
     add("## Critical length beside the paper's\n")
-    add("| method | verdict (SPEC §2) | spectral estimate | from L | paper |")
+    add("| method | verdict | spectral estimate | from L | paper |")
     add("| --- | --- | --- | --- | --- |")
     for st in (study, bi_study):
         if st:
@@ -308,7 +309,7 @@ def check_shape(study, report_path, figures, bi_study=None):
         fails.append(f"report {report_path} missing")
     else:
         text = open(report_path, encoding="utf-8").read()
-        for needle in ("## Our numbers beside the paper's", "| quantity | paper (SPEC §3) | ours | run |",
+        for needle in ("## Our numbers beside the paper's", "| quantity | paper | ours | run |",
                        "## Convergence map", "## Critical length", "Wall clock",
                        "## L_c verdict, by method", "### finite elements", 
                        "### spectral boundary integral", "## Same L, both methods",

@@ -1,4 +1,4 @@
-"""Studies (SPEC §4: POST /studies, GET /studies/{id}): a grid of runs over L × n_d of one
+"""Studies (POST /studies, GET /studies/{id}; docs/studies-api.md): a grid of runs over L × n_d of one
 base job, from which the server derives convergence statuses and the critical length L_c.
 
 The request the client sends (docs/studies-api.md): {"name", "tags", "base": job spec,

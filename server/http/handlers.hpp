@@ -1,4 +1,5 @@
-// Route tables of the API (SPEC §4, under /api/v1) and of the operations endpoints.
+// Route tables of the API (docs/server.md "Endpoints", under /api/v1) and of the operations
+// endpoints.
 #pragma once
 
 #include "server/http/auth.hpp" // authenticate()

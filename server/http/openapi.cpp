@@ -11,7 +11,7 @@ const char* document = R"json({
   "info": {
     "title": "slipfront",
     "version": "1",
-    "description": "Simulation service for frictional interface rupture: submit FE rupture jobs, follow them, fetch metrics, fronts and HDF5 results (SPEC §4, docs/server.md)."
+    "description": "Simulation service for frictional interface rupture: submit FE rupture jobs, follow them, fetch metrics, fronts and HDF5 results (docs/server.md)."
   },
   "servers": [{"url": "/"}],
   "components": {
@@ -174,7 +174,7 @@ const char* document = R"json({
           "410": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/metrics": {
-      "get": {"summary": "The metrics of SPEC §2 as JSON", "parameters": [{"$ref": "#/components/parameters/id"}],
+      "get": {"summary": "The metrics of the run as JSON (docs/metrics.md)", "parameters": [{"$ref": "#/components/parameters/id"}],
         "responses": {"200": {"description": "Metrics", "content": {"application/json": {}}},
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"}}}
     },

@@ -1,5 +1,6 @@
-// What a worker calls to run one job. The default, SolverJobRunner, runs the FE solver
-// through api::run_job; tests of the HTTP layer may inject another runner.
+// What a worker calls to run one job. The default, SolverJobRunner, runs the job's rupture
+// method (FE or spectral BI) through api::run_job; tests of the HTTP layer may inject another
+// runner.
 #pragma once
 
 #include "api/metrics_row.hpp"

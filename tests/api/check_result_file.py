@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks a slipfront HDF5 result file against SPEC §4 and docs/hdf5-layout.md with h5py.
+"""Checks a slipfront HDF5 result file against docs/hdf5-layout.md with h5py.
 
 usage: check_result_file.py RESULT.h5 [--synthetic]
 

@@ -38,7 +38,7 @@ TEST(JobSchema, EveryFieldHasAUnitAndMeaningAndNoWordsAreLeftOver) {
   for (const std::string& p : documented_job_pointers())
     documented.insert(p);
   EXPECT_EQ(fields, documented);
-  EXPECT_GE(fields.size(), 37u); // the job of SPEC §4 and the two method sections
+  EXPECT_GE(fields.size(), 37u); // the job of docs/api-job-spec.md and the two method sections
 }
 
 TEST(JobSchema, MethodSpecificFieldsAreMarked) {

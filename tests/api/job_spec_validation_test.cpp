@@ -125,7 +125,7 @@ TEST(JobValidation, UnknownFieldsAtEveryLevel) {
   expect_single_error({{"frobnicate", 1}}, "/frobnicate", "unknown field");
   expect_single_error({{"friction", {{"foo", 1}}}}, "/friction/foo", "unknown field");
   expect_single_error({{"geometry", {{"depth", 1}}}}, "/geometry/depth", "unknown field");
-  // SPEC's "nucleation" is not "nucleus"; the pointer escapes '/' and '~'.
+  // The job's "nucleation" is not "nucleus"; the pointer escapes '/' and '~'.
   expect_single_error({{"nucleus", json::object()}}, "/nucleus", "unknown field");
   expect_single_error({{"a/b~c", 1}}, "/a~1b~0c", "unknown field");
 }

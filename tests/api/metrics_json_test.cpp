@@ -1,4 +1,4 @@
-// The metrics JSON: SPEC §2 names, null for undefined values, the method that ran.
+// The metrics JSON: the names of docs/metrics.md, null for undefined values, the method that ran.
 #include "api/metrics_row.hpp"
 #include "api/run_job.hpp"
 #include "synthetic_run.hpp"

@@ -2,7 +2,8 @@
 // RunResult with front, probes and energy records, for the result-file tests.
 #pragma once
 
-#include "solver/simulation.hpp"
+#include "solver/run/run_result.hpp"
+#include "solver/run/sample_sink.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -3,8 +3,8 @@
 // the energy balance.
 #pragma once
 
-#include "solver/interface_fields.hpp"
-#include "solver/nodal_field.hpp"
+#include "solver/fe/nodal_field.hpp"
+#include "solver/interface/interface_fields.hpp"
 
 #include <cstring>
 #include <vector>
@@ -22,7 +22,7 @@ inline long differing(const std::vector<double>& a, const std::vector<double>& b
   return n;
 }
 
-inline long differing_nodes(const VectorField& a, const VectorField& b) {
+inline long differing_nodes(const fe::VectorField& a, const fe::VectorField& b) {
   long n = 0;
   for (int j = 0; j < a.x.ny(); ++j)
     for (int i = -1; i <= a.x.nx(); ++i) // with the ghost nodes

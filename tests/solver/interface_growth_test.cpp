@@ -14,7 +14,7 @@
 #include "verification_support.hpp"
 
 #include "solver/make_rupture_method.hpp"
-#include "solver/periodic_index.hpp"
+#include "solver/run/periodic_line.hpp"
 
 #include <gtest/gtest.h>
 

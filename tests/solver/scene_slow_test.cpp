@@ -1,6 +1,7 @@
 // Case 8, slow part (label `slow`): the paper's scene at the paper's mesh, n_d = 40, with
-// tighter checks against the published values (paper Sec. 2-3, SPEC §3), and the mesh
-// convergence n_d = 20 -> 40 by the paper's criterion.
+// tighter checks against the published values (paper Sec. 2-3;
+// docs/physics.md "The paper's published values"), and the mesh convergence n_d = 20 -> 40
+// by the paper's criterion.
 #include "scene_support.hpp"
 
 #include <gtest/gtest.h>

@@ -1,10 +1,11 @@
 // The paper's scene (Kammer et al. 2014, Sec. 2) at a given mesh density and L, and the
-// quantities the scene tests compare with the paper (Sec. 2-3, SPEC §3).
+// quantities the scene tests compare with the paper (Sec. 2-3;
+// docs/physics.md "The paper's published values").
 #pragma once
 
 #include "verification_support.hpp"
 
-#include "solver/nucleation.hpp"
+#include "solver/interface/nucleation.hpp"
 #include "solver/simulation.hpp"
 
 #include <algorithm>

@@ -1,10 +1,12 @@
 // Cases 7 and 8: the paper's scene (40 m x 20 m, periodic, nucleation of appendix A) on
-// coarse meshes. Published values (paper Sec. 2-3, SPEC §3) are read off text and figures
-// of a n_d = 40 run: they are targets with error bars, and the coarse meshes here are not
-// mesh-converged in the slip velocity. Tolerances, and why, are in docs/verification.md.
+// coarse meshes. Published values (paper Sec. 2-3; docs/physics.md "The paper's published values")
+// are read off text and figures of a n_d = 40 run: they are targets with error bars, and the coarse
+// meshes here are not mesh-converged in the slip velocity. Tolerances, and why, are in
+// docs/verification.md.
 #include "scene_support.hpp"
 
-#include "solver/friction.hpp"
+#include "solver/interface/interface_fields.hpp"
+#include "solver/interface/prakash_clifton.hpp"
 
 #include <gtest/gtest.h>
 
@@ -111,9 +113,9 @@ TEST(PaperScene, CoarseMeshesReproduceTheArrestedSupershearRupture) {
 
 // The strength update's time-step error at small L (docs/small-l-study.md): on a fixed mesh
 // (n_d = 20, L = 5e-6 m) halve dt. With the pressure of the step's end frozen over the step
-// (SPEC §1's "exponential") the arrival at x1 = 11 m moves by about 0.4 % and the propagation
-// distance by 2.5 %; with the pressure linear over the step (the default "exponential_ramp")
-// the change is several times smaller and the distance does not move.
+// (the reference scheme's "exponential") the arrival at x1 = 11 m moves by about 0.4 % and the
+// propagation distance by 2.5 %; with the pressure linear over the step (the default
+// "exponential_ramp") the change is several times smaller and the distance does not move.
 TEST(PaperScene, RampStrengthUpdateRemovesMostOfTheTimeStepErrorAtSmallL) {
   struct Change {
     double arrival, distance;

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "solver/params.hpp"
-#include "solver/simulation.hpp"
+#include "solver/run/sample_sink.hpp"
 
 #include <cstdarg>
 #include <cstdio>

@@ -1,6 +1,7 @@
-// The study analysis of SPEC §2 on small synthetic metric sets (docs/studies.md).
-// Over 400 lines on purpose: one short TEST per rule of docs/studies.md, grouped by section
-// (scene hash, status, map, L_c, speed/accuracy, L2 error, refinement, cross-method).
+// The study analysis (docs/metrics.md "Convergence status", "Critical length") on small synthetic
+// metric sets (docs/studies.md). Over 400 lines on purpose: one short TEST per rule of
+// docs/studies.md, grouped by section (scene hash, status, map, L_c, speed/accuracy, L2 error,
+// refinement, cross-method).
 #include "api/study_analysis.hpp"
 
 #include "api/job_spec.hpp"

@@ -1,7 +1,8 @@
 // The L × n_d convergence map (paper Fig. 3c) as a table: rows L (large to small), columns
 // n_d. A cell is the run at that point, coloured by its status against the next finer mesh,
-// and shows the SPEC §2 criterion that decided it: the change of the propagation distance and
-// of the arrival time at the probe, each against its tolerance (docs/studies.md).
+// and shows the convergence criterion that decided it (docs/metrics.md "Convergence status"):
+// the change of the propagation distance and of the arrival time at the probe, each against
+// its tolerance (docs/studies.md).
 import { h, fmt } from './dom.js';
 
 const STATUS_TEXT = {

@@ -11,7 +11,7 @@ from .common import colours, new_figure
 
 
 def nucleation_patch(spec):
-    """(lo, hi) [m] of the x1 interval the nucleation ellipse covers (solver/nucleation.cpp:
+    """(lo, hi) [m] of the x1 interval the nucleation ellipse covers (solver/interface/nucleation.cpp:
     0 to sqrt(a^2 + b^2)), or None when nucleation is disabled."""
     n = (spec or {}).get("nucleation") or {}
     if n.get("enabled", True) is False:

@@ -1,0 +1,52 @@
+#include "solver/interface/interface_law.hpp"
+
+#include "solver/interface/friction.hpp"
+
+#include <cmath>
+
+namespace slipfront {
+
+InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2,
+                                         double v1_trial, double v2_trial, double slip_speed,
+                                         double strength, double previous_pressure) {
+  InterfaceNodeStep out;
+  // 1. Next normal displacement of the trial (free) motion.
+  const double u2_trial = u2 + c.dt * v2_trial;
+
+  // 2. Normal reaction that closes the gap exactly: u2_next = u2_trial + dt^2 R / m2 = 0.
+  const double reaction = -c.mass2 * u2_trial / (c.dt * c.dt);
+  const bool in_contact = reaction > 0.0;
+  out.contact_force2 = in_contact ? reaction : 0.0;
+  out.pressure = out.contact_force2 / c.tributary_length;
+
+  // 3. Strength over the step from the last one to this one: the pressure goes from the
+  //    last step's to this step's, the slip speed is that of the last interval (FE: the
+  //    last half step's, the velocity over that interval in the leapfrog scheme).
+  out.strength =
+      advance_strength(c.friction, strength, previous_pressure, out.pressure, slip_speed, c.dt);
+
+  // 4. Tangential: stick if the plane can hold the node, else slip at strength.
+  // The constrained velocities are set exactly (not through the force, whose round-off
+  // would leave 1e-20 m/s of noise on a stuck, closed node).
+  out.v2 = in_contact ? -u2 / c.dt : v2_trial; // in contact: u2_next = u2 + dt v2 = 0
+  if (!in_contact) {
+    out.state = NodeState::open;
+    out.contact_force1 = 0.0;
+    out.v1 = v1_trial;
+    return out;
+  }
+  const double stick_force = -c.mass1 * v1_trial / c.dt; // makes v1 = v1_trial + dt F/m1 = 0
+  const double limit = out.strength * c.tributary_length;
+  if (std::abs(stick_force) <= limit) {
+    out.state = NodeState::stick;
+    out.contact_force1 = stick_force;
+    out.v1 = 0.0;
+  } else {
+    out.state = NodeState::slip;
+    out.contact_force1 = v1_trial > 0.0 ? -limit : limit;
+    out.v1 = v1_trial + c.dt * out.contact_force1 / c.mass1;
+  }
+  return out;
+}
+
+} // namespace slipfront

@@ -1,0 +1,36 @@
+#include "solver/interface/nucleation.hpp"
+
+#include <cmath>
+
+namespace slipfront {
+
+namespace {
+double eta0(const Nucleation& n) {
+  return std::sqrt(n.a * n.a + n.b * n.b) / n.b;
+}
+} // namespace
+
+double nucleation_traction(const Nucleation& n, double normal_stress, double x1, double t) {
+  if (!n.enabled) return 0.0;
+  const double xi = (x1 - n.v * t) / n.a;
+  const double eta = (x1 + n.v * t) / n.b - eta0(n);
+  const double inside = 1.0 - xi * xi - eta * eta;
+  if (inside <= 0.0) return 0.0;
+  return n.alpha * std::abs(normal_stress) * inside * inside;
+}
+
+// In the coordinates p = x1 - v t, q = x1 + v t - b eta0 the ellipse is p^2/a^2 + q^2/b^2 <= 1,
+// and x1 = (p + q + b eta0)/2, v t = (q - p + b eta0)/2. The extremes of p + q and q - p
+// over the ellipse are +-sqrt(a^2 + b^2).
+Interval nucleation_patch(const Nucleation& n) {
+  const double r = std::sqrt(n.a * n.a + n.b * n.b);
+  const double c = n.b * eta0(n); // = r
+  return {(c - r) / 2.0, (c + r) / 2.0};
+}
+
+double nucleation_end_time(const Nucleation& n) {
+  const double r = std::sqrt(n.a * n.a + n.b * n.b);
+  return (n.b * eta0(n) + r) / (2.0 * n.v);
+}
+
+} // namespace slipfront

@@ -1,0 +1,19 @@
+#include "solver/run/arrest_rule.hpp"
+
+#include "solver/interface/nucleation.hpp"
+
+#include <algorithm>
+
+namespace slipfront {
+
+ArrestRule::ArrestRule(const SimulationParams& params)
+    : quiet_after_(params.nucleation.enabled ? nucleation_end_time(params.nucleation) : 0.0),
+      window_(params.time.arrest_window), stop_on_arrest_(params.time.stop_on_arrest) {}
+
+bool ArrestRule::update(double t_n, double last_new_arrival) {
+  const double quiet_since = std::max(quiet_after_, last_new_arrival);
+  arrested_ = t_n - quiet_since >= window_;
+  return arrested_ && stop_on_arrest_;
+}
+
+} // namespace slipfront

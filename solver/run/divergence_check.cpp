@@ -1,0 +1,78 @@
+#include "solver/run/divergence_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace slipfront {
+
+DivergenceCheck::DivergenceCheck(const SimulationParams& params)
+    : mu_(params.friction.mu),
+      max_coulomb_strength_(params.friction.mu * std::abs(params.loading.normal_stress)) {
+  const Material& mat = params.material;
+  const double load_scale =
+      std::abs(params.loading.normal_stress) + std::abs(params.loading.shear_stress);
+  speed_limit_ = 1000.0 * load_scale / (mat.density * mat.s_wave_speed());
+}
+
+void DivergenceCheck::check(const InterfaceFields& f) {
+  const int nx = int(f.velocity.size());
+  for (int i = 0; i < nx; ++i) {
+    const double v = std::abs(f.velocity[i]);
+    if (!(v <= speed_limit_)) diverged_ = true; // also catches NaN
+    max_slip_velocity_ = std::max(max_slip_velocity_, v);
+    max_coulomb_strength_ = std::max(max_coulomb_strength_, mu_ * f.pressure[i]);
+  }
+  // A stable strength update makes tau_s a convex combination of its start and the mu p
+  // of the step (friction.hpp), so it stays within [0, the largest mu p seen, p0
+  // included]; leaving that range means the update is unstable
+  // even if it stays bounded (explicit Euler with dt (|V| + V*) / L > 2).
+  for (int i = 0; i < nx && strength_message_.empty(); ++i) {
+    const double ts = f.strength[i];
+    if (ts < -1e-12 * max_coulomb_strength_ || ts > (1 + 1e-12) * max_coulomb_strength_) {
+      char msg[240];
+      std::snprintf(
+          msg, sizeof msg,
+          "frictional strength %.4g Pa at x1 = %.4g m left its physical range [0, %.4g] Pa: "
+          "the strength update is unstable",
+          ts, f.x1[i], max_coulomb_strength_);
+      strength_message_ = msg;
+    }
+  }
+  if (!strength_message_.empty()) diverged_ = true;
+}
+
+void DivergenceCheck::check_energy(const EnergyBalance& e) {
+  if (!std::isfinite(e.kinetic) || !std::isfinite(e.strain)) diverged_ = true;
+  // Passivity: the solid (the FE block's kinetic + strain energy, or the energy that crossed
+  // into the BI half-space) cannot hold less than nothing. A negative value beyond round-off
+  // means the discrete scheme gave back more energy than it received: it is unstable.
+  const double stored = e.kinetic + e.strain;
+  const double scale = std::max({std::abs(e.external_work), std::abs(e.dissipated), 1e-300});
+  if (stored < -1e-9 * scale && energy_message_.empty()) {
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "the energy in the solid became negative (%.4g J/m against %.4g J/m of load "
+                  "work): the scheme returns more energy than it received",
+                  stored, e.external_work);
+    energy_message_ = msg;
+    diverged_ = true;
+  }
+}
+
+std::string DivergenceCheck::message(double t_n, long step) const {
+  char msg[200];
+  std::snprintf(msg, sizeof msg, "diverged at t = %.6g s (step %ld): ", t_n, step);
+  std::string out = msg;
+  if (!energy_message_.empty()) {
+    out += energy_message_;
+  } else if (strength_message_.empty()) {
+    std::snprintf(msg, sizeof msg, "slip speed above %.3g m/s or a non-finite field", speed_limit_);
+    out += msg;
+  } else {
+    out += strength_message_;
+  }
+  return out;
+}
+
+} // namespace slipfront

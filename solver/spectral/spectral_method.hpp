@@ -1,0 +1,103 @@
+// The elastic half-space x2 > 0 on the rigid plane by the spectral boundary-integral method
+// (Geubelle & Rice 1995; Breitenfeld & Geubelle 1998; Lapusta et al. 2000 for the velocity
+// form; Cochard & Rice 2000 used it for this friction law). Only the interface is
+// discretised: N = width / dx nodes, periodic in x1. See docs/spectral-bi.md.
+//
+// At every interface node the traction on the solid's boundary is (perturbation form)
+//     sigma_2j = sigma0_j + f_j - eta_j V_j,   eta_1 = rho c_s, eta_2 = rho c_p,
+// with f_j the elastodynamic memory, computed mode by mode in Fourier space from the slip and
+// opening histories (half_space_kernels.hpp, mode_memory.hpp). The plane's contact and
+// friction force C_j and the interface loads L_j balance it: -sigma_2j dx = C_j + L_j, so
+//     V_j = V_free_j + C_j / (eta_j dx),   V_free_j = (sigma0_j + f_j + L_j / dx) / eta_j,
+// which is the FE interface step with the node mass replaced by eta_j dx dt: the same law
+// (interface_law.hpp) resolves contact, opening and friction.
+//
+// Time stepping: V is constant over each step, D^{n+1} = D^n + dt V^{n+1/2}; the balance
+// holds at t_{n+1/2}. The known part of f (the history and the static term on D^n) is
+// computed once a step; the part of the current interval is predicted with V^{n-1/2} and
+// corrected with the solved V^{n+1/2} (`corrector_passes`).
+#pragma once
+
+#include "solver/interface/interface_fields.hpp"
+#include "solver/interface/interface_law.hpp"
+#include "solver/params.hpp"
+#include "solver/rupture_method.hpp"
+#include "solver/spectral/half_space_kernels.hpp"
+#include "solver/spectral/mode_memory.hpp"
+#include "solver/spectral/real_fft.hpp"
+#include "solver/thread_team.hpp"
+
+#include <complex>
+#include <memory>
+#include <vector>
+
+namespace slipfront::spectral {
+
+class SpectralMethod : public RuptureMethod {
+public:
+  explicit SpectralMethod(const SimulationParams& params, int threads = 1);
+
+  void step(bool compute_energy) override;
+  double dt() const override { return dt_; }
+  const InterfaceFields& interface() const override { return iface_; }
+  const EnergyBalance& energy() const override { return energy_; }
+  MeshInfo mesh_info() const override;
+  // Plain Coulomb friction at time_step_factor >= 0.4 grows a mesh-scale mode that the
+  // continuum does not have (docs/verification.md, BI findings): said at the end of the run.
+  std::vector<std::string> end_warnings(double simulated_time) const override;
+
+  int nx() const { return nx_; }
+  double dx() const { return dx_; }
+  double time() const { return step_ * dt_; }
+  const ModeMemory& memory() const { return *memory_; }
+
+  // Time step of the method: beta dx / c_s.
+  static double time_step(const SimulationParams& params);
+  // Kernel table length needed for these parameters (scaled time).
+  static double kernel_span(const SimulationParams& params);
+  // Steps of a run that goes to `duration`, in double (may be inf for an impossible job).
+  static double step_bound(const SimulationParams& params);
+  // The same as an integer; throws std::invalid_argument above max_run_steps
+  // (solver/step_count.hpp), which the job validation never lets through.
+  static long max_steps(const SimulationParams& params);
+  // Bytes the run will hold (memory of the modes, interface fields, probe records).
+  static double estimated_memory_bytes(const SimulationParams& params);
+
+private:
+  using complex = std::complex<double>;
+  void known_memory_term();
+  void add_current_interval(const std::vector<complex>& v1, const std::vector<complex>& v2);
+  void solve_nodes(const std::vector<double>& slip_speed);
+
+  SimulationParams params_;
+  int nx_, modes_;
+  double dx_, dt_;
+  double eta1_, eta2_; // radiation damping rho c_s, rho c_p
+  HalfSpaceKernels kernels_;
+  std::unique_ptr<ModeMemory> memory_;
+  RealFft fft_;
+  ThreadTeam team_;
+  InterfaceNodeConstants node_;
+
+  std::vector<double> mu_k_;                     // mu |k_n|
+  std::vector<complex> d1_hat_, d2_hat_;         // D^n in Fourier space
+  std::vector<complex> v1_hat_, v2_hat_;         // V^{n-1/2} in Fourier space
+  std::vector<complex> v1_hat_new_, v2_hat_new_; // V^{n+1/2} in Fourier space (scratch)
+  std::vector<complex> f1_known_, f2_known_;     // known part of f_hat at t_{n+1/2}
+  std::vector<complex> f1_hat_, f2_hat_;         // scratch
+  std::vector<ModeHistorySums> sums_;
+  std::vector<double> f1_, f2_;         // f at the nodes
+  std::vector<double> d1_, d2_;         // D^n at the nodes (slip, opening)
+  std::vector<double> v1_, v2_;         // V^{n-1/2} at the nodes
+  std::vector<double> v1_new_, v2_new_; // V^{n+1/2} being solved
+  std::vector<double> load1_, load2_;   // interface loads at t_{n+1/2} [Pa]
+  std::vector<double> slip_speed_;      // |V| entering the strength update (scratch)
+  std::vector<InterfaceNodeStep> solved_;
+  std::vector<int> team_split_; // mode ranges per team member
+
+  InterfaceFields iface_;
+  EnergyBalance energy_;
+  long step_ = 0;
+};
+
+} // namespace slipfront::spectral
