@@ -1,4 +1,5 @@
-#include "server/jobs/job.hpp"
+#include "server/core/job.hpp"
+#include "server/http/job_json.hpp"
 
 #include <gtest/gtest.h>
 

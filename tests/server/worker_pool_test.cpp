@@ -1,7 +1,7 @@
 // The worker pool with runners injected through the JobRunner interface: failure, cancel
 // and drain paths that the real solver cannot be made to take on demand.
-#include "server/jobs/job_id.hpp"
-#include "server/jobs/worker_pool.hpp"
+#include "server/core/job_id.hpp"
+#include "server/run/worker_pool.hpp"
 
 #include "temp_dir.hpp"
 
