@@ -2,6 +2,7 @@
 #pragma once
 
 #include "api/job_status.hpp"
+#include "api/run_record.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,9 @@ using api::JobStatus;
 using api::parse_status;
 using api::to_string;
 
+// A job's result file: path (relative to the data dir), size, SHA-256 (api/run_record.hpp).
+using api::ResultFile;
+
 enum class TransitionKind { normal, recovery };
 bool transition_allowed(JobStatus from, JobStatus to, TransitionKind kind = TransitionKind::normal);
 
@@ -29,12 +33,6 @@ struct JobProgress {
   std::int64_t steps = 0;
   double eta_s = 0.0;
   std::string updated_at; // ISO 8601; "" = never
-};
-
-struct ResultFile {
-  std::string path; // absolute or data-dir relative path; "" = none
-  std::uint64_t size = 0;
-  std::string sha256;
 };
 
 struct Job {

@@ -1,28 +1,22 @@
-// The run record: what a finished run leaves behind, the one shape of a run's result
-// between the runners (server/run/) and the store (server/db/job_store.hpp).
+// The run record (api/run_record.hpp): what a finished run leaves behind, the one shape of a
+// run's result between the runners (server/run/: local and SLURM) and the store
+// (server/db/job_store.hpp, which derives the metrics row from its metrics), and the records
+// of the runs that leave nothing behind but why.
 #pragma once
 
-#include "api/metrics_row.hpp"
+#include "api/run_record.hpp"
 #include "server/core/job.hpp"
 
-#include <nlohmann/json.hpp>
-
-#include <optional>
 #include <string>
 
 namespace slipfront::server {
 
-struct RunRecord {
-  JobStatus status = JobStatus::succeeded;
-  std::string error;
-  nlohmann::json metrics; // null if none
-  nlohmann::json front;   // null if none
-  ResultFile result;
-  double wall_time_s = 0.0;
-  std::string finished_at;
-  // The columns of the metrics row. Unset (a run whose metrics arrived as JSON only): read
-  // from `metrics` (api::metrics_row).
-  std::optional<api::MetricsRow> metrics_row;
-};
+using api::RunRecord;
+
+// A run that could not be carried out: failed with `reason`, nothing else kept.
+RunRecord failed_run(const std::string& reason);
+
+// A run the API cancelled while it ran ("cancelled while running by <user>"): nothing kept.
+RunRecord cancelled_run(const std::string& cancelled_by);
 
 } // namespace slipfront::server

@@ -1,6 +1,7 @@
 #include "server/db/job_store.hpp"
 
 #include "api/job_spec.hpp"
+#include "api/metrics_row.hpp"
 #include "server/db/job_rows.hpp"
 
 #include <cmath>
@@ -127,7 +128,7 @@ bool JobStore::finish(const std::string& id, const RunRecord& r) {
       "progress_updated_at = ?5, progress_fraction = CASE WHEN ?2 = 'succeeded' THEN 1.0 "
       "ELSE progress_fraction END, progress_steps = COALESCE(?9, progress_steps), "
       "progress_time = COALESCE(?10, progress_time) WHERE id = ?1 AND status = 'running'");
-  const api::MetricsRow row = r.metrics_row ? *r.metrics_row : api::metrics_row(r.metrics);
+  const api::MetricsRow row = api::metrics_row(r.metrics); // the one place it is derived
   auto opt = [](const std::string& v) {
     return v.empty() ? std::nullopt : std::optional<std::string>(v);
   };

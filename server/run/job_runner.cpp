@@ -7,7 +7,7 @@
 
 namespace slipfront::server {
 
-RunReport SolverJobRunner::run(const Job& job, const std::string& output_path,
+RunRecord SolverJobRunner::run(const Job& job, const std::string& output_path,
                                const RunHooks& hooks) {
   // The limits were checked at submission; the stored spec is re-read as it was accepted.
   api::ValidationLimits no_limit;
@@ -19,18 +19,7 @@ RunReport SolverJobRunner::run(const Job& job, const std::string& output_path,
       what += " " + e.pointer + ": " + e.reason + ";";
     throw std::runtime_error(what);
   }
-  api::JobOutput out = api::run_job(*parsed.spec, output_path, hooks);
-  RunReport report;
-  report.cancelled = out.result.cancelled;
-  report.metrics = out.metrics;
-  report.metrics_row = api::metrics_row(out.result.metrics);
-  report.front = api::front_json(out.result);
-  report.result = {out.result_path, out.result_size, out.result_sha256};
-  if (!report.cancelled && out.result.metrics.outcome == Outcome::diverged) {
-    report.failed = true;
-    report.error = "diverged: " + out.result.metrics.message;
-  }
-  return report;
+  return api::run_job(*parsed.spec, output_path, hooks).record;
 }
 
 } // namespace slipfront::server

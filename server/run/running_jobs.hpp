@@ -20,6 +20,12 @@ struct RunningJob {
   std::string cancelled_by;
   std::mutex mutex;
   JobProgress progress;
+
+  // The user whose cancel stopped it ("" if none was named).
+  std::string canceller() {
+    std::lock_guard lock(mutex);
+    return cancelled_by;
+  }
 };
 
 class RunningJobs {

@@ -140,46 +140,28 @@ void WorkerPool::run_one(const std::string& id) {
   const std::string relative = result_relative_path(id);
   const std::string output = options_.data_dir + "/" + relative;
   RunRecord record;
-  bool cancelled = false;
   try {
-    RunReport report = runner_.run(*job, output, hooks);
-    cancelled = report.cancelled;
-    record.metrics = report.metrics;
-    record.metrics_row = report.metrics_row;
-    record.front = report.front;
-    if (report.failed) {
-      record.status = JobStatus::failed;
-      record.error = report.error;
-    } else if (!report.result.path.empty()) {
-      record.result = {relative, report.result.size, report.result.sha256};
-    }
+    record = runner_.run(*job, output, hooks);
   } catch (const std::exception& e) {
-    record.status = JobStatus::failed;
-    record.error = std::string("run failed: ") + e.what();
+    record = failed_run(std::string("run failed: ") + e.what());
   }
-  record.wall_time_s = std::chrono::duration<double>(clock::now() - started).count();
+  const double wall_time_s = std::chrono::duration<double>(clock::now() - started).count();
+  const bool stopped = record.status == JobStatus::cancelled;
+  const bool user_cancelled = entry->user_cancelled;
+  if (stopped && user_cancelled) record = cancelled_run(entry->canceller());
+  // Only a succeeded run leaves a result; the store keeps its data-dir relative path.
+  if (record.status != JobStatus::succeeded)
+    record.result = {};
+  else if (!record.result.path.empty())
+    record.result.path = relative;
+  record.wall_time_s = wall_time_s;
   record.finished_at = now_iso8601();
 
   std::string outcome;
-  if (cancelled && !entry->user_cancelled) {
+  if (stopped && !user_cancelled) {
     store_.requeue(id); // drain: back to queued, run again by the next process
     outcome = "requeued";
   } else {
-    if (cancelled) {
-      std::string by;
-      {
-        std::lock_guard lock(entry->mutex);
-        by = entry->cancelled_by;
-      }
-      record = RunRecord{JobStatus::cancelled,
-                         "cancelled while running" + (by.empty() ? "" : " by " + by),
-                         nullptr,
-                         nullptr,
-                         {},
-                         record.wall_time_s,
-                         record.finished_at,
-                         std::nullopt};
-    }
     bool was_running = false;
     if (!store_final(id, record, was_running)) {
       running_.remove(id);

@@ -4,6 +4,7 @@
 #include "server/run/slurm/slurm_executor.hpp"
 
 #include "api/job_spec.hpp"
+#include "api/run_files.hpp"
 #include "server/core/clock.hpp"
 #include "server/core/log.hpp"
 #include "server/core/storage_error.hpp"
@@ -35,10 +36,10 @@ int job_threads(const Job& job) {
 // Moves the run's result from the shared dir into the data dir: a rename on the same file
 // system, else a copy (checked against the report's SHA-256) renamed into place. Throws.
 ResultFile move_result(const std::string& from, const std::string& data_dir,
-                       const std::string& relative, const nlohmann::json& reported) {
+                       const std::string& relative, const ResultFile& reported) {
   const std::string to = data_dir + "/" + relative;
-  const std::string sha = reported.value("sha256", "");
-  const auto bytes = reported.value("bytes", std::uint64_t{0});
+  const std::string& sha = reported.sha256;
+  const std::uint64_t bytes = reported.size;
   std::error_code ec;
   if (!fs::exists(from, ec)) {
     if (fs::exists(to, ec) && api::sha256_file(to) == sha) return {relative, bytes, sha};
@@ -305,11 +306,7 @@ void SlurmExecutor::follow(Tracked& t, const SlurmJobState& state) {
 
 bool SlurmExecutor::collect(Tracked& t, const SlurmJobState& state) {
   const SlurmJobDir dir(options_.shared_dir, t.id);
-  RunRecord record;
-  record.finished_at = now_iso8601();
-  record.wall_time_s = seconds_between(t.started_at, record.finished_at);
-  if (!std::isfinite(record.wall_time_s)) record.wall_time_s = 0.0;
-
+  const std::string finished_at = now_iso8601();
   std::optional<nlohmann::json> report;
   try {
     report = dir.read_report();
@@ -329,26 +326,25 @@ bool SlurmExecutor::collect(Tracked& t, const SlurmJobState& state) {
     return fail_or_cancel(t, log.empty() ? reason : reason + "; its log ends: " + log);
   }
 
-  record.metrics = (*report)["metrics"];
-  record.metrics_row = api::metrics_row(record.metrics); // the report crossed a process boundary
-  record.front = report->value("front", nlohmann::json());
+  RunRecord record = api::run_record_of_report(*report);
+  record.finished_at = finished_at;
+  record.wall_time_s = seconds_between(t.started_at, finished_at);
+  if (!std::isfinite(record.wall_time_s)) record.wall_time_s = 0.0;
   if (record.metrics.is_object() && record.metrics.contains("wall_time_s") &&
       record.metrics["wall_time_s"].is_number())
     record.wall_time_s = record.metrics["wall_time_s"].get<double>();
-  if (report->value("diverged", false)) {
+  if (record.status == JobStatus::succeeded && record.result.path.empty()) {
     record.status = JobStatus::failed;
-    record.error = "diverged: " + report->value("message", std::string());
-  } else if ((*report)["result_file"].is_object()) {
+    record.error = "the run's report names no result file";
+  } else if (record.status == JobStatus::succeeded) {
     try {
       record.result = move_result(dir.result(), options_.data_dir,
-                                  WorkerPool::result_relative_path(t.id), (*report)["result_file"]);
+                                  WorkerPool::result_relative_path(t.id), record.result);
     } catch (const std::exception& e) {
       record.status = JobStatus::failed;
       record.error = std::string("collecting the result: ") + e.what();
+      record.result = {};
     }
-  } else {
-    record.status = JobStatus::failed;
-    record.error = "the run's report names no result file";
   }
   if (!store_.finish(t.id, record))
     log_error("job " + t.id + ": was no longer running when its SLURM job ended");
@@ -383,23 +379,12 @@ bool SlurmExecutor::requeue_or_fail(Tracked& t, const std::string& reason) {
 }
 
 bool SlurmExecutor::fail_or_cancel(Tracked& t, const std::string& reason) {
-  RunRecord record;
+  RunRecord record =
+      t.entry->user_cancelled ? cancelled_run(t.entry->canceller()) : failed_run(reason);
+  if (record.status == JobStatus::cancelled) SlurmJobDir(options_.shared_dir, t.id).remove();
   record.finished_at = now_iso8601();
   record.wall_time_s = seconds_between(t.started_at, record.finished_at);
   if (!std::isfinite(record.wall_time_s)) record.wall_time_s = 0.0;
-  if (t.entry->user_cancelled) {
-    std::string by;
-    {
-      std::lock_guard lock(t.entry->mutex);
-      by = t.entry->cancelled_by;
-    }
-    record.status = JobStatus::cancelled;
-    record.error = "cancelled while running" + (by.empty() ? "" : " by " + by);
-    SlurmJobDir(options_.shared_dir, t.id).remove();
-  } else {
-    record.status = JobStatus::failed;
-    record.error = reason;
-  }
   if (!store_.finish(t.id, record))
     log_error("job " + t.id + ": was no longer running when its SLURM job ended");
   finished(t.id, to_string(record.status), record.wall_time_s, record.error);
