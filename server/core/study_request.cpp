@@ -1,6 +1,7 @@
 #include "server/core/study_request.hpp"
 
 #include "api/number_text.hpp"
+#include "server/core/priority.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -171,10 +172,8 @@ StudyRequestParse parse_study_request(const json& body) {
     }
   }
   if (auto it = body.find("priority"); it != body.end()) {
-    if (it->is_number_integer() && it->get<long>() >= -100 && it->get<long>() <= 100)
-      r.priority = it->get<int>();
-    else
-      errors.push_back({"/priority", "must be an integer in [-100, 100]"});
+    r.priority = priority_of(*it);
+    if (!r.priority) errors.push_back({"/priority", priority_rule()});
   }
   if (auto it = body.find("fresh"); it != body.end()) {
     if (it->is_boolean())

@@ -1,5 +1,6 @@
 // POST /jobs, GET /jobs, GET /jobs/{id}, POST /jobs/{id}/cancel.
 #include "server/core/job_id.hpp"
+#include "server/core/priority.hpp"
 #include "server/core/run_query.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/job_filter_query.hpp"
@@ -39,11 +40,9 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
     if (!options.fresh) errors.push_back({"/query/fresh", "must be true or false"});
   }
   if (auto it = rc.query.find("priority"); it != rc.query.end()) {
-    auto p = parse_long(it->second);
-    if (!p || *p < -100 || *p > 100)
-      errors.push_back({"/query/priority", "must be an integer in [-100, 100]"});
-    else
-      options.priority = static_cast<int>(*p);
+    const auto number = parse_long(it->second);
+    options.priority = number ? priority_of(*number) : std::nullopt;
+    if (!options.priority) errors.push_back({"/query/priority", priority_rule()});
   }
   std::string key(req["Idempotency-Key"]);
   if (req.count("Idempotency-Key") && (key.empty() || key.size() > 200))

@@ -3,6 +3,7 @@
 #include "server/core/clock.hpp"
 #include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
+#include "server/core/priority.hpp"
 
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
@@ -42,10 +43,10 @@ std::vector<api::FieldError> take_server_fields(nlohmann::json& doc, SubmitOptio
     doc.erase(it);
   }
   if (auto it = doc.find("priority"); it != doc.end()) {
-    if (it->is_number_integer() && it->get<long>() >= -100 && it->get<long>() <= 100) {
-      if (!options.priority) options.priority = it->get<int>();
+    if (const auto priority = priority_of(*it)) {
+      if (!options.priority) options.priority = priority;
     } else {
-      errors.push_back({"/priority", "must be an integer in [-100, 100]"});
+      errors.push_back({"/priority", priority_rule()});
     }
     doc.erase(it);
   }

@@ -1,0 +1,20 @@
+#include "server/core/priority.hpp"
+
+namespace slipfront::server {
+
+std::string priority_rule() {
+  return "must be an integer in [" + std::to_string(lowest_priority) + ", " +
+         std::to_string(highest_priority) + "]";
+}
+
+std::optional<int> priority_of(long value) {
+  if (value < lowest_priority || value > highest_priority) return std::nullopt;
+  return static_cast<int>(value);
+}
+
+std::optional<int> priority_of(const nlohmann::json& value) {
+  if (!value.is_number_integer()) return std::nullopt;
+  return priority_of(value.get<long>());
+}
+
+} // namespace slipfront::server
