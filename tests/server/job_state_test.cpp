@@ -53,5 +53,10 @@ TEST(JobState, PriorityIsAnIntegerInItsRange) {
   for (const nlohmann::json& bad : {nlohmann::json(101), nlohmann::json(-101), nlohmann::json(1.5),
                                     nlohmann::json("5"), nlohmann::json(true), nlohmann::json()})
     EXPECT_FALSE(priority_of(bad)) << bad.dump();
+  // Integers past 64 bits are refused, not wrapped (2^64 - 1 once read as -1).
+  for (const nlohmann::json& huge :
+       {nlohmann::json(18446744073709551615u), nlohmann::json(9223372036854775808u),
+        nlohmann::json(-9223372036854775807 - 1)})
+    EXPECT_FALSE(priority_of(huge)) << huge.dump();
   EXPECT_EQ(priority_rule(), "must be an integer in [-100, 100]");
 }
