@@ -3,11 +3,7 @@
 #include "server/core/job_id.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/responses.hpp"
-#include "server/services/study_progress.hpp"
-
-#include "api/json_number.hpp"
-#include "api/result_reader.hpp"
-#include "api/study_analysis.hpp"
+#include "server/http/study_json.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -65,9 +61,9 @@ Response create_study(ServerContext& ctx, RequestContext& rc) {
   case Kind::created:
     break;
   }
-  auto body = ctx.studies.view(*r.id);
-  if (!body) throw std::runtime_error("study " + *r.id + " vanished after its creation");
-  auto res = json_response(req, http::status::created, *body);
+  auto view = ctx.studies.view(*r.id);
+  if (!view) throw std::runtime_error("study " + *r.id + " vanished after its creation");
+  auto res = json_response(req, http::status::created, study_to_json(*view));
   res.set(http::field::location, api_prefix + "/studies/" + *r.id);
   return res;
 }
@@ -76,9 +72,9 @@ Response get_study(ServerContext& ctx, RequestContext& rc) {
   const auto& id = rc.path_params.at("id");
   if (!is_valid_job_id(id)) return not_found_study(rc.request, id);
   if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
-  auto body = ctx.studies.view(id);
-  if (!body) return not_found_study(rc.request, id);
-  return json_response(rc.request, http::status::ok, *body);
+  auto view = ctx.studies.view(id);
+  if (!view) return not_found_study(rc.request, id);
+  return json_response(rc.request, http::status::ok, study_to_json(*view));
 }
 
 // 200 when every unfinished run was still queued (all cancelled now), 202 when running
@@ -102,13 +98,14 @@ Response cancel_study(ServerContext& ctx, RequestContext& rc) {
   case Kind::cancelled:
     break;
   }
-  auto body = ctx.studies.view(id);
-  if (!body) throw std::runtime_error("study " + id + " vanished while being cancelled");
-  (*body)["cancelled_jobs"] = r.cancelled_jobs;
-  (*body)["cancel_requested_jobs"] = r.cancel_requested_jobs;
+  auto view = ctx.studies.view(id);
+  if (!view) throw std::runtime_error("study " + id + " vanished while being cancelled");
+  json body = study_to_json(*view);
+  body["cancelled_jobs"] = r.cancelled_jobs;
+  body["cancel_requested_jobs"] = r.cancel_requested_jobs;
   return json_response(rc.request,
                        r.cancel_requested_jobs.empty() ? http::status::ok : http::status::accepted,
-                       *body);
+                       body);
 }
 
 Response list_studies(ServerContext& ctx, RequestContext& rc) {
@@ -144,7 +141,7 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
                             errors);
-  auto studies = ctx.studies.store().list(limit + 1, cursor, status);
+  auto studies = ctx.studies.list(limit + 1, cursor, status);
   json body;
   body["studies"] = json::array();
   std::optional<std::int64_t> next;
@@ -165,67 +162,15 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   return json_response(rc.request, http::status::ok, body);
 }
 
-// speed_accuracy of each regime, with the relative L2 error of the slip-velocity record at
-// the spectrum probe against the reference run's record (api/study/speed_accuracy.hpp);
-// the records are read from the result files here.
+// speed_accuracy of each regime, with the L2 error of the slip-velocity records (the service
+// reads them from the result files).
 Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
   const auto& id = rc.path_params.at("id");
   if (!is_valid_job_id(id)) return not_found_study(rc.request, id);
   if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
-  auto study = ctx.studies.store().get(id);
-  if (!study) return not_found_study(rc.request, id);
-  auto rows = ctx.studies.store().runs(id);
-  std::map<std::string, const StudyRunRow*> by_id;
-  std::vector<api::RegimeRun> runs;
-  for (const auto& r : rows) {
-    runs.push_back({r.regime, to_study_run(r)});
-    by_id[r.job_id] = &r;
-  }
-  // The slip-velocity record at the spectrum probe, from the run's result file.
-  api::SlipVelocityErrors l2([&](const std::string& job_id, std::string& why) {
-    const auto* row = by_id.at(job_id);
-    std::optional<api::ProbeSeries> series;
-    if (row->result_path.empty()) {
-      why = "no result file (job " + row->job_status + ")";
-    } else if (auto rec = api::read_probe_record(ctx.data_dir + "/" + row->result_path, why)) {
-      series = api::ProbeSeries{std::move(rec->time), std::move(rec->slip_velocity), rec->x1};
-    }
-    return series;
-  });
-  json list = api::speed_accuracy_by_regime(runs, l2);
-  // Both methods on one chart: every run of the study's scene and of its counterpart.
-  json across = nullptr;
-  std::vector<StudyRunRow> scene_rows;
-  if (const auto scenes = ctx.studies.method_scenes(*study);
-      scenes && !scenes->other_scene.empty()) {
-    scene_rows = ctx.studies.store().scene_runs(scenes->scene);
-    const std::size_t own = scene_rows.size();
-    auto other_rows = ctx.studies.store().scene_runs(scenes->other_scene);
-    scene_rows.insert(scene_rows.end(), other_rows.begin(), other_rows.end());
-    std::vector<api::StudyRun> mine, theirs;
-    for (std::size_t k = 0; k < scene_rows.size(); ++k) {
-      by_id.emplace(scene_rows[k].job_id, &scene_rows[k]);
-      (k < own ? mine : theirs).push_back(to_study_run(scene_rows[k]));
-    }
-    json across_runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
-                                     : api::speed_accuracy_across_methods(theirs, mine);
-    for (auto& entry : across_runs)
-      l2.add_to(entry);
-    across = {{"runs", across_runs},
-              {"reference", "the finest reference run of the same L by either method "
-                            "(spectral_bi on a tie), from every run of the two scenes"}};
-  }
-  json body = {{"study_id", id},
-               {"runs", list},
-               {"probe",
-                {{"dataset", "/probes/slip_velocity_spectrum"},
-                 {"x1", api::json_number(l2.probe_x1())},
-                 {"description", "relative L2 error over time of the slip velocity at the "
-                                 "spectrum probe (probe.spectrum_x1, default 6 m)"}}},
-               {"reference", "the finest non-diverged run of the same L, when that L has a "
-                             "mesh-converged run (docs/studies.md)"},
-               {"across_methods", across}};
-  return json_response(rc.request, http::status::ok, body);
+  auto body = ctx.studies.speed_accuracy(id);
+  if (!body) return not_found_study(rc.request, id);
+  return json_response(rc.request, http::status::ok, *body);
 }
 
 bool is_hex64(const std::string& s) {
@@ -248,7 +193,7 @@ Response convergence_map(ServerContext& ctx, RequestContext& rc) {
   if (study_it != rc.query.end()) {
     study_id = study_it->second;
     std::optional<StudyRecord> study;
-    if (is_valid_job_id(study_id)) study = ctx.studies.store().get(study_id);
+    if (is_valid_job_id(study_id)) study = ctx.studies.get(study_id);
     if (!study) return not_found_study(rc.request, study_id);
     scene = study->scene_hash;
   } else {
@@ -257,7 +202,7 @@ Response convergence_map(ServerContext& ctx, RequestContext& rc) {
       return problem_response(rc.request, http::status::bad_request, "invalid scene hash",
                               {{"/query/scene", "must be 64 lower-case hex characters"}});
   }
-  auto body = scene_analysis(ctx.studies.store().scene_runs(scene));
+  auto body = ctx.studies.convergence_map(scene);
   body["scene_hash"] = scene;
   if (!study_id.empty()) body["study_id"] = study_id;
   body["source"] = "every succeeded or failed job with this scene hash, whoever submitted it "

@@ -8,10 +8,12 @@
 
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
+#include "api/result_reader.hpp"
 #include "api/study/failure_regimes.hpp"
 #include "api/study_analysis.hpp"
 
 #include <cmath>
+#include <map>
 #include <set>
 
 namespace slipfront::server {
@@ -195,78 +197,92 @@ std::optional<MethodScenes> StudyService::method_scenes(const StudyRecord& study
                       api::counterpart_scene_hash(base.spec->canonical)};
 }
 
-std::optional<json> StudyService::view(const std::string& id) {
+std::optional<StudyView> StudyService::view(const std::string& id) {
   auto study = studies_.get(id);
   if (!study) return std::nullopt;
-  json j = study_to_json(*study, studies_.runs(id));
+  StudyView view{*study, studies_.runs(id), std::nullopt, std::nullopt};
   // The same scene by the other method, from every run the group has made of it.
   if (const auto scenes = method_scenes(*study)) {
-    j["counterpart_scene_hash"] =
-        scenes->other_scene.empty() ? json(nullptr) : json(scenes->other_scene);
+    view.counterpart_scene_hash = scenes->other_scene;
     if (!scenes->other_scene.empty()) {
       const auto mine = studies_.scene_runs(scenes->scene);
       const auto theirs = studies_.scene_runs(scenes->other_scene);
-      j["cross_method"] = scenes->is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
+      view.cross_method = scenes->is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
     }
   }
-  return j;
+  return view;
 }
 
-json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, bool summary) {
-  const std::string self = "/api/v1/studies/" + s.id;
-  json j;
-  j["id"] = s.id;
-  j["name"] = s.name;
-  j["tags"] = s.tags;
-  j["kind"] = s.kind;
-  j["status"] = api::to_string(s.status);
-  j["submitted_by"] = s.submitted_by;
-  j["created_at"] = s.created_at;
-  j["updated_at"] = s.updated_at.empty() ? json(nullptr) : json(s.updated_at);
-  j["finished_at"] = s.finished_at.empty() ? json(nullptr) : json(s.finished_at);
-  j["scene_hash"] = s.scene_hash;
-  j["method"] = s.base.is_object() ? s.base.value("method", "fe") : "fe";
-  j["progress"] = {{"done", s.runs_done},
-                   {"total", s.runs_total},
-                   {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};
-  j["L_c"] = api::json_number(s.L_c);
-  j["spectral_critical_length"] = api::json_number(s.spectral_critical_length);
-  j["links"] = {{"self", self},
-                {"speed_accuracy", self + "/speed-accuracy"},
-                {"convergence_map", "/api/v1/convergence-map?scene=" + s.scene_hash},
-                {"jobs", "/api/v1/jobs?study_id=" + s.id}};
-  if (summary) return j;
-  j["request"] = s.request;
-  json list = json::array();
-  for (const auto& r : runs) {
-    std::string outcome;
-    if (r.metrics.is_object() && r.metrics.contains("outcome") && r.metrics["outcome"].is_string())
-      outcome = r.metrics["outcome"].get<std::string>();
-    json run = {{"job_id", r.job_id},
-                {"L", r.L},
-                {"n_d", r.n_d},
-                {"job_status", r.job_status},
-                {"outcome", outcome.empty() ? json(nullptr) : json(outcome)},
-                {"cached_from", r.cached_from.empty() ? json(nullptr) : json(r.cached_from)},
-                {"error", r.error.empty() ? json(nullptr) : json(r.error)},
-                {"convergence",
-                 {{"status", r.convergence_status},
-                  {"partner_n_d", api::json_number(r.partner_n_d)},
-                  {"changes",
-                   {{"propagation_distance", api::json_number(r.propagation_distance_change)},
-                    {"arrival_time", api::json_number(r.arrival_time_change)}}},
-                  {"reason", r.reason}}},
-                {"links", {{"job", "/api/v1/jobs/" + r.job_id}}}};
-    if (!r.regime.empty()) run["regime"] = r.regime;
-    list.push_back(std::move(run));
+std::optional<StudyRecord> StudyService::get(const std::string& id) {
+  return studies_.get(id);
+}
+
+std::vector<StudyRecord> StudyService::list(int limit, std::optional<std::int64_t> before_seq,
+                                            std::optional<api::StudyStatus> status) {
+  return studies_.list(limit, before_seq, status);
+}
+
+json StudyService::convergence_map(const std::string& scene_hash) {
+  return scene_analysis(studies_.scene_runs(scene_hash));
+}
+
+// speed_accuracy of each regime, with the relative L2 error of the slip-velocity record at
+// the spectrum probe against the reference run's record (api/study/speed_accuracy.hpp);
+// the records are read from the result files here.
+std::optional<json> StudyService::speed_accuracy(const std::string& id) {
+  auto study = studies_.get(id);
+  if (!study) return std::nullopt;
+  auto rows = studies_.runs(id);
+  std::map<std::string, const StudyRunRow*> by_id;
+  std::vector<api::RegimeRun> runs;
+  for (const auto& r : rows) {
+    runs.push_back({r.regime, to_study_run(r)});
+    by_id[r.job_id] = &r;
   }
-  j["runs"] = list;
-  const json& result = s.result.is_object() ? s.result : json::object();
-  j["critical_length"] = result.value("critical_length", json(nullptr));
-  j["convergence_map"] = result.value("convergence_map", json(nullptr));
-  if (result.contains("refinement")) j["refinement"] = result["refinement"];
-  if (result.contains("regimes")) j["regimes"] = result["regimes"];
-  return j;
+  // The slip-velocity record at the spectrum probe, from the run's result file.
+  const std::string& data_dir = jobs_.options().data_dir;
+  api::SlipVelocityErrors l2([&](const std::string& job_id, std::string& why) {
+    const auto* row = by_id.at(job_id);
+    std::optional<api::ProbeSeries> series;
+    if (row->result_path.empty()) {
+      why = "no result file (job " + row->job_status + ")";
+    } else if (auto rec = api::read_probe_record(data_dir + "/" + row->result_path, why)) {
+      series = api::ProbeSeries{std::move(rec->time), std::move(rec->slip_velocity), rec->x1};
+    }
+    return series;
+  });
+  json list = api::speed_accuracy_by_regime(runs, l2);
+  // Both methods on one chart: every run of the study's scene and of its counterpart.
+  json across = nullptr;
+  std::vector<StudyRunRow> scene_rows;
+  if (const auto scenes = method_scenes(*study); scenes && !scenes->other_scene.empty()) {
+    scene_rows = studies_.scene_runs(scenes->scene);
+    const std::size_t own = scene_rows.size();
+    auto other_rows = studies_.scene_runs(scenes->other_scene);
+    scene_rows.insert(scene_rows.end(), other_rows.begin(), other_rows.end());
+    std::vector<api::StudyRun> mine, theirs;
+    for (std::size_t k = 0; k < scene_rows.size(); ++k) {
+      by_id.emplace(scene_rows[k].job_id, &scene_rows[k]);
+      (k < own ? mine : theirs).push_back(to_study_run(scene_rows[k]));
+    }
+    json across_runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
+                                     : api::speed_accuracy_across_methods(theirs, mine);
+    for (auto& entry : across_runs)
+      l2.add_to(entry);
+    across = {{"runs", across_runs},
+              {"reference", "the finest reference run of the same L by either method "
+                            "(spectral_bi on a tie), from every run of the two scenes"}};
+  }
+  return json{{"study_id", id},
+              {"runs", list},
+              {"probe",
+               {{"dataset", "/probes/slip_velocity_spectrum"},
+                {"x1", api::json_number(l2.probe_x1())},
+                {"description", "relative L2 error over time of the slip velocity at the "
+                                "spectrum probe (probe.spectrum_x1, default 6 m)"}}},
+              {"reference", "the finest non-diverged run of the same L, when that L has a "
+                            "mesh-converged run (docs/studies.md)"},
+              {"across_methods", across}};
 }
 
 } // namespace slipfront::server

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,29 +36,43 @@ struct MethodScenes {
   std::string other_scene; // "" when the swapped spec is not valid
 };
 
+// A study as GET /studies/{id} shows it (written as JSON by server/http/study_json.hpp).
+struct StudyView {
+  StudyRecord study;
+  std::vector<StudyRunRow> runs;
+  // The same scene by the other method (docs/studies.md): unset when the study's base is not
+  // valid, "" when the swapped spec is not.
+  std::optional<std::string> counterpart_scene_hash;
+  std::optional<nlohmann::json> cross_method; // api::cross_method_table of the two scenes
+};
+
 class StudyService {
 public:
   StudyService(StudyStore& studies, JobService& jobs, JobQueue& queue, StudySupervisor& supervisor)
       : studies_(studies), jobs_(jobs), queue_(queue), supervisor_(supervisor) {}
 
   StudyCreateResult create(const std::string& body, const std::string& user);
-  std::optional<nlohmann::json> view(const std::string& id); // GET /studies/{id}
+  std::optional<StudyView> view(const std::string& id); // GET /studies/{id}
+  std::optional<StudyRecord> get(const std::string& id);
+  // Newest first, at most `limit`; `before_seq` is the cursor of the previous page.
+  std::vector<StudyRecord> list(int limit, std::optional<std::int64_t> before_seq,
+                                std::optional<api::StudyStatus> status);
   // POST /studies/{id}/cancel: no further runs, and every queued or running run of the
   // study is cancelled. `user` must be the submitter when tokens are in use.
   StudyCancelResult cancel(const std::string& id, const std::string& user, bool auth_enabled);
-  StudyStore& store() { return studies_; }
+  // GET /studies/{id}/speed-accuracy (docs/studies-api.md); nullopt for an unknown study.
+  std::optional<nlohmann::json> speed_accuracy(const std::string& id);
+  // GET /convergence-map: the map and L_c of every run of a scene (scene_analysis).
+  nlohmann::json convergence_map(const std::string& scene_hash);
+
+private:
   // The study's method and the counterpart scene; nullopt when its base is not valid.
   std::optional<MethodScenes> method_scenes(const StudyRecord& study);
 
-private:
   StudyStore& studies_;
   JobService& jobs_;
   JobQueue& queue_;
   StudySupervisor& supervisor_;
 };
-
-// The study as GET /studies/{id} shows it; `summary` leaves out the runs and the analysis.
-nlohmann::json study_to_json(const StudyRecord& study, const std::vector<StudyRunRow>& runs,
-                             bool summary = false);
 
 } // namespace slipfront::server
