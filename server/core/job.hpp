@@ -23,6 +23,11 @@ using api::to_string;
 // A job's result file: path (relative to the data dir), size, SHA-256 (api/run_record.hpp).
 using api::ResultFile;
 
+// Where a job's result file is kept, relative to the data dir: results/<id>.h5.
+inline std::string result_relative_path(const std::string& job_id) {
+  return "results/" + job_id + ".h5";
+}
+
 enum class TransitionKind { normal, recovery };
 bool transition_allowed(JobStatus from, JobStatus to, TransitionKind kind = TransitionKind::normal);
 

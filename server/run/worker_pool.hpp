@@ -49,9 +49,6 @@ public:
   int slots() const override { return options_.workers; }
   int workers() const { return options_.workers; }
 
-  // data_dir-relative path of a job's result file.
-  static std::string result_relative_path(const std::string& id) { return "results/" + id + ".h5"; }
-
 private:
   void work();
   void run_one(const std::string& id);

@@ -9,7 +9,6 @@
 #include "server/core/log.hpp"
 #include "server/core/storage_error.hpp"
 #include "server/run/slurm/child_process.hpp"
-#include "server/run/worker_pool.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -338,8 +337,8 @@ bool SlurmExecutor::collect(Tracked& t, const SlurmJobState& state) {
     record.error = "the run's report names no result file";
   } else if (record.status == JobStatus::succeeded) {
     try {
-      record.result = move_result(dir.result(), options_.data_dir,
-                                  WorkerPool::result_relative_path(t.id), record.result);
+      record.result =
+          move_result(dir.result(), options_.data_dir, result_relative_path(t.id), record.result);
     } catch (const std::exception& e) {
       record.status = JobStatus::failed;
       record.error = std::string("collecting the result: ") + e.what();
