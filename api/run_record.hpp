@@ -33,9 +33,7 @@ struct RunRecord {
   std::string finished_at;
 };
 
-// The error of a run that diverged, from the solver's message.
-inline std::string diverged_error(const std::string& message) {
-  return "diverged: " + message;
-}
+// The error of a run that diverged, from the solver's message: "diverged: <message>".
+std::string diverged_error(const std::string& message);
 
 } // namespace slipfront::api
