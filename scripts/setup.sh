@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages slipfront needs (only the missing ones), then configures and
 # builds the Release tree in build/ (build/slipfront). Safe to run again. The web view's
-# third-party files (Swagger UI, pinned in web/package-lock.json) come from the npm registry
-# with `npm ci`; Chromium, its driver and Selenium are for the browser test (docs/web.md).
+# third-party files (Swagger UI and Plotly, pinned in web/package-lock.json) come from the npm
+# registry with `npm ci`; Chromium, its driver and Selenium are for the browser test (docs/web.md).
 #   bash scripts/setup.sh            # packages + Release build
 #   BUILD_DIR=build-x bash scripts/setup.sh
 set -euo pipefail
@@ -31,18 +31,23 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 fi
 
-# npm (for the pinned Swagger UI): Debian's npm unless a node with npm is already there.
+# npm (for the pinned Swagger UI and Plotly): Debian's npm unless a node with npm is already there.
 if ! command -v npm >/dev/null 2>&1; then
   SUDO=""
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends npm >&2
 fi
-if [ ! -f web/node_modules/swagger-ui-dist/package.json ] ||
-   ! grep -q '"version": "5.35.0"' web/node_modules/swagger-ui-dist/package.json; then
-  echo "setup: npm ci in web/ (swagger-ui-dist, pinned)" >&2
+# npm ci when a web package pinned in web/package.json is missing or at another version.
+if ! node -e '
+  const deps = require("./web/package.json").dependencies;
+  for (const [name, pinned] of Object.entries(deps))
+    if (require(`./web/node_modules/${name}/package.json`).version !== pinned) process.exit(1);
+' 2>/dev/null; then
+  echo "setup: npm ci in web/ (swagger-ui-dist, plotly.js-cartesian-dist-min, pinned)" >&2
   (cd web && npm ci --ignore-scripts --no-audit --no-fund >&2) ||
-    echo "setup: npm ci failed: the API docs page will use its small fallback renderer" >&2
+    echo "setup: npm ci failed: the API docs page falls back to its small renderer and the" \
+         "figures of the web view are missing" >&2
 fi
 
 build_dir="${BUILD_DIR:-build}"

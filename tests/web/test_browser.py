@@ -4,72 +4,36 @@ port (docs/web.md).
 
 Each page loads with no console error; a hostile job name stays text; a job submitted through
 the form appears in the table, shows moving progress on its page and ends with its figures
-(canvases drawn from /fields and /front); a field error of the server's problem+json is shown
+(Plotly charts drawn from /fields and /front); a field error of the server's problem+json is shown
 beside its field; a study started from the form fills in its convergence map; the API docs
-render. Screenshots of every page go to --screenshots (build/web-screenshots by ctest).
+render; cancelling needs the owner's token. The figures, the study page's details, the form
+built from the schema, the presets and the 404 pages are tested in test_web_views.py.
+Screenshots of every page go to --screenshots (build/web-screenshots by ctest).
 
 Exit 77 (ctest: skipped) with a message when Chromium or its driver cannot start.
 
     /usr/bin/python3 tests/web/test_browser.py --binary build/slipfront --screenshots /tmp/shots
 """
 
-import argparse
-import json
 import os
 import sys
 import time
-import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "server"))
-from server_harness import Server, long_job  # noqa: E402
+from browser_harness import CONFIG, BrowserCase, Server, run, server_args
+from selenium import webdriver
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import Select
 
-BINARY = None
-WEB_DIR = None
-SHOTS = None
-SKIP = 77
-
-try:
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-    from selenium.common.exceptions import StaleElementReferenceException
-    from selenium.webdriver.common.by import By
-    from selenium.webdriver.support.ui import Select, WebDriverWait
-except ImportError as e:  # pragma: no cover
-    print(f"SKIP: python3-selenium is not installed ({e}); apt-get install python3-selenium")
-    sys.exit(SKIP)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "server"))
+from server_harness import long_job  # noqa: E402
 
 HOSTILE = '<img src=x onerror="window.__pwned=1">&amp;"\'</td>'
 
 
-def start_browser():
-    options = webdriver.ChromeOptions()
-    for path in ("/usr/bin/chromium", "/usr/bin/chromium-browser"):
-        if os.path.exists(path):
-            options.binary_location = path
-            break
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                "--window-size=1400,1000", "--hide-scrollbars", "--force-device-scale-factor=1",
-                "--no-first-run", "--disable-extensions", "--disable-background-networking"):
-        options.add_argument(arg)
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver_path = "/usr/bin/chromedriver"
-    service = Service(executable_path=driver_path) if os.path.exists(driver_path) else Service()
-    return webdriver.Chrome(service=service, options=options)
-
-
-class WebView(unittest.TestCase):
+class WebView(BrowserCase):
     @classmethod
     def setUpClass(cls):
-        args = ["--workers", "2"] + (["--web-dir", WEB_DIR] if WEB_DIR else [])
-        cls.server = Server(BINARY, args=args).start()
-        try:
-            cls.driver = start_browser()
-        except Exception as e:  # noqa: BLE001
-            cls.server.cleanup()
-            print(f"SKIP: headless Chromium could not start: {e}")
-            sys.exit(SKIP)
-        cls.driver.set_page_load_timeout(30)
+        cls.start(workers=2)
         # Jobs that exist before the pages are opened: a quick BI run, a quick FE run and one
         # whose name is markup.
         cls.seeded = {}
@@ -84,51 +48,6 @@ class WebView(unittest.TestCase):
             cls.seeded[key] = r.json()["id"]
         for job_id in cls.seeded.values():
             cls.server.wait_status(job_id, {"succeeded", "failed", "cancelled"}, 120)
-
-    @classmethod
-    def tearDownClass(cls):
-        try:
-            cls.driver.quit()
-        finally:
-            cls.server.cleanup()
-
-    # -- helpers -------------------------------------------------------------------------
-    def open(self, path):
-        # A fresh document each time (a change of the #fragment alone would keep the page).
-        self.driver.get("about:blank")
-        self.driver.get(self.server.url(path))
-
-    def wait(self, predicate, timeout=30, message=""):
-        # The pages re-render as they poll: an element read may be replaced meanwhile.
-        return WebDriverWait(self.driver, timeout, poll_frequency=0.1,
-                             ignored_exceptions=(StaleElementReferenceException, IndexError)
-                             ).until(lambda d: predicate(d), message)
-
-    def texts(self, selector):
-        return self.driver.execute_script(
-            "return [...document.querySelectorAll(arguments[0])].map(e => e.textContent)",
-            selector)
-
-    def css(self, selector):
-        return self.driver.find_elements(By.CSS_SELECTOR, selector)
-
-    def console_errors(self):
-        return [e for e in self.driver.get_log("browser") if e.get("level") == "SEVERE"]
-
-    def assert_no_console_errors(self, page):
-        errors = self.console_errors()
-        self.assertEqual(errors, [], f"console errors on {page}: {json.dumps(errors, indent=1)}")
-
-    def shot(self, name):
-        if not SHOTS:
-            return
-        os.makedirs(SHOTS, exist_ok=True)
-        height = self.driver.execute_script(
-            "return Math.max(document.body.scrollHeight, document.documentElement.scrollHeight)")
-        self.driver.set_window_size(1400, min(max(int(height) + 40, 900), 4000))
-        time.sleep(0.3)
-        self.driver.save_screenshot(os.path.join(SHOTS, f"{name}.png"))
-        self.driver.set_window_size(1400, 1000)
 
     # -- tests (run in name order) -------------------------------------------------------
     def test_1_jobs_page_lists_escaped_and_sorts(self):
@@ -168,20 +87,16 @@ class WebView(unittest.TestCase):
         text = field.find_element(By.XPATH, "..").find_element(By.CSS_SELECTOR, ".ferr").text
         self.assertIn("0.5", text)
         self.assertIn("invalid", field.get_attribute("class"))
-        self.assert_no_console_errors_except_422("submit (422)")
-        self.shot("submit-job-error")
-
-    def assert_no_console_errors_except_422(self, page):
         # The browser logs the 422 answer itself as a failed resource load: expected here.
-        errors = [e for e in self.console_errors() if "422" not in e.get("message", "")]
-        self.assertEqual(errors, [], f"console errors on {page}: {errors}")
+        self.assert_no_console_errors("submit (422)", expected=(" 422 ",))
+        self.shot("submit-job-error")
 
     def test_3_job_from_the_form_progresses_and_ends_with_figures(self):
         # The paper's run: the form untouched but for a name (its defaults are the paper's
         # scene; several seconds on this machine, long enough to watch it progress).
         self.open("/#/submit")
         self.wait(lambda d: self.css("#f_geometry_nodes_per_meter"), message="the form is built")
-        self.css("#job-name")[0].send_keys("paper run, from the form")
+        self.css("#f_name")[0].send_keys("paper run, from the form")
         self.shot("submit-job")
         self.css("#job-submit")[0].click()
         self.wait(lambda d: "#/jobs/" in d.current_url, message="the job page opens")
@@ -199,28 +114,29 @@ class WebView(unittest.TestCase):
                 if not running_shot and len(seen) >= 3:
                     self.shot("job-running")
                     running_shot = True
-            if self.css("#fig-map canvas") and self.css("#fig-vr canvas"):
+            if self.chart_ready("#fig-map") and self.chart_ready("#fig-vr"):
                 break
             time.sleep(0.15)
-        self.assertTrue(self.css("#fig-map canvas"), "the x1-t map is drawn")
-        self.wait(lambda d: self.css("#fig-vt canvas"), message="V(t) is drawn")
-        self.assertTrue(self.css("#fig-vr canvas"), "V_r(x1) is drawn")
+        self.assertTrue(self.chart_ready("#fig-map"), "the x1-t map is drawn")
+        self.wait(lambda d: self.chart_ready("#fig-vt"), message="V(t) is drawn")
+        self.assertTrue(self.chart_ready("#fig-vr"), "V_r(x1) is drawn")
         print(f"progress values seen while running: {sorted(seen)}", file=sys.stderr)
         self.assertGreaterEqual(len(seen), 2, f"progress did not move in the page: {seen}")
-        # The canvases hold a picture, not a blank.
-        filled = self.driver.execute_script(
-            "const c = document.querySelector('#fig-map canvas');"
-            "const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;"
-            "const s = new Set(); for (let i = 0; i < d.length; i += 4 * 97) s.add(d[i] * 65536 + d[i+1] * 256 + d[i+2]);"
-            "return s.size;")
-        self.assertGreater(filled, 20, "the map has colours")
+        # The map holds a picture: the heat map's image is drawn, from the whole field.
+        self.assertTrue(self.css("#fig-map .heatmaplayer image"), "the map's image")
+        heat = self.js("const t = document.getElementById('fig-map').data[0];"
+                       "return [t.type, t.z.length, t.z[0].length]")
+        self.assertEqual(heat[0], "heatmap")
+        self.assertGreater(heat[1] * heat[2], 1000)
         self.assertIn("Download HDF5", self.css("#download")[0].text)
         self.assertIn("succeeded", " ".join(self.texts("h1 .badge")))
-        # Picking an x1 on the map redraws V(t) with that position.
-        canvas = self.css("#fig-map canvas")[0]
-        self.driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", canvas)
-        webdriver.ActionChains(self.driver).move_to_element_with_offset(canvas, 0, 0).click().perform()
-        self.wait(lambda d: len(self.css("#vt-x1")[0].get_attribute("value").split(",")) >= 4)
+        # Picking an x1 on the map (a click in its plot area) adds that position to V(t).
+        area = self.css("#fig-map .nsewdrag[data-subplot=xy]")[0]
+        self.js("arguments[0].scrollIntoView({block: 'center'})", area)
+        webdriver.ActionChains(self.driver).move_to_element_with_offset(area, 40, 0).click().perform()
+        self.wait(lambda d: len(self.css("#vt-x1")[0].get_attribute("value").split(",")) >= 3,
+                  message="the clicked x1 is added to the V(t) positions")
+        self.wait(lambda d: len(self.chart_data("#fig-vt")) >= 3, message="V(t) redrawn with it")
         self.assert_no_console_errors("job")
         self.shot("job")
         # The jobs table lists it as succeeded.
@@ -247,7 +163,7 @@ class WebView(unittest.TestCase):
         self.css("#study-submit")[0].click()
         self.wait(lambda d: " ".join(self.texts("#study-L ~ .ferr")).strip() != "",
                   message="the L error is beside the L box")
-        self.assert_no_console_errors_except_422("study form (422)")
+        self.assert_no_console_errors("study form (422)", expected=(" 422 ",))
         box.clear()
         box.send_keys("1e-3, 1e-4, 5e-5")
         self.shot("submit-study")
@@ -264,7 +180,7 @@ class WebView(unittest.TestCase):
         self.assertGreaterEqual(len(self.css("#study-cmap td.cs-converged")), 3,
                                 "each of the three L has a converged cell")
         self.wait(lambda d: " ".join(self.texts("#lc-reason")) not in ("", "—"))
-        self.wait(lambda d: self.css("#fig-speed canvas"))
+        self.wait(lambda d: self.chart_ready("#fig-speed"), message="the speed-accuracy chart")
         self.wait(lambda d: self.css("#scene-cmap td.cs-converged"))
         self.assert_no_console_errors("study")
         self.shot("study")
@@ -305,17 +221,14 @@ class WebView(unittest.TestCase):
         with open(token_file, "w") as f:
             f.write("alice:alice-token-1234\nbob:bob-token-5678\n")
         os.chmod(token_file, 0o600)
-        args = ["--workers", "1", "--token-file", token_file] + (
-            ["--web-dir", WEB_DIR] if WEB_DIR else [])
-        shared = Server(BINARY, args=args).start()
+        shared = Server(CONFIG["binary"], args=server_args(["--workers", "1", "--token-file", token_file])).start()
         try:
             spec = long_job("alice's long run")
             spec["time"]["duration"] = 200.0
             r = shared.submit(spec, headers={"Authorization": "Bearer alice-token-1234"})
             self.assertEqual(r.status_code, 201, r.text)
             job_id = r.json()["id"]
-            self.driver.get("about:blank")
-            self.driver.get(shared.url(f"/#/jobs/{job_id}"))
+            self.open(f"/#/jobs/{job_id}", server=shared)
             self.wait(lambda d: self.css("#cancel"), message="a Cancel button")
 
             def cancel_answer():
@@ -341,20 +254,10 @@ class WebView(unittest.TestCase):
             self.assertEqual(shared.get(f"/api/v1/jobs/{job_id}").json()["status"], "cancelled")
             self.assertNotIn("token", self.driver.current_url)
             # 401 and 403 are logged by the browser as failed loads: expected here.
-            errors = [e for e in self.console_errors()
-                      if " 401 " not in e.get("message", "") and " 403 " not in e.get("message", "")]
-            self.assertEqual(errors, [])
+            self.assert_no_console_errors("job (401, 403)", expected=(" 401 ", " 403 "))
             self.shot("job-cancelled")
         finally:
             shared.cleanup()
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--binary", required=True)
-    parser.add_argument("--web-dir")
-    parser.add_argument("--screenshots")
-    args, rest = parser.parse_known_args()
-    BINARY = os.path.abspath(args.binary)
-    WEB_DIR = args.web_dir
-    SHOTS = args.screenshots
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    run()

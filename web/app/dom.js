@@ -95,3 +95,12 @@ export function shortId(id) {
 export function fill(el, ...children) {
   return append(clear(el), children);
 }
+
+// The page of a job or study that does not exist (or could not be read): one message and a
+// way back, nothing else.
+export function notFound(error, what, id, back, backText) {
+  return h('section', { class: 'card', id: 'not-found' },
+    h('h1', { text: error.status === 404 ? `No ${what} ${id}` : `Could not load ${what} ${id}` }),
+    h('p', { class: 'error', text: error.status === 404 ? `This server has no ${what} with that id (it may be on another server).` : error.message }),
+    h('p', {}, h('a', { href: back, text: `Back to ${backText}` })));
+}

@@ -1,23 +1,17 @@
 // A run: status and progress (live), spec, metrics, cost, convergence status, provenance,
 // the HDF5 download, and the paper's figures drawn from /fields and /front slices.
-import { h, clear, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, shortId } from './dom.js';
+import { h, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
 import { get, getJSON } from './api.js';
-import { heatmap, plot, PALETTE } from './charts.js';
+import { drawFigures } from './job_figures.js';
 import { cancelJob, jobL, jobNd } from './jobs.js';
+import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
 
 const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
-// Colours of the V(t) positions: visible on the map's dark background and on white.
-const MARKS = ['#00b4d8', '#ff9f1c', '#e040fb', '#7cb342', '#ffd166', '#f4f4f4'];
 
-// Shear and P wave speeds of the block (plane strain) from the spec's material.
-function waveSpeeds(spec) {
-  const m = spec?.material || {};
-  const E = m.young_modulus, nu = m.poisson_ratio, rho = m.density;
-  if (!(E > 0 && nu > 0 && rho > 0)) return null;
-  const G = E / (2 * (1 + nu));
-  const cs = Math.sqrt(G / rho);
-  const cd = Math.sqrt((E * (1 - nu)) / ((1 + nu) * (1 - 2 * nu) * rho));
-  return { cs, cp: cd };
+// "nx = 800, ny = 101": the mesh entries a method has (the BI method has no height).
+function meshText(mesh) {
+  const known = Object.entries(mesh || {}).filter(([, v]) => v !== null && v !== undefined);
+  return known.length ? known.map(([k, v]) => `${k} = ${typeof v === 'number' && !Number.isInteger(v) ? fmt(v, 6) : v}`).join(', ') : '—';
 }
 
 export async function jobPage(view, page, id) {
@@ -25,7 +19,6 @@ export async function jobPage(view, page, id) {
   const live = h('section', { class: 'card', id: 'job-live' });
   const cols = h('div', { class: 'cols' });
   const figs = h('section', { class: 'card figures', id: 'job-figures' });
-  view.append(head, live, cols, figs);
   let job = null;
   let drawn = false;
 
@@ -57,16 +50,19 @@ export async function jobPage(view, page, id) {
     // of the group with the same physics but L and n_d).
     let convergence = null;
     let source = null;
+    let finished = false; // no run will be added to what the status was judged against
     try {
       if (job.study_id) {
         const study = await get(`/api/v1/studies/${job.study_id}`);
         convergence = (study.runs || []).find((r) => r.job_id === job.id)?.convergence || null;
         source = 'its study';
+        finished = study.status !== 'running';
       }
       if (!convergence && job.scene_hash && FINAL.has(job.status)) {
         const scene = await get(`/api/v1/convergence-map?scene=${job.scene_hash}`);
         convergence = (scene.runs || []).find((r) => r.job_id === job.id)?.convergence || null;
         source = `the scene's shared map (${scene.count} run${scene.count === 1 ? '' : 's'})`;
+        finished = mapIsFinal(scene.convergence_map); // as the study page's shared map says
       }
     } catch (e) { convergence = { status: 'unknown', reason: e.message }; }
     fill(cols, 
@@ -85,12 +81,12 @@ export async function jobPage(view, page, id) {
       h('section', { class: 'card' }, h('h2', { text: 'Cost' }), kvTable([
         ['wall time', job.status === 'running' && job.started_at ? `${fmtDuration((Date.now() - Date.parse(job.started_at)) / 1000)} so far` : (job.cached_from ? 'none: reused' : fmtDuration(job.wall_time_s))],
         ['steps', m.steps ?? job.progress?.steps],
-        ['time step', m.dt != null ? `${fmt(m.dt)} s (stable ${fmt(m.stable_dt)} s)` : '—'],
-        ['mesh', m.mesh ? Object.entries(m.mesh).map(([k, v]) => `${k} = ${v}`).join(', ') : '—'],
+        ['time step', m.dt != null ? `${fmt(m.dt)} s${m.stable_dt != null ? ` (stable ${fmt(m.stable_dt)} s)` : ''}` : '—'],
+        ['mesh', meshText(m.mesh)],
         ['memory estimate', fmtBytes(job.memory_estimate_bytes)],
         ['result file', job.result ? fmtBytes(job.result.size) : '—'],
       ]), h('h2', { text: 'Convergence' }), convergence
-        ? kvTable([['status', badge(convergence.status)], ['against', convergence.partner_n_d ? `n_d = ${convergence.partner_n_d}` : '—'], ['reason', convergence.reason], ['judged in', source]])
+        ? kvTable([['status', statusBadge(convergence, finished)], ['against', convergence.partner_n_d ? `n_d = ${convergence.partner_n_d}` : '—'], ['reason', cellText(convergence, null, finished).title], ['judged in', source]])
         : h('p', { class: 'muted', text: FINAL.has(job.status) ? 'No convergence status (the run has no result to compare).' : 'Judged when the run has finished, against the other meshes of its scene.' })),
       h('section', { class: 'card' }, h('h2', { text: 'Provenance' }), kvTable([
         ['code version', job.code_version],
@@ -113,12 +109,13 @@ export async function jobPage(view, page, id) {
     if (!changed && job) return;
     const wasFinal = job && FINAL.has(job.status);
     job = body;
+    if (!head.isConnected) view.append(head, live, cols, figs); // only for a job that exists
     renderHead();
     renderLive();
     if (!wasFinal) await renderDetails();
     if (job.status === 'succeeded' && !drawn) {
       drawn = true;
-      await drawFigures(figs, job);
+      await drawFigures(figs, job).catch((e) => figs.append(h('p', { class: 'error', text: `The figures could not be drawn: ${e.message}` })));
     } else if (!FINAL.has(job.status)) {
       fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'The figures appear when the run has succeeded.' }));
     } else if (job.status !== 'succeeded') {
@@ -128,95 +125,8 @@ export async function jobPage(view, page, id) {
   try {
     await load();
   } catch (e) {
-    view.append(h('p', { class: 'error', text: e.status === 404 ? `No job ${id}.` : e.message }));
+    view.append(notFound(e, 'job', id, '#/jobs', 'the jobs'));
     return;
   }
   page.every(1000, async () => { if (!FINAL.has(job.status)) await load(); });
-}
-
-async function drawFigures(figs, job) {
-  fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'Drawn from slices of the HDF5 result (GET /api/v1/jobs/{id}/fields/{name}) and the front (/front), as the paper’s Fig. 2.' }));
-  const mapBox = h('div', { class: 'fig', id: 'fig-map' });
-  const vtBox = h('div', { class: 'fig', id: 'fig-vt' });
-  const vrBox = h('div', { class: 'fig', id: 'fig-vr' });
-  const picks = h('input', { id: 'vt-x1', type: 'text', size: 22 });
-  const pickMsg = h('span', { class: 'muted' });
-  figs.append(
-    h('h3', { text: 'Slip velocity in the x1–t plane, with the slip front' }), mapBox,
-    h('h3', { text: 'Slip velocity history V(t) at chosen x1' }),
-    h('div', { class: 'toolbar' }, h('label', { for: 'vt-x1', text: 'x1 [m] (comma list, or click the map): ' }), picks, h('button', { id: 'vt-draw', text: 'Draw', onclick: () => drawVt() }), pickMsg),
-    vtBox,
-    h('h3', { text: 'Rupture speed V_r(x1)' }), vrBox);
-
-  const width = Math.max(320, mapBox.clientWidth || 800);
-  const budget = Math.min(400000, Math.round(width * 420));
-  const [slice, front] = await Promise.all([
-    get(`/api/v1/jobs/${job.id}/fields/slip_velocity?max_points=${budget}`),
-    get(`/api/v1/jobs/${job.id}/front`).catch(() => null),
-  ]);
-  const frontLine = front ? { x: front.x1, y: front.arrival_time, color: '#ff3b30', width: 2, label: 'slip front (arrival time)' } : null;
-  const values = slice.values;
-  // Colour range: 0 to the 99.9th percentile of V, so that the nucleation peak does not wash
-  // out the propagating pulse.
-  const flat = values.flat().filter((v) => v !== null && Number.isFinite(v)).sort((a, b) => a - b);
-  const vmax = flat.length ? flat[Math.min(flat.length - 1, Math.floor(flat.length * 0.999))] : 1;
-  const vmin = Math.min(0, flat.length ? flat[0] : 0);
-  // The map is redrawn when the V(t) positions change: they are marked on it as vertical
-  // lines in the colours of their curves, as in the paper's Fig. 2a-b.
-  const mapHolder = h('div');
-  mapBox.append(mapHolder);
-  const drawMap = (marks = []) => {
-    clear(mapHolder);
-    heatmap(mapHolder, {
-      x: slice.x1, y: slice.time, values, vmin, vmax: vmax > vmin ? vmax : vmin + 1,
-      xlabel: 'x1 [m]', ylabel: 't [s]', clabel: 'slip velocity V [m/s]',
-      lines: (frontLine ? [frontLine] : []).concat(marks.map((m) => ({ x: [m.x, m.x], y: [slice.time[0], slice.time[slice.time.length - 1]], color: m.color, dash: [6, 4], width: 1.5 }))),
-      onPick: (x1) => { const list = parsePicks().concat([Number(x1.toFixed(2))]).slice(-5); picks.value = list.join(', '); drawVt(); },
-    });
-  };
-  drawMap();
-  figs.querySelector('#fig-map').append(h('p', { class: 'caption muted', text: `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). Colours saturate at the 99.9th percentile (${fmt(vmax)} m/s).` }));
-
-  // Default positions: a quarter, half and three quarters of the way from the nucleation
-  // (x1 = 0) to the arrest (or to the probes when the run did not arrest).
-  const x0 = slice.x1[0], x1end = slice.x1[slice.x1.length - 1];
-  const arrest = job.metrics?.arrest_position;
-  const reach = Number.isFinite(arrest) && arrest > 0 ? arrest : (job.spec?.probe?.arrival_x1 ?? x0 + 0.5 * (x1end - x0));
-  const defaults = [0.25, 0.5, 0.75].map((f) => Number((f * reach).toFixed(2)));
-  picks.value = defaults.join(', ');
-  function parsePicks() {
-    return picks.value.split(/[,\s]+/).map(Number).filter((v) => Number.isFinite(v));
-  }
-  async function drawVt() {
-    const xs = parsePicks().slice(0, 6);
-    pickMsg.textContent = '';
-    try {
-      const series = await Promise.all(xs.map((x) => get(`/api/v1/jobs/${job.id}/fields/slip_velocity?x1_min=${x}&x1_max=${x}&max_points=4000`)));
-      clear(vtBox);
-      drawMap(series.map((s, i) => ({ x: s.x1[0], color: MARKS[i % MARKS.length] })));
-      plot(vtBox, {
-        series: series.map((s, i) => ({ x: s.time, y: s.values.map((r) => r[0]), label: `x1 = ${fmt(s.x1[0], 4)} m`, color: MARKS[i % MARKS.length] })),
-        xlabel: 't [s]', ylabel: 'slip velocity V [m/s]', height: 300,
-      });
-    } catch (e) { pickMsg.textContent = e.message; pickMsg.className = 'error'; }
-  }
-  await drawVt();
-
-  if (front) {
-    const speeds = waveSpeeds(job.spec);
-    const hl = speeds ? [{ y: speeds.cs, label: `c_s = ${fmt(speeds.cs)} m/s`, color: '#6b7785' }, { y: speeds.cp, label: `c_p = ${fmt(speeds.cp)} m/s`, color: '#6b7785' }] : [];
-    // Near the nucleation the front arrives almost at once (V_r -> infinity): the axis stops at
-    // 1.5 c_p so that the propagation stays readable.
-    const vr = front.rupture_speed.filter((v) => v !== null && Number.isFinite(v));
-    const top = Math.max(...vr, 0);
-    const yrange = speeds && top > 1.5 * speeds.cp ? [0, 1.5 * speeds.cp] : undefined;
-    plot(vrBox, {
-      series: [{ x: front.x1, y: front.rupture_speed, label: 'V_r (from the front arrival times)', color: PALETTE[0] }],
-      xlabel: 'x1 [m]', ylabel: 'rupture speed V_r [m/s]', height: 300, hlines: hl, yrange,
-      empty: 'no rupture speed (no front)',
-    });
-    if (yrange) vrBox.append(h('p', { class: 'caption muted', text: `Axis cut at 1.5 c_p; V_r reaches ${fmt(top)} m/s near the nucleation, where the front arrives almost at once.` }));
-  } else {
-    vrBox.append(h('p', { class: 'muted', text: 'No front stored for this run.' }));
-  }
 }

@@ -1,9 +1,10 @@
 // Studies: the list, and one study with its progress, live convergence map in the L–n_d
 // plane, the L_c verdict with its reason, the speed–accuracy chart and the shared map of the
 // scene (every run of the group with the same physics but L and n_d).
-import { h, clear, fill, fmt, fmtDuration, fmtTime, badge, progressBar, kvTable, link, shortId } from './dom.js';
+import { h, fill, fmt, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
 import { get, getJSON, post } from './api.js';
-import { plot, PALETTE } from './charts.js';
+import { convergenceGrid, mapIsFinal, statusBadge } from './convergence_grid.js';
+import { METRICS, drawSpeedChart } from './speed_chart.js';
 
 export function studiesPage(view, page) {
   const table = h('table', { class: 'grid', id: 'studies-table' });
@@ -42,59 +43,6 @@ export function studiesPage(view, page) {
   page.every(3000, () => load().catch(fail));
 }
 
-const STATUS_TEXT = {
-  converged: 'converged', not_converged: 'not converged', unknown: 'no finer mesh yet',
-  diverged: 'diverged', pending: 'pending', failed: 'failed',
-};
-
-// The L × n_d grid: rows L (large to small), columns n_d. cells: the map's cells; runs: the
-// study's runs (for the ones still queued or running).
-export function convergenceGrid(map, runs, id) {
-  const Ls = new Set((map?.L) || []);
-  const nds = new Set((map?.n_d) || []);
-  for (const r of runs || []) { Ls.add(r.L); nds.add(r.n_d); }
-  const Llist = [...Ls].sort((a, b) => b - a);
-  const ndlist = [...nds].sort((a, b) => a - b);
-  const key = (L, n) => `${L}|${n}`;
-  const cells = new Map((map?.cells || []).map((c) => [key(c.L, c.n_d), c]));
-  const running = new Map();
-  for (const r of runs || []) if (!cells.has(key(r.L, r.n_d)) || ['queued', 'running'].includes(r.job_status)) running.set(key(r.L, r.n_d), r);
-  const table = h('table', { class: 'cmap', id });
-  table.append(h('thead', {}, h('tr', {}, h('th', { class: 'corner', text: 'L [m] \\ n_d [1/m]' }), ndlist.map((n) => h('th', { text: fmt(n) })), h('th', { text: 'converged at' }))));
-  const body = h('tbody');
-  for (const L of Llist) {
-    const tr = h('tr', {}, h('th', { text: fmt(L) }));
-    for (const n of ndlist) {
-      const c = cells.get(key(L, n));
-      const r = running.get(key(L, n));
-      if (r && (!c || ['queued', 'running'].includes(r.job_status))) {
-        tr.append(h('td', { class: `cell st-${r.job_status}`, title: `job ${r.job_status}` }, h('a', { href: `#/jobs/${r.job_id}`, text: r.job_status })));
-      } else if (c) {
-        const ch = c.changes || {};
-        const detail = ch.propagation_distance != null ? `Δ ${fmt(100 * ch.propagation_distance, 2)} %` : '';
-        tr.append(h('td', { class: `cell cs-${c.status}`, title: c.reason || '' },
-          h('a', { href: `#/jobs/${c.run_id}`, text: STATUS_TEXT[c.status] || c.status }), detail ? h('div', { class: 'delta', text: detail }) : null));
-      } else tr.append(h('td', { class: 'cell empty', text: '' }));
-    }
-    const conv = map?.converged_n_d ? map.converged_n_d[JSON.stringify(L)] ?? findConverged(map.converged_n_d, L) : null;
-    tr.append(h('td', { class: 'num', text: conv != null ? `n_d = ${fmt(conv)}` : '—' }));
-    body.append(tr);
-  }
-  if (!Llist.length) body.append(h('tr', {}, h('td', { class: 'muted', text: 'no runs yet' })));
-  table.append(body);
-  return h('div', { class: 'cmapwrap' }, table, legendRow());
-}
-
-function findConverged(obj, L) {
-  for (const [k, v] of Object.entries(obj)) if (Math.abs(Number(k) - L) <= 1e-12 * Math.abs(L)) return v;
-  return null;
-}
-
-function legendRow() {
-  return h('div', { class: 'cmaplegend' }, ['converged', 'not_converged', 'unknown', 'diverged', 'failed'].map((s) => h('span', { class: `cell cs-${s}`, text: STATUS_TEXT[s] })),
-    h('span', { class: 'cell st-running', text: 'running / queued' }), h('span', { class: 'muted', text: ' Δ: change of the propagation distance against the next finer mesh' }));
-}
-
 export async function studyPage(view, page, id) {
   const head = h('div', { class: 'pagehead' });
   const summary = h('section', { class: 'card', id: 'study-summary' });
@@ -102,9 +50,8 @@ export async function studyPage(view, page, id) {
   const saCard = h('section', { class: 'card', id: 'study-speed' });
   const sceneCard = h('section', { class: 'card', id: 'study-scene' });
   const runsCard = h('section', { class: 'card', id: 'study-runs' });
-  view.append(head, summary, mapCard, saCard, sceneCard, runsCard);
   let study = null;
-  let metric = 'slip_velocity_l2';
+  let metric = 'max';
   let sa = null;
 
   const render = () => {
@@ -128,41 +75,27 @@ export async function studyPage(view, page, id) {
       }, text: 'Cancel study' }), out) : null);
     fill(mapCard, h('h2', { text: 'Convergence map (this study)' }),
       h('p', { class: 'muted', text: 'Each cell is a run at (L, n_d): converged when it agrees with the next finer mesh (SPEC §2). Cells fill in as runs finish; hover a cell for the reason.' }),
-      convergenceGrid(study.convergence_map, study.runs, 'study-cmap'));
+      convergenceGrid(study.convergence_map, study.runs, 'study-cmap', { tolerances: cl.tolerances, finished: study.status !== 'running' }));
     if (study.refinement && Object.keys(study.refinement).length) {
       mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [`L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
     }
-    fill(runsCard, h('h2', { text: 'Runs' }), runsTable(study.runs || []));
+    fill(runsCard, h('h2', { text: 'Runs' }), runsTable(study.runs || [], study.status !== 'running'));
     if (study.cross_method && (Array.isArray(study.cross_method) ? study.cross_method.length : Object.keys(study.cross_method).length)) {
       runsCard.append(h('details', {}, h('summary', { text: 'The same L by FE and BI (cross-method table)' }), h('pre', { class: 'json', text: JSON.stringify(study.cross_method, null, 2) })));
     }
   };
 
-  const renderSpeed = () => {
+  const renderSpeed = async () => {
     fill(saCard, h('h2', { text: 'Speed and accuracy' }));
     const select = h('select', { id: 'sa-metric', onchange: () => { metric = select.value; renderSpeed(); } },
-      [['slip_velocity_l2', 'L2 error of V at the spectrum probe'], ['propagation_distance', 'error of the propagation distance'], ['arrival_time', 'error of the arrival time']].map(([v, t]) => h('option', { value: v, text: t, selected: v === metric })));
-    saCard.append(h('div', { class: 'toolbar' }, h('label', { text: 'error: ' }), select,
-      h('span', { class: 'muted', text: ' relative, against the finest converged run of the same L; runs without a reference are left out' })));
-    const entries = (sa?.across_methods?.runs || sa?.runs || []);
-    // One series per (method, L): colour by L, circles FE, squares BI; points in order of cost.
-    const byKey = new Map();
-    const Ls = [...new Set(entries.map((e) => e.L))].sort((a, b) => b - a);
-    for (const e of entries) {
-      const err = e.errors?.[metric];
-      if (!(err > 0) || !(e.wall_time_s > 0)) continue;
-      const m = e.method || study.method || 'fe';
-      const k = `${m === 'spectral_bi' ? 'BI' : 'FE'}, L = ${fmt(e.L)} m`;
-      if (!byKey.has(k)) byKey.set(k, { pts: [], label: k, points: true, line: true, marker: m === 'spectral_bi' ? 'square' : 'circle', dash: m === 'spectral_bi' ? [5, 3] : undefined, color: PALETTE[Ls.indexOf(e.L) % PALETTE.length] });
-      byKey.get(k).pts.push([e.wall_time_s, err]);
-    }
-    const series = [...byKey.values()].sort((a, b) => a.label.localeCompare(b.label)).map((s) => {
-      s.pts.sort((a, b) => a[0] - b[0]);
-      return { ...s, x: s.pts.map((p) => p[0]), y: s.pts.map((p) => p[1]) };
-    });
+      METRICS.map(([v, t]) => h('option', { value: v, text: t, selected: v === metric })));
+    saCard.append(h('div', { class: 'toolbar' }, h('label', { for: 'sa-metric', text: 'error: ' }), select,
+      h('span', { class: 'muted', text: ' relative, against the reference run of the same L (the finest converged one); one curve per method and L along its refinement, points labelled with n_d; click a point for its run' })));
     const box = h('div', { class: 'fig', id: 'fig-speed' });
     saCard.append(box);
-    plot(box, { series, xlog: true, ylog: true, xlabel: 'wall time [s]', ylabel: `relative error (${metric}) [1]`, height: 320, empty: 'no run has both a reference and an error yet' });
+    try {
+      await drawSpeedChart(box, sa?.across_methods?.runs || sa?.runs || [], metric, study.method || 'fe', `slipfront-study-${shortId(study.id)}-speed`);
+    } catch (e) { box.append(h('p', { class: 'error', text: e.message })); }
   };
 
   // The shared map of the study's scene, and of the same scene by the other method when the
@@ -173,14 +106,14 @@ export async function studyPage(view, page, id) {
       const name = (m) => (m === 'spectral_bi' ? 'spectral BI' : 'FE');
       fill(sceneCard, h('h2', { text: `Shared map of the scene, ${name(study.method)} (every run of the group)` }),
         h('p', { class: 'muted', text: `${scene.count} run(s) with this physics but L and n_d, from any study or user. L_c on the scene: ${scene.critical_length?.L_c != null ? `${fmt(scene.critical_length.L_c)} m` : 'not determined'}.` }),
-        convergenceGrid(scene.convergence_map, [], 'scene-cmap'));
+        convergenceGrid(scene.convergence_map, [], 'scene-cmap', sceneOptions(scene)));
       const other = (sa?.across_methods?.runs || []).find((e) => e.method && e.method !== (study.method || 'fe'));
       if (other) {
         const job = await get(`/api/v1/jobs/${other.id}?fields=scene_hash`);
         const otherScene = await get(`/api/v1/convergence-map?scene=${job.scene_hash}`);
         sceneCard.append(h('h2', { text: `The same scene by ${name(other.method)}` }),
           h('p', { class: 'muted', text: `${otherScene.count} run(s). L_c: ${otherScene.critical_length?.L_c != null ? `${fmt(otherScene.critical_length.L_c)} m` : 'not determined'}.` }),
-          convergenceGrid(otherScene.convergence_map, [], 'scene-cmap-other'));
+          convergenceGrid(otherScene.convergence_map, [], 'scene-cmap-other', sceneOptions(otherScene)));
       }
     } catch (e) { fill(sceneCard, h('p', { class: 'error', text: e.message })); }
   };
@@ -189,19 +122,26 @@ export async function studyPage(view, page, id) {
     const { body, changed } = await getJSON(`/api/v1/studies/${id}`);
     if (!changed && study) return;
     study = body;
+    if (!head.isConnected) view.append(head, summary, mapCard, saCard, sceneCard, runsCard); // only for a study that exists
     render();
     sa = await get(`/api/v1/studies/${id}/speed-accuracy`).catch(() => null);
-    renderSpeed();
+    await renderSpeed();
     await renderScene();
   };
   try { await load(); } catch (e) {
-    view.append(h('p', { class: 'error', text: e.status === 404 ? `No study ${id}.` : e.message }));
+    view.append(notFound(e, 'study', id, '#/studies', 'the studies'));
     return;
   }
   page.every(2000, async () => { if (study.status === 'running' || study.status === 'cancelled') await load(); });
 }
 
-function runsTable(runs) {
+// The shared map of a scene takes runs from any study: it is final when none of its cells
+// waits for a run.
+function sceneOptions(scene) {
+  return { tolerances: scene.critical_length?.tolerances, finished: mapIsFinal(scene.convergence_map) };
+}
+
+function runsTable(runs, finished) {
   const t = h('table', { class: 'grid' });
   t.append(h('thead', {}, h('tr', {}, ['L [m]', 'n_d [1/m]', 'job', 'outcome', 'convergence', 'against', 'cache'].map((x) => h('th', { text: x })))));
   const b = h('tbody');
@@ -210,7 +150,7 @@ function runsTable(runs) {
       h('td', { class: 'num', text: fmt(r.L) }), h('td', { class: 'num', text: fmt(r.n_d) }),
       h('td', {}, link(`#/jobs/${r.job_id}`, shortId(r.job_id)), ' ', badge(r.job_status)),
       h('td', { text: r.outcome || '—' }),
-      h('td', { title: r.convergence?.reason || '' }, r.convergence ? badge(r.convergence.status) : '—'),
+      h('td', {}, r.convergence ? statusBadge(r.convergence, finished) : '—'),
       h('td', { class: 'num', text: r.convergence?.partner_n_d ? `n_d = ${fmt(r.convergence.partner_n_d)}` : '—' }),
       h('td', {}, r.cached_from ? h('span', { class: 'hit', text: 'hit' }) : '')));
   }
