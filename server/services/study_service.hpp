@@ -1,5 +1,7 @@
 // What the study handlers ask of the server: create a study (validate its request, submit
-// its first runs as ordinary jobs), read one, list them, the shared convergence map.
+// its first runs as ordinary jobs), view one, list them, cancel one, its speed-accuracy
+// analysis and the shared convergence map. It answers with the core's values and the
+// analyses' JSON; the handlers write the API's JSON (server/http/study_json.hpp).
 #pragma once
 
 #include "server/db/study_store.hpp"
