@@ -2,10 +2,10 @@
 // GET /studies/{id}/speed-accuracy, GET /convergence-map (docs/studies-api.md).
 #include "server/core/job_id.hpp"
 #include "server/http/handlers.hpp"
+#include "server/http/job_filter_query.hpp" // parse_long
 #include "server/http/responses.hpp"
 #include "server/http/study_json.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -114,21 +114,15 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   int limit = 50;
   std::optional<std::int64_t> cursor;
   std::optional<api::StudyStatus> status;
-  auto integer = [](const std::string& s) -> std::optional<long> {
-    long v = 0;
-    auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-    return v;
-  };
   if (auto it = rc.query.find("limit"); it != rc.query.end()) {
-    auto l = integer(it->second);
+    auto l = parse_long(it->second);
     if (!l || *l < 1 || *l > 1000)
       errors.push_back({"/query/limit", "must be an integer in [1, 1000]"});
     else
       limit = static_cast<int>(*l);
   }
   if (auto it = rc.query.find("cursor"); it != rc.query.end()) {
-    auto c = integer(it->second);
+    auto c = parse_long(it->second);
     if (!c || *c < 0)
       errors.push_back({"/query/cursor", "must be a cursor returned as next_cursor"});
     else
