@@ -32,23 +32,6 @@ std::optional<double> either(std::optional<double> a, std::optional<double> b) {
 
 } // namespace
 
-MetricsRow metrics_row(const Metrics& m) {
-  MetricsRow row;
-  row.arrest_position = finite(m.arrest_position);
-  row.propagation_distance = finite(m.propagation_distance);
-  row.arrival_time_at_probe = finite(m.arrival_time_at_probe);
-  row.max_rupture_speed = finite(m.max_rupture_speed);
-  row.mean_rupture_speed = finite(m.mean_rupture_speed);
-  row.max_slip_velocity = finite(m.max_slip_velocity);
-  row.outcome = to_string(m.outcome);
-  row.energy_error = finite(m.energy_error);
-  row.wall_time_s = finite(m.wall_time_s);
-  row.steps = static_cast<std::int64_t>(m.steps);
-  row.dt = finite(m.dt);
-  row.simulated_time = finite(m.simulated_time);
-  return row;
-}
-
 MetricsRow metrics_row(const nlohmann::json& x) {
   MetricsRow row;
   row.arrest_position = number(x, "arrest_position");

@@ -3,8 +3,6 @@
 // metric is undefined (NaN, e.g. a front that never arrived) and stored as NULL.
 #pragma once
 
-#include "solver/run/metrics.hpp"
-
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -28,13 +26,11 @@ struct MetricsRow {
   std::optional<double> simulated_time;
 };
 
-// From the solver's metrics: what a run in this process hands down.
-MetricsRow metrics_row(const Metrics& metrics);
-
-// From the metrics JSON (docs/metrics.md, metrics_json()): for runs whose metrics arrive as JSON
-// (a SLURM job's report file, a test runner). Missing or non-numeric entries are unset; the
-// rupture speeds are read from "rupture_speed": {"max", "mean"} (or flat "max_rupture_speed",
-// "mean_rupture_speed").
+// From the metrics JSON (metrics_json(), api/run_job.hpp), whichever runner ran the job (a
+// worker of the server, or `slipfront run` on a compute node, whose report file carries the
+// JSON): the server's store derives the row here, once, when a run's record is stored.
+// Missing or non-numeric entries are unset; the rupture speeds are read from "rupture_speed":
+// {"max", "mean"} (or flat "max_rupture_speed", "mean_rupture_speed").
 MetricsRow metrics_row(const nlohmann::json& metrics);
 
 } // namespace slipfront::api

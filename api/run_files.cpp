@@ -18,19 +18,35 @@ nlohmann::json progress_json(const Progress& p) {
 }
 
 nlohmann::json run_report_json(const JobOutput& output) {
+  const RunRecord& record = output.record;
   nlohmann::json report;
-  report["metrics"] = output.metrics;
-  report["front"] = front_json(output.result);
-  if (output.result_path.empty())
+  report["metrics"] = record.metrics;
+  report["front"] = record.front;
+  if (record.result.path.empty())
     report["result_file"] = nullptr;
   else
-    report["result_file"] = {{"path", output.result_path},
-                             {"bytes", output.result_size},
-                             {"sha256", output.result_sha256}};
+    report["result_file"] = {{"path", record.result.path},
+                             {"bytes", record.result.size},
+                             {"sha256", record.result.sha256}};
   const bool diverged = output.result.metrics.outcome == Outcome::diverged;
   report["diverged"] = diverged;
   report["message"] = diverged ? output.result.metrics.message : "";
   return report;
+}
+
+RunRecord run_record_of_report(const nlohmann::json& report) {
+  RunRecord record;
+  record.metrics = report.value("metrics", nlohmann::json());
+  record.front = report.value("front", nlohmann::json());
+  if (report.value("diverged", false)) {
+    record.status = JobStatus::failed;
+    record.error = diverged_error(report.value("message", std::string()));
+  } else if (const auto file = report.find("result_file");
+             file != report.end() && file->is_object()) {
+    record.result = {file->value("path", std::string()), file->value("bytes", std::uint64_t{0}),
+                     file->value("sha256", std::string())};
+  }
+  return record;
 }
 
 namespace {

@@ -27,8 +27,18 @@ private:
   SampleSink& second_;
 };
 
-bool leaves_a_result(const RunResult& result) {
-  return !result.cancelled && result.metrics.outcome != Outcome::diverged;
+// The record of a run that ended (the result file, if any, is added by the caller).
+RunRecord record_of(const RunResult& result, const SimulationParams& params) {
+  RunRecord record;
+  if (result.cancelled) {
+    record.status = JobStatus::cancelled;
+  } else if (result.metrics.outcome == Outcome::diverged) {
+    record.status = JobStatus::failed;
+    record.error = diverged_error(result.metrics.message);
+  }
+  record.metrics = metrics_json(result, params);
+  record.front = front_json(result);
+  return record;
 }
 
 } // namespace
@@ -37,7 +47,7 @@ JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunH
   JobOutput output;
   if (output_path.empty()) {
     output.result = run_simulation(job.params, hooks);
-    output.metrics = metrics_json(output.result, job.params);
+    output.record = record_of(output.result, job.params);
     return output;
   }
 
@@ -52,15 +62,14 @@ JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunH
   }
 
   output.result = run_simulation(job.params, run_hooks);
-  output.metrics = metrics_json(output.result, job.params);
-  if (!leaves_a_result(output.result)) {
+  output.record = record_of(output.result, job.params);
+  if (output.record.status != JobStatus::succeeded) {
     writer.abandon();
     return output;
   }
-  writer.finish(output.result, job.canonical, output.metrics);
-  output.result_path = output_path;
-  output.result_size = std::filesystem::file_size(output_path);
-  output.result_sha256 = sha256_file(output_path);
+  writer.finish(output.result, job.canonical, output.record.metrics);
+  output.record.result = {output_path, std::filesystem::file_size(output_path),
+                          sha256_file(output_path)};
   return output;
 }
 

@@ -3,26 +3,28 @@
 #pragma once
 
 #include "api/job_spec.hpp"
+#include "api/run_record.hpp"
 #include "solver/simulation.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <cstdint>
 #include <string>
 
 namespace slipfront::api {
 
+// What run_job returns: the solver's result in full (probes, energy records: what the CLI
+// prints from) and the run's record (what the server stores and the report file carries).
 struct JobOutput {
   RunResult result;
-  nlohmann::json metrics;  // metrics_json(result)
-  std::string result_path; // final path of the HDF5 file ("" if none was asked for)
-  std::uint64_t result_size = 0;
-  std::string result_sha256; // of the file's bytes
+  RunRecord record;
 };
 
 // Runs the job. If output_path is not empty, the HDF5 file is written to a temporary file
 // beside it and renamed into place only when the run ends with a result (not when it was
-// cancelled or diverged: then no file is left behind).
+// cancelled or diverged: then no file is left behind). The record's status is cancelled when
+// the cancel flag stopped the run, failed when it diverged, else succeeded; its metrics and
+// front are metrics_json() and front_json() of the result, its wall time and end are left to
+// the caller.
 JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunHooks& hooks = {});
 
 // The metrics (docs/metrics.md "Metric names") as one JSON object (names are part of the API),

@@ -152,22 +152,22 @@ int run_command(const std::vector<std::string>& args) {
     }
   }
 
-  nlohmann::json printed = output.metrics;
+  nlohmann::json printed = output.record.metrics;
   printed["spec_sha256"] = job->sha256;
-  if (!output.result_path.empty()) {
+  if (!output.record.result.path.empty()) {
     // The XDMF sidecar (ParaView, VisIt) beside the HDF5 file: RESULT.xdmf.
     const std::string xdmf_path =
-        std::filesystem::path(output.result_path).replace_extension(".xdmf").string();
+        std::filesystem::path(output.record.result.path).replace_extension(".xdmf").string();
     try {
-      api::write_result_xdmf(output.result_path, xdmf_path);
+      api::write_result_xdmf(output.record.result.path, xdmf_path);
     } catch (const std::exception& e) {
       std::cerr << "slipfront run: writing the XDMF sidecar " << xdmf_path << ": " << e.what()
                 << '\n';
       return exit_code::failure;
     }
-    printed["result_file"] = {{"path", output.result_path},
-                              {"bytes", output.result_size},
-                              {"sha256", output.result_sha256},
+    printed["result_file"] = {{"path", output.record.result.path},
+                              {"bytes", output.record.result.size},
+                              {"sha256", output.record.result.sha256},
                               {"xdmf", xdmf_path}};
   }
   std::cout << printed.dump() << std::endl;

@@ -1,6 +1,6 @@
 #include "server/serve.hpp"
 
-#include "server/log.hpp"
+#include "server/core/log.hpp"
 #include "server/server_app.hpp"
 #include "server/server_config.hpp"
 

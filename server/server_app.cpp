@@ -1,8 +1,8 @@
 #include "server/server_app.hpp"
 
-#include "server/clock.hpp"
+#include "server/core/clock.hpp"
+#include "server/core/log.hpp"
 #include "server/http/static_files.hpp"
-#include "server/log.hpp"
 #include "solver/simulation.hpp"
 
 #include <boost/asio/ip/address.hpp>

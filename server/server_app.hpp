@@ -8,6 +8,7 @@
 // to queued, close the database.
 #pragma once
 
+#include "server/core/server_stats.hpp"
 #include "server/data_dir_lock.hpp"
 #include "server/db/job_store.hpp"
 #include "server/db/study_store.hpp"
@@ -15,16 +16,15 @@
 #include "server/http/handlers.hpp"
 #include "server/http/listener.hpp"
 #include "server/http/router.hpp"
-#include "server/http/server_stats.hpp"
-#include "server/jobs/job_queue.hpp"
-#include "server/jobs/job_runner.hpp"
-#include "server/jobs/job_service.hpp"
-#include "server/jobs/running_jobs.hpp"
-#include "server/jobs/worker_pool.hpp"
+#include "server/run/job_queue.hpp"
+#include "server/run/job_runner.hpp"
+#include "server/run/running_jobs.hpp"
+#include "server/run/slurm/slurm_executor.hpp"
+#include "server/run/worker_pool.hpp"
 #include "server/server_config.hpp"
-#include "server/slurm/slurm_executor.hpp"
-#include "server/studies/study_service.hpp"
-#include "server/studies/study_supervisor.hpp"
+#include "server/services/job_service.hpp"
+#include "server/services/study_service.hpp"
+#include "server/services/study_supervisor.hpp"
 
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>

@@ -11,9 +11,9 @@
 #pragma once
 
 #include "solver/params.hpp"
-#include "solver/step_count.hpp"
 #include "solver/run/run_hooks.hpp"
 #include "solver/run/run_result.hpp"
+#include "solver/step_count.hpp"
 
 namespace slipfront {
 

@@ -15,8 +15,8 @@ std::string message(sqlite3* db, int rc, const std::string& what) {
 }
 } // namespace
 
-bool SqliteError::unavailable() const {
-  switch (code_ & 0xff) { // the primary code of an extended one
+bool SqliteError::unavailable_code(int code) {
+  switch (code & 0xff) { // the primary code of an extended one
   case SQLITE_FULL:
   case SQLITE_IOERR:
   case SQLITE_BUSY:

@@ -3,6 +3,8 @@
 // Every failure throws SqliteError carrying SQLite's message and the SQL that failed.
 #pragma once
 
+#include "server/core/storage_error.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -16,14 +18,15 @@ struct sqlite3_stmt;
 
 namespace slipfront::server {
 
-class SqliteError : public std::runtime_error {
+// The kind of StorageError (server/core/storage_error.hpp) the store throws.
+class SqliteError : public StorageError {
 public:
   explicit SqliteError(const std::string& what, int code = 0)
-      : std::runtime_error(what), code_(code) {}
+      : StorageError(what, unavailable_code(code)), code_(code) {}
   int code() const { return code_; } // SQLite's (extended) result code; 0 if unknown
-  // The storage cannot take writes now (disk full, I/O error, read-only, busy): worth a
-  // retry later (HTTP 503), unlike an error in the SQL or a broken constraint.
-  bool unavailable() const;
+  // Disk full, I/O error, busy, locked, read-only, cannot open, out of memory, protocol:
+  // the storage cannot take writes now (StorageError::unavailable()).
+  static bool unavailable_code(int code);
 
 private:
   int code_;

@@ -3,8 +3,8 @@
 // column name.
 #pragma once
 
+#include "server/core/job.hpp"
 #include "server/db/database.hpp"
-#include "server/jobs/job.hpp"
 
 #include <string>
 

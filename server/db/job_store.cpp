@@ -1,11 +1,11 @@
 #include "server/db/job_store.hpp"
 
 #include "api/job_spec.hpp"
+#include "api/metrics_row.hpp"
 #include "server/db/job_rows.hpp"
 
 #include <cmath>
 #include <stdexcept>
-#include <variant>
 
 namespace slipfront::server {
 
@@ -128,7 +128,7 @@ bool JobStore::finish(const std::string& id, const RunRecord& r) {
       "progress_updated_at = ?5, progress_fraction = CASE WHEN ?2 = 'succeeded' THEN 1.0 "
       "ELSE progress_fraction END, progress_steps = COALESCE(?9, progress_steps), "
       "progress_time = COALESCE(?10, progress_time) WHERE id = ?1 AND status = 'running'");
-  const api::MetricsRow row = r.metrics_row ? *r.metrics_row : api::metrics_row(r.metrics);
+  const api::MetricsRow row = api::metrics_row(r.metrics); // the one place it is derived
   auto opt = [](const std::string& v) {
     return v.empty() ? std::nullopt : std::optional<std::string>(v);
   };
@@ -213,56 +213,6 @@ std::vector<Job> JobStore::queued_jobs() {
   while (s.step())
     jobs.push_back(read_job(s));
   return jobs;
-}
-
-ListQuery list_query(const JobFilter& f) {
-  std::string where = "WHERE 1 = 1";
-  ListQuery q;
-  SqlParams& params = q.params;
-  if (!f.statuses.empty()) {
-    where += " AND j.status IN (";
-    for (std::size_t i = 0; i < f.statuses.size(); ++i)
-      where += (i ? ", " : "") + params.add(to_string(f.statuses[i]));
-    where += ")";
-  }
-  if (!f.tag.empty())
-    where += " AND EXISTS (SELECT 1 FROM json_each(j.tags) WHERE json_each.value = " +
-             params.add(f.tag) + ")";
-  auto equal = [&](const char* column, const std::string& value) {
-    if (!value.empty()) where += std::string(" AND ") + column + " = " + params.add(value);
-  };
-  equal("j.name", f.name);
-  equal("m.outcome", f.outcome);
-  equal("j.submitted_by", f.submitted_by);
-  equal("j.spec_sha256", f.spec_sha256);
-  equal("j.scene_hash", f.scene_hash);
-  equal("j.study_id", f.study_id);
-  auto range = [&](const char* column, const char* op, const std::optional<double>& v) {
-    if (v) where += std::string(" AND ") + column + " " + op + " " + params.add(*v);
-  };
-  range("j.L", ">=", f.L_min);
-  range("j.L", "<=", f.L_max);
-  range("j.n_d", ">=", f.n_d_min);
-  range("j.n_d", "<=", f.n_d_max);
-  for (const auto& c : f.conditions)
-    where += " AND " + condition_sql(c, params);
-  std::string order = " ORDER BY ";
-  if (f.sort.empty()) {
-    if (f.before_seq) where += " AND j.seq < " + params.add(static_cast<double>(*f.before_seq));
-  } else {
-    for (const auto& key : f.sort)
-      order += sort_sql(key, params) + ", ";
-  }
-  order += "j.seq DESC";
-  std::string tail = " LIMIT " + std::to_string(std::max(1, f.limit) + 1);
-  if (!f.sort.empty() && f.offset > 0) tail += " OFFSET " + std::to_string(f.offset);
-  q.sql = select_jobs() + where + order + tail;
-  return q;
-}
-
-void bind_all(Statement& s, const SqlParams& params) {
-  for (std::size_t i = 0; i < params.values.size(); ++i)
-    std::visit([&](const auto& v) { s.bind(static_cast<int>(i + 1), v); }, params.values[i]);
 }
 
 JobPage JobStore::list(const JobFilter& f) {

@@ -4,12 +4,13 @@
 // (`WHERE status = ...`) so the transitions of job.hpp hold even when a cancel races a worker.
 #pragma once
 
-#include "api/metrics_row.hpp"
+#include "server/core/job.hpp"
+#include "server/core/job_filter.hpp"
+#include "server/core/run_record.hpp"
 #include "server/db/database.hpp"
 #include "server/db/migrations.hpp"
+#include "server/db/run_query_sql.hpp"
 #include "server/db/store_db.hpp"
-#include "server/jobs/job.hpp"
-#include "server/jobs/run_query.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -21,53 +22,6 @@
 #include <vector>
 
 namespace slipfront::server {
-
-struct JobFilter {
-  std::vector<JobStatus> statuses; // any of these (empty = all)
-  std::string tag;                 // jobs carrying this tag
-  std::string name;                // exact name
-  std::string outcome;             // metrics outcome (finished jobs only)
-  std::string submitted_by;
-  std::string spec_sha256;
-  std::string scene_hash;
-  std::string study_id;
-  std::optional<double> L_min, L_max, n_d_min, n_d_max; // inclusive ranges
-  std::optional<std::int64_t> before_seq;               // cursor: jobs older than this
-  std::vector<Condition> conditions;                    // `where` (server/jobs/run_query.hpp)
-  std::vector<SortKey> sort; // `sort`; empty = newest first (then pages by before_seq)
-  std::int64_t offset = 0;   // with `sort`: rows to skip (the cursor of sorted listings)
-  int limit = 50;
-};
-
-struct JobPage {
-  std::vector<Job> jobs;                   // newest first, or in `sort` order
-  std::optional<std::int64_t> next_cursor; // before_seq of the next page (newest first)
-  std::optional<std::int64_t> next_offset; // offset of the next page (sorted listings)
-  std::map<std::string, std::string> convergence_status; // job id -> status, if in a study
-};
-
-// What a finished run leaves behind.
-struct RunRecord {
-  JobStatus status = JobStatus::succeeded;
-  std::string error;
-  nlohmann::json metrics; // null if none
-  nlohmann::json front;   // null if none
-  ResultFile result;
-  double wall_time_s = 0.0;
-  std::string finished_at;
-  // The columns of the metrics row. Unset (a run whose metrics arrived as JSON only): read
-  // from `metrics` (api::metrics_row).
-  std::optional<api::MetricsRow> metrics_row;
-};
-
-// The SELECT of JobStore::list(filter), one row more than the page (a next page exists when
-// it comes back), and its parameters: for EXPLAIN QUERY PLAN in tests.
-struct ListQuery {
-  std::string sql;
-  SqlParams params;
-};
-ListQuery list_query(const JobFilter& filter);
-void bind_all(Statement& statement, const SqlParams& params); // ?1, ?2, ... in order
 
 class JobStore {
 public:

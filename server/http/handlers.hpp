@@ -4,7 +4,7 @@
 
 #include "server/http/auth.hpp" // authenticate()
 #include "server/http/router.hpp"
-#include "server/server_context.hpp"
+#include "server/http/server_context.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #include "server/http/http_session.hpp"
 
+#include "server/core/log.hpp"
 #include "server/http/responses.hpp"
-#include "server/log.hpp"
 
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>

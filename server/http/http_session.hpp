@@ -4,8 +4,8 @@
 // slow requests get a 4xx and the connection is closed.
 #pragma once
 
+#include "server/core/server_stats.hpp"
 #include "server/http/router.hpp"
-#include "server/http/server_stats.hpp"
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>

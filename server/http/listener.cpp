@@ -1,6 +1,6 @@
 #include "server/http/listener.hpp"
 
-#include "server/log.hpp"
+#include "server/core/log.hpp"
 
 #include <boost/asio/post.hpp>
 #include <boost/asio/strand.hpp>

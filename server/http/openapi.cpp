@@ -1,6 +1,7 @@
 // The OpenAPI 3.0 description served at GET /api/v1/openapi.json.
 #include "api/job_schema.hpp"
 
+#include "server/core/priority.hpp"
 #include "server/http/handlers.hpp"
 
 namespace slipfront::server {
@@ -46,7 +47,7 @@ const char* document = R"json({
           "convergence": {"type": "object", "properties": {"L": {"type": "array", "items": {"type": "number"}},
             "n_d": {"type": "array", "items": {"type": "number"}, "default": [10, 20, 40, 80, 160]}, "n_d_max": {"type": "number"}}},
           "preset": {"type": "string", "enum": ["failure_regimes"]},
-          "priority": {"type": "integer", "minimum": -100, "maximum": 100}, "fresh": {"type": "boolean"}}},
+          "priority": {"description": "server/core/priority.hpp: added by openapi_document()"}, "fresh": {"type": "boolean"}}},
       "StudyRun": {"type": "object", "properties": {"job_id": {"type": "string"}, "regime": {"type": "string"},
         "L": {"type": "number"}, "n_d": {"type": "number"}, "job_status": {"type": "string"},
         "outcome": {"type": "string", "nullable": true}, "cached_from": {"type": "string", "nullable": true},
@@ -104,7 +105,7 @@ const char* document = R"json({
       "post": {"summary": "Submit a job", "security": [{"bearer": []}],
         "parameters": [
           {"name": "fresh", "in": "query", "schema": {"type": "boolean"}, "description": "run even if an identical succeeded job exists"},
-          {"name": "priority", "in": "query", "schema": {"type": "integer", "minimum": -100, "maximum": 100}},
+          {"name": "priority", "in": "query", "schema": {"description": "server/core/priority.hpp: added by openapi_document()"}},
           {"name": "Idempotency-Key", "in": "header", "schema": {"type": "string", "maxLength": 200}, "description": "a retried POST with the same key returns the first job (200)"}],
         "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/JobSpec"}}}},
         "responses": {
@@ -247,6 +248,11 @@ const char* document = R"json({
     "/metrics": {"get": {"summary": "Prometheus metrics: queue depth, running, jobs by status, run durations, HTTP requests", "responses": {"200": {"description": "text/plain; version=0.0.4"}}}}
   }
 })json";
+// The one range of a priority (server/core/priority.hpp), wherever the document takes one.
+nlohmann::json priority_schema() {
+  return {{"type", "integer"}, {"minimum", lowest_priority}, {"maximum", highest_priority}};
+}
+
 } // namespace
 
 // What holds for every operation, added here rather than repeated in the text above:
@@ -264,12 +270,13 @@ nlohmann::json openapi_document() {
       {"type", "boolean"},
       {"default", false},
       {"description", "submission option: run again even if an identical job succeeded"}};
-  job["properties"]["priority"] = {{"type", "integer"},
-                                   {"minimum", -100},
-                                   {"maximum", 100},
-                                   {"default", 0},
-                                   {"description", "submission option: higher runs first"}};
+  job["properties"]["priority"] = priority_schema();
+  job["properties"]["priority"]["default"] = 0;
+  job["properties"]["priority"]["description"] = "submission option: higher runs first";
   doc["components"]["schemas"]["JobSpec"] = job;
+  doc["components"]["schemas"]["StudyRequest"]["properties"]["priority"] = priority_schema();
+  for (auto& parameter : doc["paths"]["/api/v1/jobs"]["post"]["parameters"])
+    if (parameter["name"] == "priority") parameter["schema"] = priority_schema();
   const nlohmann::json unavailable = {{"$ref", "#/components/responses/Unavailable"}};
   for (auto& [path, operations] : doc["paths"].items()) {
     if (operations.contains("get")) {

@@ -1,6 +1,8 @@
 // Splitting a request target into its path and its decoded query parameters.
 #pragma once
 
+#include "server/core/comma_list.hpp" // split_list, for the query values
+
 #include <map>
 #include <optional>
 #include <string>
@@ -14,11 +16,6 @@ std::optional<std::string> percent_decode(std::string_view text, bool plus_is_sp
 
 // Percent-encoding of a query value (unreserved characters are kept).
 std::string percent_encode(std::string_view text);
-
-// The items of a comma-separated list (a query value such as sort=a,-b, or a header such as
-// If-None-Match), each with the whitespace around it trimmed. Empty items are kept: "a,,b"
-// is {"a", "", "b"} and "" is {""}. The views point into `text`.
-std::vector<std::string_view> split_list(std::string_view text);
 
 struct Target {
   std::string path;                         // decoded

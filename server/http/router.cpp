@@ -1,9 +1,9 @@
 #include "server/http/router.hpp"
 
-#include "server/db/database.hpp"
+#include "server/core/log.hpp"
+#include "server/core/storage_error.hpp"
 #include "server/http/query_string.hpp"
 #include "server/http/responses.hpp"
-#include "server/log.hpp"
 
 namespace slipfront::server {
 
@@ -83,7 +83,7 @@ Response Router::answer(const Request& request) const {
     RequestContext ctx{request, target->path, std::move(params), target->query, {}};
     try {
       return route.handler(ctx);
-    } catch (const SqliteError& e) {
+    } catch (const StorageError& e) {
       log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
                 e.what());
       if (!e.unavailable())

@@ -16,8 +16,8 @@
 #include "solver/run/interface_sampler.hpp"
 #include "solver/run/probe_recorder.hpp"
 #include "solver/run/progress_reporter.hpp"
-#include "solver/thread_team.hpp"
 #include "solver/step_count.hpp"
+#include "solver/thread_team.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 // libFuzzer target: a request target (path and query) through parse_target
 // (server/http/query_string.hpp) and the GET /api/v1/jobs parameter parser
-// (server/jobs/job_filter_query.hpp). Also checks that percent_encode/percent_decode round-trip
+// (server/http/job_filter_query.hpp). Also checks that percent_encode/percent_decode round-trip
 // every decoded value (the listing builds its `next` URL with them).
+#include "server/http/job_filter_query.hpp"
 #include "server/http/query_string.hpp"
-#include "server/jobs/job_filter_query.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -1,9 +1,9 @@
 // libFuzzer target: a POST /api/v1/studies body through the bounded JSON parser, the study
-// request parser (server/studies/study_request.hpp) and, when it is accepted, the job validator on
+// request parser (server/core/study_request.hpp) and, when it is accepted, the job validator on
 // the document of its first run (what StudyService checks before anything is stored).
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
-#include "server/studies/study_request.hpp"
+#include "server/core/study_request.hpp"
 
 #include <cstdint>
 #include <cstdio>

@@ -1,6 +1,6 @@
 // Bearer tokens (compared in constant time over their digests) and job ids (from getrandom).
+#include "server/core/job_id.hpp"
 #include "server/http/auth.hpp"
-#include "server/jobs/job_id.hpp"
 
 #include "temp_dir.hpp"
 

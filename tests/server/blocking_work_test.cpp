@@ -3,11 +3,11 @@
 // request on another connection, with a single I/O thread. Without the blocking-work pool
 // the same cheap request waits (the control case, which shows that the test can fail). And
 // the server's own heavy routes are the offloaded ones.
+#include "server/core/server_stats.hpp"
 #include "server/http/http_session.hpp"
 #include "server/http/listener.hpp"
 #include "server/http/responses.hpp"
 #include "server/http/router.hpp"
-#include "server/http/server_stats.hpp"
 #include "server/server_app.hpp"
 
 #include "temp_dir.hpp"

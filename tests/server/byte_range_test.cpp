@@ -1,6 +1,6 @@
+#include "server/core/job_id.hpp"
 #include "server/http/byte_range.hpp"
 #include "server/http/query_string.hpp"
-#include "server/jobs/job_id.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "server/jobs/job_queue.hpp"
+#include "server/run/job_queue.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,6 @@
-#include "server/jobs/job.hpp"
+#include "server/core/job.hpp"
+#include "server/core/priority.hpp"
+#include "server/http/job_json.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,4 +40,23 @@ TEST(JobState, ProjectionKeepsIdAndAskedFields) {
   EXPECT_EQ(j.size(), 2u);
   EXPECT_EQ(j["id"].get<std::string>(), job.id);
   EXPECT_EQ(j["status"].get<std::string>(), "queued");
+}
+
+// The one range of a priority, for the job and study bodies and the query parameter.
+TEST(JobState, PriorityIsAnIntegerInItsRange) {
+  for (long p : {-100L, 0L, 100L})
+    EXPECT_EQ(priority_of(p), std::optional<int>(static_cast<int>(p)));
+  EXPECT_EQ(priority_of(nlohmann::json(-100)), std::optional<int>(-100));
+  EXPECT_EQ(priority_of(nlohmann::json(7)), std::optional<int>(7));
+  for (long p : {-101L, 101L, 1L << 40})
+    EXPECT_FALSE(priority_of(p)) << p;
+  for (const nlohmann::json& bad : {nlohmann::json(101), nlohmann::json(-101), nlohmann::json(1.5),
+                                    nlohmann::json("5"), nlohmann::json(true), nlohmann::json()})
+    EXPECT_FALSE(priority_of(bad)) << bad.dump();
+  // Integers past 64 bits are refused, not wrapped (2^64 - 1 once read as -1).
+  for (const nlohmann::json& huge :
+       {nlohmann::json(18446744073709551615u), nlohmann::json(9223372036854775808u),
+        nlohmann::json(-9223372036854775807 - 1)})
+    EXPECT_FALSE(priority_of(huge)) << huge.dump();
+  EXPECT_EQ(priority_rule(), "must be an integer in [-100, 100]");
 }

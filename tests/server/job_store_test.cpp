@@ -1,6 +1,6 @@
+#include "server/core/job_id.hpp"
 #include "server/db/database.hpp"
 #include "server/db/job_store.hpp"
-#include "server/jobs/job_id.hpp"
 
 #include "temp_dir.hpp"
 

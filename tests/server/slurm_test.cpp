@@ -2,12 +2,13 @@
 // each SLURM state, the sbatch command line, the batch script, and the store's SLURM
 // columns (migration 4 -> 5, re-attach and recovery). The executor itself runs against a
 // real single-host SLURM in test_slurm.py.
+#include "server/core/job_id.hpp"
 #include "server/db/database.hpp"
 #include "server/db/job_store.hpp"
-#include "server/jobs/job_id.hpp"
-#include "server/slurm/slurm_client.hpp"
-#include "server/slurm/slurm_job_dir.hpp"
-#include "server/slurm/slurm_state.hpp"
+#include "server/http/job_json.hpp"
+#include "server/run/slurm/slurm_client.hpp"
+#include "server/run/slurm/slurm_job_dir.hpp"
+#include "server/run/slurm/slurm_state.hpp"
 
 #include "temp_dir.hpp"
 

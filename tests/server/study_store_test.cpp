@@ -1,10 +1,10 @@
 // The studies schema (migrations 2 -> 3 -> 4) and StudyStore.
 #include "api/job_spec.hpp"
 #include "api/study_analysis.hpp"
+#include "server/core/job_id.hpp"
 #include "server/db/database.hpp"
 #include "server/db/job_store.hpp"
 #include "server/db/study_store.hpp"
-#include "server/jobs/job_id.hpp"
 
 #include "temp_dir.hpp"
 

@@ -1,10 +1,10 @@
 // The study supervisor at start-up: a run of a cancelled study that the recovery queued
 // again (it was still stopping when the server went down) is cancelled before any worker
 // starts, and the study's final progress is stored.
+#include "server/core/job_id.hpp"
 #include "server/db/study_store.hpp"
-#include "server/jobs/job_id.hpp"
-#include "server/jobs/job_service.hpp"
-#include "server/studies/study_supervisor.hpp"
+#include "server/services/job_service.hpp"
+#include "server/services/study_supervisor.hpp"
 
 #include "temp_dir.hpp"
 

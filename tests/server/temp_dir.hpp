@@ -1,7 +1,7 @@
 // A fresh directory under the system temp dir, removed with everything in it at scope exit.
 #pragma once
 
-#include "server/jobs/job_id.hpp"
+#include "server/core/job_id.hpp"
 
 #include <filesystem>
 #include <string>

@@ -401,6 +401,10 @@ class MainServer(unittest.TestCase):
         for e in body["errors"]:
             self.assertTrue(e["reason"])
         self.assertProblem(self.server.submit([1, 2]), 422)
+        # A priority past 64 bits is refused, not wrapped into the range (2^64 - 1 was -1).
+        for huge in (18446744073709551615, 9223372036854775808):
+            body = self.assertProblem(self.server.submit({"priority": huge}), 422)
+            self.assertIn("/priority", {e["pointer"] for e in body["errors"]})
 
     def test_memory_estimate_above_limit_is_422(self):
         body = self.assertProblem(self.server.submit({"geometry": {"nodes_per_meter": 400}}), 422)

@@ -164,6 +164,8 @@ class Studies(unittest.TestCase):
             ({"preset": "nope"}, "/preset", None),
             ({"convergence": {"L": [1e-5], "n_d": [20, 10]}}, "/convergence/n_d", None),
             ({"grid": {"L": [1e-5], "n_d": [5]}, "priority": 1000}, "/priority", None),
+            ({"grid": {"L": [1e-5], "n_d": [5]}, "priority": 18446744073709551615}, "/priority",
+             "must be an integer in [-100, 100]"),
         ]
         for body, pointer, reason in cases:
             r = post_study(self.server, body)

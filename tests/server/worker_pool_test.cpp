@@ -1,7 +1,7 @@
 // The worker pool with runners injected through the JobRunner interface: failure, cancel
 // and drain paths that the real solver cannot be made to take on demand.
-#include "server/jobs/job_id.hpp"
-#include "server/jobs/worker_pool.hpp"
+#include "server/core/job_id.hpp"
+#include "server/run/worker_pool.hpp"
 
 #include "temp_dir.hpp"
 
@@ -20,9 +20,9 @@ namespace {
 // Behaves as the job's name says: "throw", "wait" (until cancelled, at most 10 s), else succeed.
 class ScriptedRunner : public JobRunner {
 public:
-  RunReport run(const Job& job, const std::string& output_path,
+  RunRecord run(const Job& job, const std::string& output_path,
                 const slipfront::RunHooks& hooks) override {
-    RunReport report;
+    RunRecord report;
     if (job.name == "throw") throw std::runtime_error("disk full while writing " + output_path);
     if (job.name == "wait") {
       for (int i = 0; i < 1000 && !hooks.cancel->load(); ++i) {
@@ -32,7 +32,7 @@ public:
         hooks.on_progress(p);
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
       }
-      report.cancelled = hooks.cancel->load();
+      if (hooks.cancel->load()) report.status = JobStatus::cancelled;
       return report;
     }
     report.metrics = {{"outcome", "arrested"}, {"steps", 10}, {"simulated_time", 2.0}};

@@ -1,5 +1,5 @@
 // Schema migration 5 -> 6 (server/db/migrations.hpp): indexes for the run search
-// (GET /api/v1/jobs?where=...&sort=..., server/jobs/run_query.cpp) on the fields it filters and
+// (GET /api/v1/jobs?where=...&sort=..., server/db/run_query_sql.cpp) on the fields it filters and
 // sorts by most. The metrics a search names as metrics.arrest_position,
 // metrics.propagation_distance and metrics.arrival_time_at_probe are columns of metrics; the
 // search's wall_time_s, created_at and finished_at are columns of jobs (jobs.wall_time_s is

@@ -1,0 +1,234 @@
+#include "server/core/study_request.hpp"
+
+#include "api/free_text.hpp"
+#include "api/number_text.hpp"
+#include "server/core/priority.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace slipfront::server {
+
+using nlohmann::json;
+
+const char* to_string(StudyKind kind) {
+  switch (kind) {
+  case StudyKind::grid:
+    return "grid";
+  case StudyKind::convergence:
+    return "convergence";
+  case StudyKind::failure_regimes:
+    return "failure_regimes";
+  }
+  return "grid";
+}
+
+std::optional<StudyKind> parse_study_kind(const std::string& text) {
+  for (auto k : {StudyKind::grid, StudyKind::convergence, StudyKind::failure_regimes})
+    if (text == to_string(k)) return k;
+  return std::nullopt;
+}
+
+const std::vector<double>& default_ladder() {
+  static const std::vector<double> ladder = {10, 20, 40, 80, 160};
+  return ladder;
+}
+
+namespace {
+
+using Errors = std::vector<api::FieldError>;
+
+// A non-empty array of distinct positive numbers; `whole` bounds the n_d values.
+std::vector<double> positive_list(const json& parent, const std::string& key,
+                                  const std::string& pointer, std::size_t max_size, Errors& errors,
+                                  bool required = true) {
+  std::vector<double> out;
+  auto it = parent.find(key);
+  if (it == parent.end()) {
+    if (required) errors.push_back({pointer, "is required (an array of numbers > 0)"});
+    return out;
+  }
+  if (!it->is_array() || it->empty()) {
+    errors.push_back({pointer, "must be a non-empty array of numbers > 0"});
+    return out;
+  }
+  if (it->size() > max_size) {
+    errors.push_back({pointer, "at most " + std::to_string(max_size) + " values"});
+    return out;
+  }
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const json& v = (*it)[i];
+    const std::string at = pointer + "/" + std::to_string(i);
+    if (!v.is_number()) {
+      errors.push_back({at, "must be a number"});
+    } else if (!(v.get<double>() > 0.0) || !std::isfinite(v.get<double>())) {
+      errors.push_back({at, "must be > 0"});
+    } else if (std::find(out.begin(), out.end(), v.get<double>()) != out.end()) {
+      errors.push_back({at, "duplicate value"});
+    } else {
+      out.push_back(v.get<double>());
+    }
+  }
+  return out;
+}
+
+void reject_unknown(const json& object, const std::string& pointer,
+                    const std::set<std::string>& known, Errors& errors) {
+  for (const auto& [key, value] : object.items())
+    if (!known.count(key)) errors.push_back({pointer + "/" + key, "unknown field"});
+}
+
+void parse_base(const json& body, StudyRequest& r, Errors& errors) {
+  auto it = body.find("base");
+  if (it == body.end()) return; // the paper's scene
+  if (!it->is_object()) {
+    errors.push_back({"/base", "must be a job spec (JSON object)"});
+    return;
+  }
+  r.base = *it;
+  if (r.base.contains("friction") && r.base["friction"].is_object() &&
+      r.base["friction"].contains("L"))
+    errors.push_back({"/base/friction/L", "is set by the study (its L values): remove it"});
+  if (r.base.contains("geometry") && r.base["geometry"].is_object() &&
+      r.base["geometry"].contains("nodes_per_meter"))
+    errors.push_back(
+        {"/base/geometry/nodes_per_meter", "is set by the study (its n_d values): remove it"});
+  for (const char* key : {"fresh", "priority"})
+    if (r.base.contains(key))
+      errors.push_back({std::string("/base/") + key, "belongs at the top level of the study"});
+}
+
+void parse_grid(const json& grid, StudyRequest& r, Errors& errors) {
+  if (!grid.is_object()) {
+    errors.push_back({"/grid", "must be an object {\"L\": [...], \"n_d\": [...]}"});
+    return;
+  }
+  reject_unknown(grid, "/grid", {"L", "n_d"}, errors);
+  r.L = positive_list(grid, "L", "/grid/L", max_study_L, errors);
+  r.n_d = positive_list(grid, "n_d", "/grid/n_d", max_study_n_d, errors);
+  if (r.L.size() * r.n_d.size() > max_study_runs)
+    errors.push_back({"/grid", "at most " + std::to_string(max_study_runs) + " runs per study"});
+}
+
+void parse_convergence(const json& c, StudyRequest& r, Errors& errors) {
+  if (!c.is_object()) {
+    errors.push_back({"/convergence", "must be an object {\"L\": [...], \"n_d\": [...], "
+                                      "\"n_d_max\": ...}"});
+    return;
+  }
+  reject_unknown(c, "/convergence", {"L", "n_d", "n_d_max"}, errors);
+  r.L = positive_list(c, "L", "/convergence/L", max_study_L, errors);
+  r.n_d = c.contains("n_d") ? positive_list(c, "n_d", "/convergence/n_d", max_study_n_d, errors)
+                            : default_ladder();
+  if (!std::is_sorted(r.n_d.begin(), r.n_d.end()))
+    errors.push_back({"/convergence/n_d", "the ladder must increase"});
+  if (c.contains("n_d") && r.n_d.size() < 2)
+    errors.push_back({"/convergence/n_d", "needs at least two meshes"});
+  r.n_d_max = r.n_d.empty() ? 0.0 : r.n_d.back();
+  if (auto it = c.find("n_d_max"); it != c.end()) {
+    if (!it->is_number() || !(it->get<double>() > 0.0))
+      errors.push_back({"/convergence/n_d_max", "must be a number > 0"});
+    else
+      r.n_d_max = it->get<double>();
+  }
+  if (r.n_d.size() >= 2 && r.n_d_max < r.n_d[1])
+    errors.push_back({"/convergence/n_d_max", "must allow at least the first two meshes of "
+                                              "the ladder"});
+  if (r.L.size() * r.n_d.size() > max_study_runs)
+    errors.push_back(
+        {"/convergence", "at most " + std::to_string(max_study_runs) + " runs per study"});
+}
+
+} // namespace
+
+StudyRequestParse parse_study_request(const json& body) {
+  StudyRequestParse out;
+  Errors& errors = out.errors;
+  if (!body.is_object()) {
+    errors.push_back({"", "the study must be a JSON object"});
+    return out;
+  }
+  StudyRequest r;
+  r.body = body;
+  reject_unknown(body, "",
+                 {"name", "tags", "base", "grid", "convergence", "preset", "priority", "fresh"},
+                 errors);
+  if (auto it = body.find("name"); it != body.end()) {
+    if (!it->is_string() || it->get<std::string>().size() > 200)
+      errors.push_back({"/name", "must be a string of at most 200 characters"});
+    else if (auto reason = api::free_text_error(it->get<std::string>()))
+      errors.push_back({"/name", std::move(*reason)});
+    else
+      r.name = it->get<std::string>();
+  }
+  if (auto it = body.find("tags"); it != body.end()) {
+    if (!it->is_array()) {
+      errors.push_back({"/tags", "must be an array of strings"});
+    } else {
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        const std::string at = "/tags/" + std::to_string(i);
+        if (!(*it)[i].is_string())
+          errors.push_back({at, "must be a string"});
+        else if (auto reason = api::free_text_error((*it)[i].get<std::string>()))
+          errors.push_back({at, std::move(*reason)});
+        else
+          r.tags.push_back((*it)[i].get<std::string>());
+      }
+    }
+  }
+  if (auto it = body.find("priority"); it != body.end()) {
+    r.priority = priority_of(*it);
+    if (!r.priority) errors.push_back({"/priority", priority_rule()});
+  }
+  if (auto it = body.find("fresh"); it != body.end()) {
+    if (it->is_boolean())
+      r.fresh = it->get<bool>();
+    else
+      errors.push_back({"/fresh", "must be a boolean"});
+  }
+  parse_base(body, r, errors);
+
+  const bool grid = body.contains("grid"), convergence = body.contains("convergence"),
+             preset = body.contains("preset");
+  if (int(grid) + int(convergence) + int(preset) != 1) {
+    errors.push_back({"", "give exactly one of \"grid\", \"convergence\" or \"preset\""});
+  } else if (grid) {
+    r.kind = StudyKind::grid;
+    parse_grid(body["grid"], r, errors);
+  } else if (convergence) {
+    r.kind = StudyKind::convergence;
+    parse_convergence(body["convergence"], r, errors);
+  } else if (body["preset"] != "failure_regimes") {
+    errors.push_back({"/preset", "unknown preset (known: \"failure_regimes\")"});
+  } else {
+    r.kind = StudyKind::failure_regimes;
+  }
+  if (errors.empty()) out.request = std::move(r);
+  return out;
+}
+
+using api::number_text;
+
+json run_document(const StudyRequest& request, const std::string& study_id, const json& overrides,
+                  const std::string& regime, double L, double n_d) {
+  json doc = request.base;
+  doc.merge_patch(overrides);
+  doc["friction"]["L"] = L;
+  doc["geometry"]["nodes_per_meter"] = n_d;
+  if (!request.base.contains("name") || !request.base["name"].is_string()) {
+    std::string name = request.name.empty() ? "study " + study_id.substr(0, 8) : request.name;
+    if (!regime.empty()) name += " " + regime;
+    doc["name"] = name + " L=" + number_text(L) + " n_d=" + number_text(n_d);
+  }
+  json tags = request.base.contains("tags") && request.base["tags"].is_array()
+                  ? request.base["tags"]
+                  : json::array();
+  for (const auto& tag : request.tags)
+    tags.push_back(tag);
+  tags.push_back("study:" + study_id);
+  doc["tags"] = tags;
+  return doc;
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,216 @@
+// POST /jobs, GET /jobs, GET /jobs/{id}, POST /jobs/{id}/cancel.
+#include "server/core/job_id.hpp"
+#include "server/core/priority.hpp"
+#include "server/core/run_query.hpp"
+#include "server/http/handlers.hpp"
+#include "server/http/job_filter_query.hpp"
+#include "server/http/job_json.hpp"
+#include "server/http/query_string.hpp"
+#include "server/http/responses.hpp"
+#include "server/http/run_table.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace slipfront::server {
+
+namespace {
+
+Response not_found_job(const Request& req, const std::string& id) {
+  return problem_response(req, http::status::not_found, "no job with id " + id);
+}
+
+Response submit(ServerContext& ctx, RequestContext& rc) {
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
+  const auto& req = rc.request;
+  if (ctx.draining) {
+    auto res =
+        problem_response(req, http::status::service_unavailable, "the server is shutting down");
+    res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
+    return res;
+  }
+  SubmitOptions options;
+  options.user = rc.user;
+  std::vector<api::FieldError> errors;
+  if (auto it = rc.query.find("fresh"); it != rc.query.end()) {
+    options.fresh = parse_bool(it->second);
+    if (!options.fresh) errors.push_back({"/query/fresh", "must be true or false"});
+  }
+  if (auto it = rc.query.find("priority"); it != rc.query.end()) {
+    const auto number = parse_long(it->second);
+    options.priority = number ? priority_of(*number) : std::nullopt;
+    if (!options.priority) errors.push_back({"/query/priority", priority_rule()});
+  }
+  std::string key(req["Idempotency-Key"]);
+  if (req.count("Idempotency-Key") && (key.empty() || key.size() > 200))
+    errors.push_back({"/headers/Idempotency-Key", "must be 1 to 200 characters"});
+  if (!errors.empty())
+    return problem_response(req, http::status::bad_request, "invalid query parameters", errors);
+  options.idempotency_key = key;
+
+  SubmitResult r = ctx.service.submit(req.body(), options);
+  using Kind = SubmitResult::Kind;
+  switch (r.kind) {
+  case Kind::bad_json:
+    return problem_response(req, http::status::bad_request, "the body is not valid JSON", r.errors);
+  case Kind::invalid:
+    return problem_response(req, http::status::unprocessable_entity,
+                            "the job spec is invalid (" + std::to_string(r.errors.size()) +
+                                " error" + (r.errors.size() == 1 ? "" : "s") + ")",
+                            r.errors);
+  case Kind::key_conflict:
+    return problem_response(req, http::status::unprocessable_entity,
+                            r.errors.empty() ? "Idempotency-Key conflict" : r.errors[0].reason);
+  case Kind::queue_full: {
+    auto res =
+        problem_response(req, http::status::service_unavailable,
+                         "the queue is full (" + std::to_string(ctx.service.load().queue_limit) +
+                             " jobs); retry later");
+    res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
+    return res;
+  }
+  case Kind::created:
+  case Kind::reused:
+  case Kind::replayed:
+    break;
+  }
+  auto body = job_to_json(*r.job);
+  body["reused"] =
+      r.kind == Kind::reused || (r.kind == Kind::replayed && !r.job->cached_from.empty());
+  body["cache"] = !r.job->cached_from.empty() ? "hit" : (r.job->fresh ? "bypassed" : "miss");
+  auto res =
+      json_response(req, r.kind == Kind::replayed ? http::status::ok : http::status::created, body);
+  res.set(http::field::location, api_prefix + "/jobs/" + r.job->id);
+  if (r.kind == Kind::replayed) res.set("Idempotent-Replayed", "true");
+  return res;
+}
+
+Response get_job(ServerContext& ctx, RequestContext& rc) {
+  const auto& id = rc.path_params.at("id");
+  if (!is_valid_job_id(id)) return not_found_job(rc.request, id);
+  auto job = ctx.service.get(id);
+  if (!job) return not_found_job(rc.request, id);
+  std::vector<std::string> fields;
+  if (auto it = rc.query.find("fields"); it != rc.query.end()) fields = split_commas(it->second);
+  return json_response(rc.request, http::status::ok, job_to_json(*job, fields));
+}
+
+Response list_jobs(ServerContext& ctx, RequestContext& rc) {
+  const auto& q = rc.query;
+  auto [f, fields, format, errors] = parse_job_filter(q);
+  const bool table = format == "csv" || format == "ndjson";
+  if (!errors.empty())
+    return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
+                            errors);
+  JobPage page = ctx.service.list(f);
+  std::optional<std::string> next_cursor;
+  if (page.next_cursor) next_cursor = std::to_string(*page.next_cursor);
+  if (page.next_offset) next_cursor = "o" + std::to_string(*page.next_offset);
+  std::optional<std::string> next;
+  if (next_cursor) {
+    next = api_prefix + "/jobs?";
+    for (const auto& [key, value] : q)
+      if (key != "cursor") *next += percent_encode(key) + "=" + percent_encode(value) + "&";
+    *next += "cursor=" + *next_cursor;
+  }
+  if (table) {
+    std::vector<nlohmann::ordered_json> rows;
+    for (const auto& job : page.jobs) {
+      auto it = page.convergence_status.find(job.id);
+      rows.push_back(run_row(job, it == page.convergence_status.end() ? "" : it->second));
+    }
+    auto response = format == "csv" ? text_response(rc.request, http::status::ok, runs_csv(rows),
+                                                    "text/csv; charset=utf-8")
+                                    : text_response(rc.request, http::status::ok, runs_ndjson(rows),
+                                                    "application/x-ndjson");
+    if (next) response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
+    return response;
+  }
+  nlohmann::json body;
+  body["jobs"] = nlohmann::json::array();
+  for (const auto& job : page.jobs)
+    body["jobs"].push_back(job_to_json(job, fields));
+  body["count"] = page.jobs.size();
+  if (next_cursor) {
+    body["next_cursor"] = *next_cursor;
+    body["next"] = *next;
+  } else {
+    body["next_cursor"] = nullptr;
+    body["next"] = nullptr;
+  }
+  return json_response(rc.request, http::status::ok, body);
+}
+
+Response cancel_job(ServerContext& ctx, RequestContext& rc) {
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
+  const auto& id = rc.path_params.at("id");
+  if (!is_valid_job_id(id)) return not_found_job(rc.request, id);
+  auto r = ctx.service.cancel(id, rc.user);
+  using Kind = CancelResult::Kind;
+  switch (r.kind) {
+  case Kind::not_found:
+    return not_found_job(rc.request, id);
+  case Kind::forbidden:
+    return problem_response(rc.request, http::status::forbidden,
+                            "job " + id + " was submitted by another user");
+  case Kind::already_final:
+    return problem_response(rc.request, http::status::conflict,
+                            "job " + id + " has already finished (" + to_string(r.job->status) +
+                                ")");
+  case Kind::cancelled: {
+    auto body = job_to_json(*r.job);
+    body["cancel_requested"] = true;
+    return json_response(rc.request, http::status::ok, body);
+  }
+  case Kind::cancel_requested: {
+    auto body = job_to_json(*r.job);
+    body["cancel_requested"] = true;
+    return json_response(rc.request, http::status::accepted, body);
+  }
+  }
+  return problem_response(rc.request, http::status::internal_server_error, "unreachable");
+}
+
+// GET /job-defaults?method=fe|spectral_bi: the canonical spec of an empty job of that method
+// (every field with its default), what the web view's submit form starts from.
+Response job_defaults(RequestContext& rc) {
+  std::string method = "fe";
+  for (const auto& [key, value] : rc.query) {
+    if (key != "method")
+      return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
+                              {{"/query/" + key, "unknown query parameter (known: method)"}});
+    method = value;
+  }
+  if (method != "fe" && method != "spectral_bi")
+    return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
+                            {{"/query/method", "must be fe or spectral_bi"}});
+  auto parsed = api::parse_job(nlohmann::json{{"method", method}});
+  if (!parsed.ok())
+    return problem_response(rc.request, http::status::internal_server_error,
+                            "the defaults do not validate", parsed.errors);
+  return json_response(rc.request, http::status::ok,
+                       {{"method", method},
+                        {"spec", parsed.spec->canonical},
+                        {"memory_estimate_bytes", parsed.spec->memory_estimate_bytes}});
+}
+
+} // namespace
+
+void add_job_routes(Router& router, ServerContext& ctx) {
+  router.add(http::verb::post, api_prefix + "/jobs",
+             [&ctx](RequestContext& rc) { return submit(ctx, rc); });
+  router.add(
+      http::verb::get, api_prefix + "/jobs",
+      [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); }, true);
+  router.add(http::verb::get, api_prefix + "/jobs/{id}",
+             [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
+  router.add(http::verb::post, api_prefix + "/jobs/{id}/cancel",
+             [&ctx](RequestContext& rc) { return cancel_job(ctx, rc); });
+  router.add(http::verb::get, api_prefix + "/job-defaults",
+             [](RequestContext& rc) { return job_defaults(rc); });
+}
+
+} // namespace slipfront::server

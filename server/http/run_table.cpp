@@ -1,0 +1,113 @@
+#include "server/http/run_table.hpp"
+
+#include "api/json_number.hpp"
+
+#include <algorithm>
+#include <set>
+
+namespace slipfront::server {
+
+namespace {
+
+void flatten(const nlohmann::json& j, const std::string& prefix, nlohmann::ordered_json& row) {
+  // nlohmann::json objects iterate in sorted key order, so columns come out sorted.
+  for (const auto& [key, value] : j.items()) {
+    std::string name = prefix + "." + key;
+    if (value.is_object())
+      flatten(value, name, row);
+    else if (!value.is_array())
+      row[name] = value;
+  }
+}
+
+nlohmann::json text_or_null(const std::string& s) {
+  return s.empty() ? nlohmann::json(nullptr) : nlohmann::json(s);
+}
+
+std::string csv_cell(const nlohmann::ordered_json& v) {
+  if (v.is_null()) return "";
+  std::string text = v.is_string() ? v.get<std::string>() : v.dump();
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+} // namespace
+
+nlohmann::ordered_json run_row(const Job& job, const std::string& convergence_status) {
+  nlohmann::ordered_json row;
+  row["id"] = job.id;
+  row["name"] = job.name;
+  row["status"] = to_string(job.status);
+  row["method"] = job.spec.is_object() ? job.spec.value("method", "fe") : "fe";
+  std::string tags;
+  for (const auto& t : job.tags)
+    tags += (tags.empty() ? "" : ";") + t;
+  row["tags"] = tags;
+  row["outcome"] = job.metrics.is_object() && job.metrics.contains("outcome")
+                       ? job.metrics["outcome"]
+                       : nlohmann::json(nullptr);
+  row["convergence_status"] = text_or_null(convergence_status);
+  row["study_id"] = text_or_null(job.study_id);
+  row["submitted_by"] = text_or_null(job.submitted_by);
+  row["created_at"] = text_or_null(job.created_at);
+  row["finished_at"] = text_or_null(job.finished_at);
+  row["wall_time_s"] =
+      job.started_at.empty() ? nlohmann::json(nullptr) : api::json_number(job.wall_time_s);
+  row["memory_estimate_bytes"] = job.memory_estimate_bytes;
+  row["cached_from"] = text_or_null(job.cached_from);
+  row["error"] = text_or_null(job.error);
+  if (job.spec.is_object()) {
+    nlohmann::json spec = job.spec;
+    spec.erase("name");
+    spec.erase("tags");
+    flatten(spec, "spec", row);
+  }
+  if (job.metrics.is_object()) flatten(job.metrics, "metrics", row);
+  return row;
+}
+
+std::string runs_csv(const std::vector<nlohmann::ordered_json>& rows) {
+  std::vector<std::string> header;
+  std::set<std::string> seen;
+  for (const auto& row : rows)
+    for (const auto& [key, value] : row.items())
+      if (seen.insert(key).second) header.push_back(key);
+  // Job columns first (in row order), then spec.* and metrics.*, each sorted.
+  auto group = [](const std::string& key) {
+    return key.rfind("spec.", 0) == 0 ? 1 : key.rfind("metrics.", 0) == 0 ? 2 : 0;
+  };
+  std::stable_sort(header.begin(), header.end(), [&](const std::string& a, const std::string& b) {
+    int ga = group(a), gb = group(b);
+    if (ga != gb) return ga < gb;
+    return ga != 0 && a < b;
+  });
+  std::string out;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) out += ',';
+    out += csv_cell(header[i]);
+  }
+  out += "\r\n";
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      if (i) out += ',';
+      auto it = row.find(header[i]);
+      if (it != row.end()) out += csv_cell(*it);
+    }
+    out += "\r\n";
+  }
+  return out;
+}
+
+std::string runs_ndjson(const std::vector<nlohmann::ordered_json>& rows) {
+  std::string out;
+  for (const auto& row : rows)
+    out += row.dump() + "\n";
+  return out;
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,77 @@
+#include "server/http/study_json.hpp"
+
+#include "api/json_number.hpp"
+#include "server/http/api_prefix.hpp"
+
+namespace slipfront::server {
+
+using nlohmann::json;
+
+json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, bool summary) {
+  const std::string self = api_prefix + "/studies/" + s.id;
+  json j;
+  j["id"] = s.id;
+  j["name"] = s.name;
+  j["tags"] = s.tags;
+  j["kind"] = s.kind;
+  j["status"] = api::to_string(s.status);
+  j["submitted_by"] = s.submitted_by;
+  j["created_at"] = s.created_at;
+  j["updated_at"] = s.updated_at.empty() ? json(nullptr) : json(s.updated_at);
+  j["finished_at"] = s.finished_at.empty() ? json(nullptr) : json(s.finished_at);
+  j["scene_hash"] = s.scene_hash;
+  j["method"] = s.base.is_object() ? s.base.value("method", "fe") : "fe";
+  j["progress"] = {{"done", s.runs_done},
+                   {"total", s.runs_total},
+                   {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};
+  j["L_c"] = api::json_number(s.L_c);
+  j["spectral_critical_length"] = api::json_number(s.spectral_critical_length);
+  j["links"] = {{"self", self},
+                {"speed_accuracy", self + "/speed-accuracy"},
+                {"convergence_map", api_prefix + "/convergence-map?scene=" + s.scene_hash},
+                {"jobs", api_prefix + "/jobs?study_id=" + s.id}};
+  if (summary) return j;
+  j["request"] = s.request;
+  json list = json::array();
+  for (const auto& r : runs) {
+    std::string outcome;
+    if (r.metrics.is_object() && r.metrics.contains("outcome") && r.metrics["outcome"].is_string())
+      outcome = r.metrics["outcome"].get<std::string>();
+    json run = {{"job_id", r.job_id},
+                {"L", r.L},
+                {"n_d", r.n_d},
+                {"job_status", r.job_status},
+                {"outcome", outcome.empty() ? json(nullptr) : json(outcome)},
+                {"cached_from", r.cached_from.empty() ? json(nullptr) : json(r.cached_from)},
+                {"error", r.error.empty() ? json(nullptr) : json(r.error)},
+                {"convergence",
+                 {{"status", r.convergence_status},
+                  {"partner_n_d", api::json_number(r.partner_n_d)},
+                  {"changes",
+                   {{"propagation_distance", api::json_number(r.propagation_distance_change)},
+                    {"arrival_time", api::json_number(r.arrival_time_change)}}},
+                  {"reason", r.reason}}},
+                {"links", {{"job", api_prefix + "/jobs/" + r.job_id}}}};
+    if (!r.regime.empty()) run["regime"] = r.regime;
+    list.push_back(std::move(run));
+  }
+  j["runs"] = list;
+  const json& result = s.result.is_object() ? s.result : json::object();
+  j["critical_length"] = result.value("critical_length", json(nullptr));
+  j["convergence_map"] = result.value("convergence_map", json(nullptr));
+  if (result.contains("refinement")) j["refinement"] = result["refinement"];
+  if (result.contains("regimes")) j["regimes"] = result["regimes"];
+  return j;
+}
+
+json study_to_json(const StudyView& view) {
+  json j = study_to_json(view.study, view.runs);
+  if (view.counterpart_scene_hash) {
+    j["counterpart_scene_hash"] =
+        view.counterpart_scene_hash->empty() ? json(nullptr) : json(*view.counterpart_scene_hash);
+    if (view.cross_method) j["cross_method"] = *view.cross_method;
+  }
+  return j;
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,48 @@
+// The jobs that workers are running right now: live progress (fresher than the database,
+// which is written every few seconds) and the cancel flag handed to the solver.
+#pragma once
+
+#include "server/core/job.hpp"
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct RunningJob {
+  std::atomic<bool> cancel{false};         // read by the solver every step
+  std::atomic<bool> user_cancelled{false}; // cancel came from the API: final state cancelled
+  std::string cancelled_by;
+  std::mutex mutex;
+  JobProgress progress;
+
+  // The user whose cancel stopped it ("" if none was named).
+  std::string canceller() {
+    std::lock_guard lock(mutex);
+    return cancelled_by;
+  }
+};
+
+class RunningJobs {
+public:
+  std::shared_ptr<RunningJob> add(const std::string& id);
+  void remove(const std::string& id);
+  std::shared_ptr<RunningJob> find(const std::string& id) const;
+  std::optional<JobProgress> progress(const std::string& id) const;
+  // Sets the flag of a running job; false if it is not running here.
+  bool request_cancel(const std::string& id, const std::string& user);
+  // Drain: every running job stops at its next step (and is re-queued by its worker).
+  void cancel_all_for_drain();
+  std::size_t size() const;
+
+private:
+  mutable std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<RunningJob>> jobs_;
+};
+
+} // namespace slipfront::server

@@ -1,0 +1,104 @@
+// What the HTTP handlers ask of the server: submit, read, list and cancel jobs.
+// Nothing here waits for a simulation: every call is a few short database operations.
+#pragma once
+
+#include "api/job_spec.hpp"
+#include "server/db/job_store.hpp"
+#include "server/run/job_queue.hpp"
+#include "server/run/running_jobs.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct SubmitOptions {
+  std::string user;                // who submits ("anonymous" without a token file)
+  std::string idempotency_key;     // "" = none
+  std::optional<bool> fresh;       // ?fresh=... (the body's "fresh" is read by submit())
+  std::optional<int> priority;     // ?priority=...
+  std::string study_id;            // the study submitting this job ("" = none)
+  bool ignore_queue_limit = false; // runs a study adds later (its request was accepted)
+};
+
+struct SubmitResult {
+  enum class Kind {
+    created,      // 201: queued
+    reused,       // 201: a succeeded job with the same physics and code version was reused
+    replayed,     // 200: same Idempotency-Key as an earlier submission: that job
+    bad_json,     // 400
+    invalid,      // 422 (errors)
+    key_conflict, // 422: Idempotency-Key reused with a different spec
+    queue_full,   // 503
+  } kind = Kind::created;
+  std::vector<api::FieldError> errors;
+  std::optional<Job> job;
+};
+
+struct CancelResult {
+  enum class Kind { cancelled, cancel_requested, not_found, forbidden, already_final } kind;
+  std::optional<Job> job;
+};
+
+struct ServiceOptions {
+  double max_memory_bytes = 8.0e9;
+  double max_result_bytes = 20.0e9; // result-file estimate above which a job is refused
+  std::string code_version;
+  bool auth_enabled = false;
+  // Result paths are relative to it; "" = the working directory. A cached result whose file
+  // is gone is not reused.
+  std::string data_dir;
+};
+
+// The queue and the executor now, for /healthz and /metrics.
+struct ServiceLoad {
+  std::size_t running = 0;     // jobs running
+  std::size_t queued = 0;      // jobs waiting in the run queue
+  std::size_t queue_limit = 0; // queue size above which submissions get 503
+};
+
+class JobService {
+public:
+  JobService(ServiceOptions options, JobStore& store, JobQueue& queue, RunningJobs& running);
+
+  SubmitResult submit(const std::string& body, const SubmitOptions& options);
+  // The same for a parsed document (studies submit their runs through this).
+  SubmitResult submit_document(nlohmann::json doc, const SubmitOptions& options);
+  // Validates a job document as submit() would, without submitting it.
+  api::ParseResult validate(nlohmann::json doc) const;
+  std::optional<Job> get(const std::string& id); // with live progress if running
+  JobPage list(const JobFilter& filter);
+  CancelResult cancel(const std::string& id, const std::string& user);
+  // The stored rupture front of a job (null json if none); nullopt for an unknown job.
+  std::optional<nlohmann::json> front(const std::string& id) { return store_.front(id); }
+
+  ServiceLoad load() const;
+  // The number of jobs in the database by status.
+  std::map<std::string, std::int64_t> count_by_status() { return store_.count_by_status(); }
+  // Throws when the database does not answer a trivial query.
+  void check_database() { store_.user_version(); }
+
+  bool auth_enabled() const { return options_.auth_enabled; }
+  // Called after a queued job was cancelled (a running one reports through the workers).
+  void set_on_cancelled(std::function<void(const std::string& id)> f) {
+    on_cancelled_ = std::move(f);
+  }
+  const ServiceOptions& options() const { return options_; }
+
+private:
+  bool result_file_exists(const Job& job) const;
+
+  ServiceOptions options_;
+  JobStore& store_;
+  JobQueue& queue_;
+  RunningJobs& running_;
+  std::mutex submit_mutex_; // queue-limit check, insert and push are one step
+  std::function<void(const std::string& id)> on_cancelled_;
+};
+
+} // namespace slipfront::server

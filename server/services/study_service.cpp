@@ -1,0 +1,288 @@
+#include "server/services/study_service.hpp"
+
+#include "api/json_number.hpp"
+#include "server/core/clock.hpp"
+#include "server/core/job_id.hpp"
+#include "server/core/log.hpp"
+#include "server/services/study_progress.hpp"
+
+#include "api/job_spec.hpp"
+#include "api/json_parse.hpp"
+#include "api/result_reader.hpp"
+#include "api/study/failure_regimes.hpp"
+#include "api/study_analysis.hpp"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace slipfront::server {
+
+using nlohmann::json;
+
+namespace {
+
+using Kind = StudyCreateResult::Kind;
+
+struct Planned {
+  std::string regime;
+  json overrides;
+  double L;
+  double n_d;
+  bool submit_now;
+};
+
+// Every run the study may submit: for a convergence study the whole ladder up to the cap
+// (checked now, so that a later mesh is not refused), submitted: the first two meshes.
+std::vector<Planned> plan_runs(const StudyRequest& r) {
+  std::vector<Planned> out;
+  switch (r.kind) {
+  case StudyKind::grid:
+    for (double L : r.L)
+      for (double n_d : r.n_d)
+        out.push_back({"", json::object(), L, n_d, true});
+    break;
+  case StudyKind::convergence:
+    for (double L : r.L) {
+      int first = 0;
+      for (double n_d : r.n_d)
+        if (n_d <= r.n_d_max) out.push_back({"", json::object(), L, n_d, first++ < 2});
+    }
+    break;
+  case StudyKind::failure_regimes:
+    for (const auto& regime : api::failure_regimes())
+      for (double n_d : regime.n_d)
+        out.push_back({regime.name, regime.overrides, regime.L, n_d, true});
+    break;
+  }
+  return out;
+}
+
+std::string value_pointer(const StudyRequest& r, const char* axis, double value) {
+  const auto& values = std::string(axis) == "L" ? r.L : r.n_d;
+  const std::string group = r.kind == StudyKind::convergence ? "/convergence/" : "/grid/";
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (values[i] == value) return group + axis + "/" + std::to_string(i);
+  return "/preset";
+}
+
+// The job validator's errors for one run, with pointers into the study body.
+void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
+               std::vector<api::FieldError>& errors, std::set<std::string>& seen) {
+  auto parsed =
+      jobs.validate(run_document(r, std::string(32, '0'), p.overrides, p.regime, p.L, p.n_d));
+  for (const auto& e : parsed.errors) {
+    std::string pointer;
+    if (e.pointer == "/friction/L")
+      pointer = value_pointer(r, "L", p.L);
+    else if (e.pointer == "/geometry/nodes_per_meter")
+      pointer = value_pointer(r, "n_d", p.n_d);
+    else
+      pointer = "/base" + e.pointer;
+    std::string reason = e.reason;
+    if (!p.regime.empty()) reason += " (preset regime " + p.regime + ")";
+    if (seen.insert(pointer + "\n" + reason).second) errors.push_back({pointer, reason});
+  }
+}
+
+} // namespace
+
+StudyCreateResult StudyService::create(const std::string& body, const std::string& user) {
+  StudyCreateResult out;
+  auto body_json = api::parse_bounded_json(body);
+  if (!body_json.ok()) {
+    out.kind = body_json.status == api::JsonParse::Status::syntax ? Kind::bad_json : Kind::invalid;
+    out.errors.push_back(body_json.error);
+    return out;
+  }
+  auto parsed = parse_study_request(body_json.value);
+  if (!parsed.request) {
+    out.kind = Kind::invalid;
+    out.errors = std::move(parsed.errors);
+    return out;
+  }
+  const StudyRequest& request = *parsed.request;
+  const auto planned = plan_runs(request);
+  std::set<std::string> seen;
+  for (const auto& p : planned)
+    check_run(jobs_, request, p, out.errors, seen);
+  if (!out.errors.empty()) {
+    out.kind = Kind::invalid;
+    return out;
+  }
+  std::size_t now_count = 0;
+  for (const auto& p : planned)
+    now_count += p.submit_now ? 1 : 0;
+  if (queue_.size() + now_count > queue_.limit()) {
+    out.kind = Kind::queue_full;
+    return out;
+  }
+
+  StudyRecord study;
+  study.id = new_job_id();
+  study.name = request.name;
+  study.tags = request.tags;
+  study.kind = to_string(request.kind);
+  study.base = request.base;
+  study.request = request.body;
+  study.submitted_by = user;
+  study.priority = request.priority.value_or(0);
+  study.fresh = request.fresh.value_or(false);
+  study.created_at = now_iso8601();
+  // The scene of the base (for the preset: of its regularised runs).
+  auto base = jobs_.validate(run_document(request, study.id, json::object(), "", 5e-5, 10));
+  study.scene_hash = base.spec ? api::scene_hash(base.spec->canonical) : "";
+
+  supervisor_.exclusive([&] {
+    studies_.insert(study);
+    for (const auto& p : planned) {
+      if (!p.submit_now) continue;
+      auto r = submit_study_run(jobs_, studies_, study, request, p.overrides, p.regime, p.L, p.n_d,
+                                true);
+      if (!r.job)
+        log_error("study " + study.id + ": a run was refused after validation: " +
+                  (r.errors.empty() ? "" : r.errors[0].pointer + " " + r.errors[0].reason));
+    }
+    supervisor_.step_locked(study.id);
+  });
+  log_info("study " + study.id + " created (" + study.kind + ", " + std::to_string(now_count) +
+           " run(s) submitted) by " + user);
+  out.id = study.id;
+  return out;
+}
+
+StudyCancelResult StudyService::cancel(const std::string& id, const std::string& user,
+                                       bool auth_enabled) {
+  using CancelKind = StudyCancelResult::Kind;
+  StudyCancelResult out;
+  supervisor_.exclusive([&] {
+    auto study = studies_.get(id);
+    if (!study) {
+      out.kind = CancelKind::not_found;
+      return;
+    }
+    out.status = study->status;
+    if (auth_enabled && study->submitted_by != user) {
+      out.kind = CancelKind::forbidden;
+      return;
+    }
+    if (study->status != api::StudyStatus::running) {
+      out.kind = CancelKind::already_over;
+      return;
+    }
+    // Cancelled first, under the step lock: no step can submit a further mesh after this.
+    studies_.set_status(id, api::StudyStatus::cancelled, now_iso8601());
+    auto runs = supervisor_.cancel_runs_locked(*study);
+    out.cancelled_jobs = std::move(runs.cancelled);
+    out.cancel_requested_jobs = std::move(runs.cancel_requested);
+    try {
+      supervisor_.step_locked(id);
+    } catch (const std::exception& e) { // stored again when its runs end
+      log_error("study " + id + ": analysis after the cancel: " + e.what());
+    }
+  });
+  if (out.kind == CancelKind::cancelled)
+    log_info("study " + id + " cancelled (" + std::to_string(out.cancelled_jobs.size()) +
+             " queued job(s) cancelled, " + std::to_string(out.cancel_requested_jobs.size()) +
+             " running job(s) asked to stop)");
+  return out;
+}
+
+std::optional<MethodScenes> StudyService::method_scenes(const StudyRecord& study) {
+  StudyRequest request;
+  request.base = study.base;
+  auto base = jobs_.validate(run_document(request, study.id, json::object(), "", 5e-5, 10));
+  if (!base.spec) return std::nullopt;
+  return MethodScenes{base.spec->params.method == Method::finite_element, study.scene_hash,
+                      api::counterpart_scene_hash(base.spec->canonical)};
+}
+
+std::optional<StudyView> StudyService::view(const std::string& id) {
+  auto study = studies_.get(id);
+  if (!study) return std::nullopt;
+  StudyView view{*study, studies_.runs(id), std::nullopt, std::nullopt};
+  // The same scene by the other method, from every run the group has made of it.
+  if (const auto scenes = method_scenes(*study)) {
+    view.counterpart_scene_hash = scenes->other_scene;
+    if (!scenes->other_scene.empty()) {
+      const auto mine = studies_.scene_runs(scenes->scene);
+      const auto theirs = studies_.scene_runs(scenes->other_scene);
+      view.cross_method = scenes->is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
+    }
+  }
+  return view;
+}
+
+std::optional<StudyRecord> StudyService::get(const std::string& id) {
+  return studies_.get(id);
+}
+
+std::vector<StudyRecord> StudyService::list(int limit, std::optional<std::int64_t> before_seq,
+                                            std::optional<api::StudyStatus> status) {
+  return studies_.list(limit, before_seq, status);
+}
+
+json StudyService::convergence_map(const std::string& scene_hash) {
+  return scene_analysis(studies_.scene_runs(scene_hash));
+}
+
+// speed_accuracy of each regime, with the relative L2 error of the slip-velocity record at
+// the spectrum probe against the reference run's record (api/study/speed_accuracy.hpp);
+// the records are read from the result files here.
+std::optional<json> StudyService::speed_accuracy(const std::string& id) {
+  auto study = studies_.get(id);
+  if (!study) return std::nullopt;
+  auto rows = studies_.runs(id);
+  std::map<std::string, const StudyRunRow*> by_id;
+  std::vector<api::RegimeRun> runs;
+  for (const auto& r : rows) {
+    runs.push_back({r.regime, to_study_run(r)});
+    by_id[r.job_id] = &r;
+  }
+  // The slip-velocity record at the spectrum probe, from the run's result file.
+  const std::string& data_dir = jobs_.options().data_dir;
+  api::SlipVelocityErrors l2([&](const std::string& job_id, std::string& why) {
+    const auto* row = by_id.at(job_id);
+    std::optional<api::ProbeSeries> series;
+    if (row->result_path.empty()) {
+      why = "no result file (job " + row->job_status + ")";
+    } else if (auto rec = api::read_probe_record(data_dir + "/" + row->result_path, why)) {
+      series = api::ProbeSeries{std::move(rec->time), std::move(rec->slip_velocity), rec->x1};
+    }
+    return series;
+  });
+  json list = api::speed_accuracy_by_regime(runs, l2);
+  // Both methods on one chart: every run of the study's scene and of its counterpart.
+  json across = nullptr;
+  std::vector<StudyRunRow> scene_rows;
+  if (const auto scenes = method_scenes(*study); scenes && !scenes->other_scene.empty()) {
+    scene_rows = studies_.scene_runs(scenes->scene);
+    const std::size_t own = scene_rows.size();
+    auto other_rows = studies_.scene_runs(scenes->other_scene);
+    scene_rows.insert(scene_rows.end(), other_rows.begin(), other_rows.end());
+    std::vector<api::StudyRun> mine, theirs;
+    for (std::size_t k = 0; k < scene_rows.size(); ++k) {
+      by_id.emplace(scene_rows[k].job_id, &scene_rows[k]);
+      (k < own ? mine : theirs).push_back(to_study_run(scene_rows[k]));
+    }
+    json across_runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
+                                     : api::speed_accuracy_across_methods(theirs, mine);
+    for (auto& entry : across_runs)
+      l2.add_to(entry);
+    across = {{"runs", across_runs},
+              {"reference", "the finest reference run of the same L by either method "
+                            "(spectral_bi on a tie), from every run of the two scenes"}};
+  }
+  return json{{"study_id", id},
+              {"runs", list},
+              {"probe",
+               {{"dataset", "/probes/slip_velocity_spectrum"},
+                {"x1", api::json_number(l2.probe_x1())},
+                {"description", "relative L2 error over time of the slip velocity at the "
+                                "spectrum probe (probe.spectrum_x1, default 6 m)"}}},
+              {"reference", "the finest non-diverged run of the same L, when that L has a "
+                            "mesh-converged run (docs/studies.md)"},
+              {"across_methods", across}};
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,80 @@
+// What the study handlers ask of the server: create a study (validate its request, submit
+// its first runs as ordinary jobs), view one, list them, cancel one, its speed-accuracy
+// analysis and the shared convergence map. It answers with the core's values and the
+// analyses' JSON; the handlers write the API's JSON (server/http/study_json.hpp).
+#pragma once
+
+#include "server/db/study_store.hpp"
+#include "server/run/job_queue.hpp"
+#include "server/services/job_service.hpp"
+#include "server/services/study_supervisor.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+struct StudyCreateResult {
+  enum class Kind { created, bad_json, invalid, queue_full } kind = Kind::created;
+  std::vector<api::FieldError> errors;
+  std::optional<std::string> id;
+};
+
+struct StudyCancelResult {
+  enum class Kind { cancelled, not_found, forbidden, already_over } kind = Kind::cancelled;
+  api::StudyStatus status = api::StudyStatus::running; // the study's status before the call
+  std::vector<std::string> cancelled_jobs;             // were queued: cancelled now
+  std::vector<std::string> cancel_requested_jobs;      // were running: they stop at their next step
+};
+
+// The study's scene and the same physics by the other method (docs/studies.md).
+struct MethodScenes {
+  bool is_fe = true;
+  std::string scene;       // the study's own scene hash
+  std::string other_scene; // "" when the swapped spec is not valid
+};
+
+// A study as GET /studies/{id} shows it (written as JSON by server/http/study_json.hpp).
+struct StudyView {
+  StudyRecord study;
+  std::vector<StudyRunRow> runs;
+  // The same scene by the other method (docs/studies.md): unset when the study's base is not
+  // valid, "" when the swapped spec is not.
+  std::optional<std::string> counterpart_scene_hash;
+  std::optional<nlohmann::json> cross_method; // api::cross_method_table of the two scenes
+};
+
+class StudyService {
+public:
+  StudyService(StudyStore& studies, JobService& jobs, JobQueue& queue, StudySupervisor& supervisor)
+      : studies_(studies), jobs_(jobs), queue_(queue), supervisor_(supervisor) {}
+
+  StudyCreateResult create(const std::string& body, const std::string& user);
+  std::optional<StudyView> view(const std::string& id); // GET /studies/{id}
+  std::optional<StudyRecord> get(const std::string& id);
+  // Newest first, at most `limit`; `before_seq` is the cursor of the previous page.
+  std::vector<StudyRecord> list(int limit, std::optional<std::int64_t> before_seq,
+                                std::optional<api::StudyStatus> status);
+  // POST /studies/{id}/cancel: no further runs, and every queued or running run of the
+  // study is cancelled. `user` must be the submitter when tokens are in use.
+  StudyCancelResult cancel(const std::string& id, const std::string& user, bool auth_enabled);
+  // GET /studies/{id}/speed-accuracy (docs/studies-api.md); nullopt for an unknown study.
+  std::optional<nlohmann::json> speed_accuracy(const std::string& id);
+  // GET /convergence-map: the map and L_c of every run of a scene (scene_analysis).
+  nlohmann::json convergence_map(const std::string& scene_hash);
+
+private:
+  // The study's method and the counterpart scene; nullopt when its base is not valid.
+  std::optional<MethodScenes> method_scenes(const StudyRecord& study);
+
+  StudyStore& studies_;
+  JobService& jobs_;
+  JobQueue& queue_;
+  StudySupervisor& supervisor_;
+};
+
+} // namespace slipfront::server
