@@ -126,13 +126,28 @@ struct FeOptions {
   double mesh_damping = 0.0;
 };
 
+// What lies below the interface x2 = 0 (docs/physics.md "Two solids"): the rigid plane of
+// the paper (the default), or a second elastic solid with its own material. For the finite
+// elements the lower block has its own height and far (bottom) boundary; the spectral
+// boundary-integral method takes it as a half-space x2 < 0.
+enum class LowerSide { rigid, elastic };
+struct LowerSolid {
+  LowerSide side = LowerSide::rigid;
+  Material material;                          // the lower solid's (side elastic)
+  double height = 20.0;                       // FE: its height below the interface [m]
+  bool auto_height = false;                   // FE: "auto", as Geometry::auto_height
+  TopBoundary bottom = TopBoundary::traction; // FE: its far boundary at x2 = -height
+  bool elastic() const { return side == LowerSide::elastic; }
+};
+
 struct SimulationParams {
   Method method = Method::finite_element;
   SpectralOptions spectral;
   FeOptions fe;
-  Material material;
+  Material material; // the (upper) solid, x2 > 0
   Geometry geometry;
   TopBoundary top = TopBoundary::traction;
+  LowerSolid lower; // below the interface: the rigid plane unless a job asks otherwise
   Loading loading;
   Friction friction;
   Nucleation nucleation;
