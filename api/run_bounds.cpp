@@ -1,5 +1,6 @@
 #include "api/run_bounds.hpp"
 
+#include "api/material_reader.hpp"
 #include "api/number_text.hpp"
 #include "solver/simulation.hpp"
 #include "solver/step_count.hpp"
@@ -147,7 +148,18 @@ void check_time_steps(const SimulationParams& p, std::vector<FieldError>& errors
 } // namespace
 
 void check_run_bounds(const JobSpec& job, std::vector<FieldError>& errors) {
+  const std::size_t before = errors.size();
   if (check_wave_speeds(job.params, errors)) check_time_steps(job.params, errors);
+  // A material given in wave speeds (api/material_reader.hpp): its E comes from c_s, its nu
+  // from c_p / c_s.
+  const bool speeds =
+      job.canonical.is_object() && given_in_wave_speeds(job.canonical.value("material", nlohmann::json()));
+  if (!speeds) return;
+  for (std::size_t k = before; k < errors.size(); ++k) {
+    std::string& pointer = errors[k].pointer;
+    if (pointer == "/material/young_modulus") pointer = "/material/s_wave_speed";
+    if (pointer == "/material/poisson_ratio") pointer = "/material/p_wave_speed";
+  }
 }
 
 } // namespace slipfront::api

@@ -18,15 +18,11 @@ void MeshStepper::interface_row(LevelRecord& level) {
     InterfaceTraction extra;
     if (params_.extra_load) extra = params_.extra_load(x1, t);
     const double nucleation =
-        nucleation_traction(params_.nucleation, params_.loading.normal_stress, x1, t);
+        nucleation_traction(params_.nucleation, parameters_.normal_stress[i], x1, t);
     load1_[i] = extra.t1 * dx_;
     load2_[i] = (nucleation + extra.t2) * dx_;
   }
   const bool compute_energy = level.compute_energy;
-  // The initial contact force of the plane, C0 = dx (-tau1_0, |tau2_0|); the perturbation
-  // sees C - C0.
-  const double c0_1 = -params_.loading.shear_stress * dx_;
-  const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
   const double m = node_mass(0);
   double* vx = v_.x.row(0);
   double* vy = v_.y.row(0);
@@ -35,6 +31,10 @@ void MeshStepper::interface_row(LevelRecord& level) {
   const bool damped = damping_a_ > 0;
   double work = 0, dissipated = 0, kinetic = 0, strain = 0;
   for (int i = 0; i < nx_; ++i) {
+    // The initial contact force of the plane, C0 = dx (-tau0_i, |sigma0_i|); the
+    // perturbation sees C - C0.
+    const double c0_1 = -parameters_.shear_stress[i] * dx_;
+    const double c0_2 = std::abs(parameters_.normal_stress[i]) * dx_;
     double f1 = -kx0_[i] + load1_[i] - c0_1; // every force but the plane's
     double f2 = -ky0_[i] + load2_[i] - c0_2;
     if (damped) { // the damping force -a K v^{n-1/2}
@@ -46,8 +46,10 @@ void MeshStepper::interface_row(LevelRecord& level) {
     // interval is that of the last half step.
     const double v1_trial = v1_old + dt_ * f1 / m;
     const double v2_trial = v2_old + dt_ * f2 / m;
-    const InterfaceNodeStep r = resolve_interface_node(
-        node_, uy[i], v1_trial, v2_trial, std::abs(v1_old), iface_.strength[i], iface_.pressure[i]);
+    const InterfaceNodeStep r =
+        resolve_interface_node(node_, parameters_.friction[i], uy[i], v1_trial, v2_trial,
+                               std::abs(v1_old), friction_[i], iface_.pressure[i]);
+    friction_[i] = r.friction;
     const double v1_new = r.v1, v2_new = r.v2;
     vx[i] = v1_new;
     vy[i] = v2_new;

@@ -48,9 +48,11 @@ MeshStepper::MeshStepper(const SimulationParams& params) : params_(params) {
   load2_.assign(nx_, 0.0);
   kx0_.assign(nx_, 0.0);
   ky0_.assign(nx_, 0.0);
-  node_ = {node_mass(0), node_mass(0), dt_, dx_, params.friction};
+  node_ = {node_mass(0), node_mass(0), dt_, dx_, StrengthLaw(params.friction)};
 
-  iface_ = resting_interface(params, nx_, dx_);
+  parameters_ = interface_parameters(params, nx_, dx_);
+  friction_ = resting_friction(parameters_, node_.law);
+  iface_ = resting_interface(parameters_, node_.law);
   columns_.assign(ny_, ColumnRange{});
   next_columns_.assign(ny_, ColumnRange{});
 }

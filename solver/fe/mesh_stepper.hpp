@@ -5,8 +5,9 @@
 // Perturbation formulation: u, v are the displacement and velocity on top of the uniform,
 // stuck, pre-stressed initial state. The top keeps its remote traction, so it is free for
 // the perturbation (or absorbing). At an interface node the plane exerts the total force
-// C = (C1, C2); in the initial state C0 = dx (-tau1_0, |tau2_0|), so the perturbation sees
-// C - C0 (the release of the pre-stress when the node slips or opens).
+// C = (C1, C2); in the initial state C0_i = dx (-tau0_i, |sigma0_i|) (the node's initial
+// stresses, solver/interface/interface_parameters.hpp), so the perturbation sees C - C0 (the
+// release of the pre-stress when the node slips or opens).
 //
 // Central differences (explicit Newmark beta = 0, gamma = 1/2) in leapfrog form:
 //   v^{n+1/2} = v^{n-1/2} + dt M^-1 (F^n - K u^n),   u^{n+1} = u^n + dt v^{n+1/2},
@@ -30,6 +31,7 @@
 #include "solver/fe/stencil.hpp"
 #include "solver/interface/interface_fields.hpp"
 #include "solver/interface/interface_law.hpp"
+#include "solver/interface/interface_parameters.hpp"
 #include "solver/params.hpp"
 #include "solver/thread_team.hpp"
 
@@ -135,6 +137,8 @@ private:
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   std::vector<double> kx0_, ky0_;     // K u on the interface row
   InterfaceNodeConstants node_;
+  InterfaceParameters parameters_;      // tau0, sigma0 and friction values per interface node
+  std::vector<FrictionState> friction_; // the friction state of each interface node
   InterfaceFields iface_;
   EnergyBalance energy_;
   std::vector<LevelRecord> levels_;                 // the steps of the last block

@@ -12,9 +12,9 @@ double effective_mass(double upper, double lower) {
 
 } // namespace
 
-SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
-                                 const InterfaceSide& upper, const InterfaceSide& lower,
-                                 bool lower_rigid, double slip_speed, double strength,
+SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, const FrictionValues& friction,
+                                 double gap, const InterfaceSide& upper, const InterfaceSide& lower,
+                                 bool lower_rigid, double slip_speed, const FrictionState& state,
                                  double previous_pressure) {
   SplitNodeStep out;
   out.upper = upper;
@@ -23,8 +23,8 @@ SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
     InterfaceNodeConstants rigid = c;
     rigid.mass1 = upper.mass1;
     rigid.mass2 = upper.mass2;
-    out.relative = resolve_interface_node(rigid, gap, upper.v1, upper.v2, slip_speed, strength,
-                                          previous_pressure);
+    out.relative = resolve_interface_node(rigid, friction, gap, upper.v1, upper.v2, slip_speed,
+                                          state, previous_pressure);
     out.upper.v1 = out.relative.v1;
     out.upper.v2 = out.relative.v2;
     out.lower.v1 = out.lower.v2 = 0.0;
@@ -35,8 +35,9 @@ SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
   InterfaceNodeConstants pair = c;
   pair.mass1 = effective_mass(upper.mass1, lower.mass1);
   pair.mass2 = effective_mass(upper.mass2, lower.mass2);
-  const InterfaceNodeStep& r = out.relative = resolve_interface_node(
-      pair, gap, upper.v1 - lower.v1, upper.v2 - lower.v2, slip_speed, strength, previous_pressure);
+  const InterfaceNodeStep& r = out.relative =
+      resolve_interface_node(pair, friction, gap, upper.v1 - lower.v1, upper.v2 - lower.v2,
+                             slip_speed, state, previous_pressure);
 
   // 2. Tangential: a stuck pair moves together at its centre-of-mass velocity (exactly one
   //    velocity); otherwise each side takes its share of the friction force (0 if open).

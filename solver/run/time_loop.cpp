@@ -45,7 +45,7 @@ Observers set_up_observers(const SimulationParams& params, const RunHooks& hooks
   return {ProbeRecorder(params.probes, params.geometry.x_min, mesh.dx, x1),
           InterfaceSampler(hooks.sink, params.output, dt, total_steps, x1),
           EnergyRecorder(dt),
-          DivergenceCheck(params),
+          DivergenceCheck(params, x1),
           FrontTracker(mesh.nx, params.probes.front_threshold),
           ArrestRule(params),
           ProgressReporter(hooks, params.time.duration, dt, total_steps, started)};

@@ -56,7 +56,7 @@ double SpectralMethod::estimated_memory_bytes(const SimulationParams& p) {
                                              p.material.s_wave_speed(), p.spectral.memory_periods,
                                              steps));
   const double memory = 7.0 * 8.0 * lags; // 4 history + 3 weight doubles a lag
-  const double fields = 40.0 * 8.0 * nx;  // nodal and modal vectors
+  const double fields = 52.0 * 8.0 * nx;  // nodal and modal vectors, per-node parameters
   const double table = 6.0 * 8.0 * kernel_span(p) / HalfSpaceKernels::table_step;
   const double records = 4.0 * 8.0 * double(steps);   // probe records
   const double sample_buffer = 64.0 * 6.0 * 8.0 * nx; // a chunk of samples in the writer
@@ -84,7 +84,7 @@ SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
   memory_ =
       std::make_unique<ModeMemory>(modes_, params.geometry.width, dt_, mat.s_wave_speed(), eta1_,
                                    params.spectral.memory_periods, max_steps(params), kernels_);
-  node_ = {eta1_ * dx_ * dt_, eta2_ * dx_ * dt_, dt_, dx_, params.friction};
+  node_ = {eta1_ * dx_ * dt_, eta2_ * dx_ * dt_, dt_, dx_, StrengthLaw(params.friction)};
 
   mu_k_.resize(modes_);
   for (int n = 0; n < modes_; ++n)
@@ -99,7 +99,9 @@ SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
   solved_.resize(nx_);
   team_split_ = split_modes(*memory_, max_steps(params), team_.size());
 
-  iface_ = resting_interface(params, nx_, dx_);
+  parameters_ = interface_parameters(params, nx_, dx_);
+  friction_ = resting_friction(parameters_, node_.law);
+  iface_ = resting_interface(parameters_, node_.law);
 }
 
 MeshInfo SpectralMethod::mesh_info() const {
@@ -163,9 +165,9 @@ void SpectralMethod::add_current_interval(const std::vector<complex>& v1,
 
 void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
   const double t_half = (double(step_) + 0.5) * dt_;
-  const double sigma1 = params_.loading.shear_stress, sigma2 = params_.loading.normal_stress;
   for (int i = 0; i < nx_; ++i) {
     const double x1 = iface_.x1[i];
+    const double sigma1 = parameters_.shear_stress[i], sigma2 = parameters_.normal_stress[i];
     InterfaceTraction load;
     if (params_.extra_load) load = params_.extra_load(x1, t_half);
     load.t2 += nucleation_traction(params_.nucleation, sigma2, x1, t_half);
@@ -174,8 +176,8 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
     // The velocity without the plane's force: -sigma_2j = L_j  =>  V = (sigma0 + f + L)/eta.
     const double v1_free = (sigma1 + f1_[i] + load.t1) / eta1_;
     const double v2_free = (sigma2 + f2_[i] + load.t2) / eta2_;
-    solved_[i] = resolve_interface_node(node_, d2_[i], v1_free, v2_free, slip_speed[i],
-                                        iface_.strength[i], iface_.pressure[i]);
+    solved_[i] = resolve_interface_node(node_, parameters_.friction[i], d2_[i], v1_free, v2_free,
+                                        slip_speed[i], friction_[i], iface_.pressure[i]);
     v1_new_[i] = solved_[i].v1;
     v2_new_[i] = solved_[i].v2;
   }
@@ -205,11 +207,11 @@ void SpectralMethod::step(bool /*compute_energy*/) {
   fft_.forward(v2_new_.data(), v2_hat.data());
 
   // The interface after step n, and the energy over the step (V constant over it).
-  const double c0_1 = -params_.loading.shear_stress * dx_;
-  const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
   double work = 0, dissipated = 0, delivered = 0;
   for (int i = 0; i < nx_; ++i) {
     const InterfaceNodeStep& r = solved_[i];
+    const double c0_1 = -parameters_.shear_stress[i] * dx_; // the initial reaction C0
+    const double c0_2 = std::abs(parameters_.normal_stress[i]) * dx_;
     const double v1 = v1_new_[i], v2 = v2_new_[i];
     iface_.velocity[i] = 0.5 * (v1_[i] + v1);
     iface_.half_velocity[i] = v1;
@@ -219,6 +221,7 @@ void SpectralMethod::step(bool /*compute_energy*/) {
     iface_.pressure[i] = r.pressure;
     iface_.strength[i] = r.strength;
     iface_.state[i] = std::int8_t(r.state);
+    friction_[i] = r.friction;
     // Work of the load changes: the interface loads and the release of the initial reaction.
     work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
     dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);

@@ -5,6 +5,7 @@
 //
 // At every interface node the traction on the solid's boundary is (perturbation form)
 //     sigma_2j = sigma0_j + f_j - eta_j V_j,   eta_1 = rho c_s, eta_2 = rho c_p,
+// with sigma0 = (tau0, sigma0) the node's initial stresses (interface_parameters.hpp) and
 // with f_j the elastodynamic memory, computed mode by mode in Fourier space from the slip and
 // opening histories (half_space_kernels.hpp, mode_memory.hpp). The plane's contact and
 // friction force C_j and the interface loads L_j balance it: -sigma_2j dx = C_j + L_j, so
@@ -20,6 +21,7 @@
 
 #include "solver/interface/interface_fields.hpp"
 #include "solver/interface/interface_law.hpp"
+#include "solver/interface/interface_parameters.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
 #include "solver/spectral/half_space_kernels.hpp"
@@ -78,6 +80,8 @@ private:
   RealFft fft_;
   ThreadTeam team_;
   InterfaceNodeConstants node_;
+  InterfaceParameters parameters_;      // tau0, sigma0 and friction values per node
+  std::vector<FrictionState> friction_; // the friction state of each node after the last step
 
   std::vector<double> mu_k_;                     // mu |k_n|
   std::vector<complex> d1_hat_, d2_hat_;         // D^n in Fourier space

@@ -6,7 +6,7 @@
 #include "scene_support.hpp"
 
 #include "solver/interface/interface_fields.hpp"
-#include "solver/interface/prakash_clifton.hpp"
+#include "solver/interface/friction/strength_update.hpp"
 
 #include <gtest/gtest.h>
 
