@@ -6,9 +6,12 @@ namespace slipfront::api {
 
 const std::vector<FrictionField>& friction_fields() {
   static const std::vector<FrictionField> fields = {
-      {"mu", &FrictionValues::mu, non_negative()},   {"mu_s", &FrictionValues::mu_s, non_negative()},
-      {"mu_d", &FrictionValues::mu_d, non_negative()}, {"D_c", &FrictionValues::D_c, positive()},
-      {"L", &FrictionValues::L, positive()},           {"v_star", &FrictionValues::v_star, positive()},
+      {"mu", &FrictionValues::mu, non_negative()},
+      {"mu_s", &FrictionValues::mu_s, non_negative()},
+      {"mu_d", &FrictionValues::mu_d, non_negative()},
+      {"D_c", &FrictionValues::D_c, positive()},
+      {"L", &FrictionValues::L, positive()},
+      {"v_star", &FrictionValues::v_star, positive()},
       {"t_star", &FrictionValues::t_star, positive()},
   };
   return fields;

@@ -37,7 +37,7 @@ Source source_of(int index, const std::string& uniform_section, const std::strin
 }
 
 // The source applied last among `sources` (the first of equals).
-const Source& latest(const std::vector<Source>& sources) {
+Source latest(const std::vector<Source>& sources) {
   return *std::max_element(sources.begin(), sources.end(),
                            [](const Source& a, const Source& b) { return a.index < b.index; });
 }
@@ -52,8 +52,8 @@ void check_patch(const SimulationParams& p, int nx, double dx, std::vector<Field
   const std::string domain =
       "[x_min, x_min + width) = [" + text(g.x_min) + ", " + text(g.x_min + g.width) + ")";
   if (n.x1_min > n.x1_max) {
-    errors.push_back({"/nucleation/x1_min", "must be at most x1_max = " + text(n.x1_max) +
-                                                ", got " + text(n.x1_min)});
+    errors.push_back({"/nucleation/x1_min",
+                      "must be at most x1_max = " + text(n.x1_max) + ", got " + text(n.x1_min)});
     return;
   }
   if (n.x1_min < g.x_min || n.x1_min >= g.x_min + g.width)
@@ -70,8 +70,10 @@ void check_patch(const SimulationParams& p, int nx, double dx, std::vector<Field
   }
   if (!holds_node)
     errors.push_back({"/nucleation/x1_max", "the overstressed patch [" + text(n.x1_min) + ", " +
-                                                text(n.x1_max) + "] holds no interface node "
-                                                "(spacing dx = " + text(dx) + " m)"});
+                                                text(n.x1_max) +
+                                                "] holds no interface node "
+                                                "(spacing dx = " +
+                                                text(dx) + " m)"});
 }
 
 void check_node(const SimulationParams& p, double x1, std::set<std::string>& named,
@@ -80,9 +82,9 @@ void check_node(const SimulationParams& p, double x1, std::set<std::string>& nam
   const CoefficientLaw& law = coefficient_law(p.friction.law);
   const FrictionValues& f = node.friction;
   if (p.friction.law == FrictionLaw::slip_weakening && f.mu_d > f.mu_s) {
-    const Source& s = latest(
-        {source_of(node.friction_source(&FrictionValues::mu_s), "friction", "mu_s"),
-         source_of(node.friction_source(&FrictionValues::mu_d), "friction", "mu_d")});
+    const Source s =
+        latest({source_of(node.friction_source(&FrictionValues::mu_s), "friction", "mu_s"),
+                source_of(node.friction_source(&FrictionValues::mu_d), "friction", "mu_d")});
     add_once(errors, named,
              {s.pointer, "at x1 = " + text(x1) + " m mu_d = " + text(f.mu_d) +
                              " exceeds mu_s = " + text(f.mu_s) + " (the coefficient weakens)"});
@@ -95,7 +97,7 @@ void check_node(const SimulationParams& p, double x1, std::set<std::string>& nam
   for (const auto member : law.parameters())
     sources.push_back(
         source_of(node.friction_source(member), "friction", friction_field_name(member)));
-  const Source& s = latest(sources);
+  const Source s = latest(sources);
   if (s.index == uniform_source) {
     add_once(errors, named,
              {"/loading/shear_stress",
@@ -104,12 +106,12 @@ void check_node(const SimulationParams& p, double x1, std::set<std::string>& nam
                   text(node.shear_stress)});
     return;
   }
-  add_once(errors, named,
-           {s.pointer, "at x1 = " + text(x1) + " m the initial state is not stuck: |shear stress| " +
-                           text(std::abs(node.shear_stress)) +
-                           " Pa exceeds the static strength mu_0 |normal stress| = " +
-                           text(strength) +
-                           " Pa (the interface must start stuck outside the nucleation patch)"});
+  add_once(
+      errors, named,
+      {s.pointer, "at x1 = " + text(x1) + " m the initial state is not stuck: |shear stress| " +
+                      text(std::abs(node.shear_stress)) +
+                      " Pa exceeds the static strength mu_0 |normal stress| = " + text(strength) +
+                      " Pa (the interface must start stuck outside the nucleation patch)"});
 }
 
 } // namespace

@@ -72,8 +72,7 @@ const std::map<std::string, Words>& field_words() {
             "is always `slip_scale` and takes no value here): `none` (the contact pressure), "
             "`slip_scale` (paper eq. 1, L and v_star; coulomb with it is prakash_clifton) or "
             "`time_scale` (t_star)"}},
-      {"/friction/mu",
-       {"", "friction coefficient, static = kinetic (coulomb, prakash_clifton)"}},
+      {"/friction/mu", {"", "friction coefficient, static = kinetic (coulomb, prakash_clifton)"}},
       {"/friction/mu_s", {"", "static coefficient (slip_weakening)"}},
       {"/friction/mu_d", {"", "dynamic coefficient, at most mu_s (slip_weakening)"}},
       {"/friction/D_c", {"m", "slip-weakening distance (slip_weakening)"}},
@@ -88,8 +87,8 @@ const std::map<std::string, Words>& field_words() {
        {"", "how the strength ODE is advanced in a step (docs/physics.md): exact for \\|V\\| "
             "frozen and p linear over the step (second order); exact for \\|V\\| and p frozen at "
             "the step's end (the reference scheme of docs/physics.md, first order); or forward "
-            "Euler (unstable once "
-            "dt (\\|V\\|+V*)/L > 2; for failure studies)"}},
+            "Euler (unstable once dt k > 2, k = (\\|V\\|+V*)/L or 1/t*; for failure studies). "
+            "With a regularisation only (plain coulomb takes it unused, as L)"}},
       {"/nucleation/enabled", {"", "start the rupture at all (false: no nucleation of any type)"}},
       {"/nucleation/type",
        {"", "`ellipse`: the moving ellipse of the paper's appendix A (a, b, v, alpha); "
@@ -279,8 +278,7 @@ nlohmann::json job_json_schema() {
     const auto [section, name] = split_pointer(field.pointer);
     nlohmann::json* parent = &root;
     if (section.size() > 2 && section.ends_with("/*")) { // a field of an array's items
-      nlohmann::json& items =
-          root["properties"][section.substr(0, section.size() - 2)]["items"];
+      nlohmann::json& items = root["properties"][section.substr(0, section.size() - 2)]["items"];
       items["additionalProperties"] = false;
       parent = &items;
     } else if (!section.empty()) {
@@ -305,9 +303,9 @@ nlohmann::json job_json_schema() {
 
 std::string job_fields_markdown() {
   // The docs' order of sections; a section not listed here comes last.
-  const std::vector<std::string> order = {
-      "top level", "spectral_bi", "fe",   "material", "geometry", "loading", "friction",
-      "profiles/*", "nucleation", "time", "output",   "probe"};
+  const std::vector<std::string> order = {"top level",  "spectral_bi", "fe",       "material",
+                                          "geometry",   "loading",     "friction", "profiles/*",
+                                          "nucleation", "time",        "output",   "probe"};
   std::map<std::string, std::string> rows;
   std::vector<std::string> titles = order;
   for (const JobField& field : job_fields()) {

@@ -290,8 +290,10 @@ void ObjectReader::optional_number(const std::string& key, std::optional<double>
   if (const nlohmann::json* member = raw(key)) {
     double value = 0;
     number(key, value, allowed);
-    if (member->is_number() && allowed.contains(member->get<double>())) target = value;
-    else canonical_.erase(key);
+    if (member->is_number() && allowed.contains(member->get<double>()))
+      target = value;
+    else
+      canonical_.erase(key);
     return;
   }
   record(key, number_schema(allowed));

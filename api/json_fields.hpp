@@ -104,7 +104,7 @@ public:
   void drop_canonical(const std::string& key) { canonical_.erase(key); }
   // An error about this object itself (its pointer).
   void error_here(std::string reason);
-  bool present() const { return object_ != nullptr; } // the object was given
+  bool present() const { return object_ != nullptr; }        // the object was given
   std::size_t error_count() const { return errors_.size(); } // of the whole document so far
   std::string pointer(const std::string& key) const { return child_pointer(pointer_, key); }
 

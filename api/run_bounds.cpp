@@ -152,8 +152,8 @@ void check_run_bounds(const JobSpec& job, std::vector<FieldError>& errors) {
   if (check_wave_speeds(job.params, errors)) check_time_steps(job.params, errors);
   // A material given in wave speeds (api/material_reader.hpp): its E comes from c_s, its nu
   // from c_p / c_s.
-  const bool speeds =
-      job.canonical.is_object() && given_in_wave_speeds(job.canonical.value("material", nlohmann::json()));
+  const bool speeds = job.canonical.is_object() &&
+                      given_in_wave_speeds(job.canonical.value("material", nlohmann::json()));
   if (!speeds) return;
   for (std::size_t k = before; k < errors.size(); ++k) {
     std::string& pointer = errors[k].pointer;

@@ -116,7 +116,7 @@ struct Nucleation {
 struct Profile {
   double x1_min = -std::numeric_limits<double>::infinity(); // closed interval [x1_min, x1_max]
   double x1_max = std::numeric_limits<double>::infinity();
-  bool outside = false; // apply to x1 < x1_min or x1 > x1_max instead
+  bool outside = false;                              // apply to x1 < x1_min or x1 > x1_max instead
   std::optional<double> shear_stress, normal_stress; // [Pa]
   std::vector<std::pair<double FrictionValues::*, double>> friction; // (value, number)
   bool covers(double x1) const {

@@ -5,8 +5,8 @@
 namespace slipfront {
 
 InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c,
-                                         const FrictionValues& friction, double u2,
-                                         double v1_trial, double v2_trial, double slip_speed,
+                                         const FrictionValues& friction, double u2, double v1_trial,
+                                         double v2_trial, double slip_speed,
                                          const FrictionState& state, double previous_pressure) {
   InterfaceNodeStep out;
   // 1. Next normal displacement of the trial (free) motion.

@@ -28,7 +28,7 @@ struct InterfaceNodeConstants {
                                // lumped node mass)
   double dt = 0;
   double tributary_length = 0; // dx
-  StrengthLaw law;              // the friction law (its values are the node's)
+  StrengthLaw law;             // the friction law (its values are the node's)
 };
 
 struct InterfaceNodeStep {
@@ -46,8 +46,8 @@ struct InterfaceNodeStep {
 // over the last interval (enters the strength update); state, previous_pressure: the
 // node's friction state and p of the last step.
 InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c,
-                                         const FrictionValues& friction, double u2,
-                                         double v1_trial, double v2_trial, double slip_speed,
+                                         const FrictionValues& friction, double u2, double v1_trial,
+                                         double v2_trial, double slip_speed,
                                          const FrictionState& state, double previous_pressure);
 
 } // namespace slipfront

@@ -2,8 +2,8 @@
 // (after Cochard & Rice 2000, appendix B), or an overstressed patch (a prestress, set up in
 // interface_parameters.hpp), or none.
 //
-// The ellipse: with xi = (x1 - v t)/a, eta = (x1 + v t)/b - eta0, eta0 = sqrt(a^2 + b^2)/b, inside the
-// ellipse 1 - xi^2 - eta^2 > 0 the normal load is reduced by alpha |tau2_0| (1 - xi^2 -
+// The ellipse: with xi = (x1 - v t)/a, eta = (x1 + v t)/b - eta0, eta0 = sqrt(a^2 + b^2)/b, inside
+// the ellipse 1 - xi^2 - eta^2 > 0 the normal load is reduced by alpha |tau2_0| (1 - xi^2 -
 // eta^2)^2: a tensile traction of that size acts on the solid at the interface.
 #pragma once
 

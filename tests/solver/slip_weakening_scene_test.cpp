@@ -70,8 +70,8 @@ TEST(SlipWeakeningScene, OverstressedPatchRuptureArrestsAtTheBarrier) {
     measure("slip weakening, overstressed patch, barrier at |x1| = 3 m, %s n_d = 20: outcome %s "
             "at t = %.3g s, arrest position %.4g m, propagation %.4g m, arrival at x1 = 2 m "
             "%.4g s, max V_r %.3g m/s",
-            name, to_string(m.outcome), m.simulated_time, m.arrest_position,
-            m.propagation_distance, m.arrival_time_at_probe, m.max_rupture_speed);
+            name, to_string(m.outcome), m.simulated_time, m.arrest_position, m.propagation_distance,
+            m.arrival_time_at_probe, m.max_rupture_speed);
   }
 }
 

@@ -88,7 +88,9 @@ TEST(FrictionLaws, ConstantCoefficientStrengthIsTheFilteredStateExactly) {
 }
 
 TEST(FrictionLaws, EachLawNamesTheValuesItUses) {
-  auto uses = [](Friction f, double FrictionValues::*member) { return StrengthLaw(f).uses(member); };
+  auto uses = [](Friction f, double FrictionValues::*member) {
+    return StrengthLaw(f).uses(member);
+  };
   Friction pc; // prakash_clifton: mu, L, v_star
   EXPECT_TRUE(uses(pc, &FrictionValues::mu));
   EXPECT_TRUE(uses(pc, &FrictionValues::L));
@@ -126,7 +128,7 @@ TEST(FrictionLaws, TimeScaleIsNotPrakashClifton) {
   };
   EXPECT_EQ(after(ts, 0.0), after(ts, 1.0));
   EXPECT_DOUBLE_EQ(after(pc, 0.0), after(ts, 0.0)); // equal rates at rest
-  EXPECT_LT(after(pc, 1.0), after(pc, 0.0) - 1e-4);  // PC follows the drop much faster
+  EXPECT_LT(after(pc, 1.0), after(pc, 0.0) - 1e-4); // PC follows the drop much faster
 }
 
 } // namespace

@@ -49,12 +49,10 @@ TEST(SplitNode, RigidLowerSideIsTheSingleNodeLawBitForBit) {
   c.mass1 = upper_side.mass1;
   c.mass2 = upper_side.mass2;
   for (double gap : {0.0, 1e-4, 5e-3}) {
-    const InterfaceNodeStep single =
-        resolve_interface_node(c, with_mu(0.5), gap, upper_side.v1, upper_side.v2, 0.01,
-                               strength_state(0.3), 0.6);
-    const SplitNodeStep pair =
-        resolve_split_node(constants(), with_mu(0.5), gap, upper_side, lower_side, true, 0.01,
-                           strength_state(0.3), 0.6);
+    const InterfaceNodeStep single = resolve_interface_node(
+        c, with_mu(0.5), gap, upper_side.v1, upper_side.v2, 0.01, strength_state(0.3), 0.6);
+    const SplitNodeStep pair = resolve_split_node(constants(), with_mu(0.5), gap, upper_side,
+                                                  lower_side, true, 0.01, strength_state(0.3), 0.6);
     EXPECT_EQ(pair.relative.contact_force1, single.contact_force1);
     EXPECT_EQ(pair.relative.contact_force2, single.contact_force2);
     EXPECT_EQ(pair.relative.pressure, single.pressure);
@@ -114,9 +112,8 @@ TEST(SplitNode, ASlippingPairCarriesTheStrengthAgainstTheRelativeSlip) {
 }
 
 TEST(SplitNode, AnOpeningPairFeelsNoForce) {
-  const SplitNodeStep r =
-      resolve_split_node(constants(), with_mu(0.5), 1e-2, upper_side, lower_side, false, 0.0,
-                         strength_state(0.3), 0.6);
+  const SplitNodeStep r = resolve_split_node(constants(), with_mu(0.5), 1e-2, upper_side,
+                                             lower_side, false, 0.0, strength_state(0.3), 0.6);
   ASSERT_EQ(r.relative.state, NodeState::open);
   EXPECT_EQ(r.upper.v1, upper_side.v1);
   EXPECT_EQ(r.upper.v2, upper_side.v2);
@@ -125,15 +122,13 @@ TEST(SplitNode, AnOpeningPairFeelsNoForce) {
 }
 
 TEST(SplitNode, AHeavierAndHeavierLowerSideAtRestTendsToTheRigidPlane) {
-  const SplitNodeStep rigid =
-      resolve_split_node(constants(), with_mu(0.5), 1e-4, upper_side, lower_side, true, 0.0,
-                         strength_state(0.0), 0.0);
+  const SplitNodeStep rigid = resolve_split_node(constants(), with_mu(0.5), 1e-4, upper_side,
+                                                 lower_side, true, 0.0, strength_state(0.0), 0.0);
   double last_error = INFINITY;
   for (double scale : {1e2, 1e4, 1e6, 1e8}) {
     const InterfaceSide heavy{lower_side.mass1 * scale, lower_side.mass2 * scale, 0.0, 0.0};
-    const SplitNodeStep r =
-        resolve_split_node(constants(), with_mu(0.5), 1e-4, upper_side, heavy, false, 0.0,
-                           strength_state(0.0), 0.0);
+    const SplitNodeStep r = resolve_split_node(constants(), with_mu(0.5), 1e-4, upper_side, heavy,
+                                               false, 0.0, strength_state(0.0), 0.0);
     const double error = std::abs(r.relative.contact_force2 - rigid.relative.contact_force2) +
                          std::abs(r.relative.contact_force1 - rigid.relative.contact_force1) +
                          std::abs(r.upper.v1 - rigid.upper.v1);
