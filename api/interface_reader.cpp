@@ -8,10 +8,14 @@ namespace slipfront::api {
 
 namespace {
 
-const std::vector<std::pair<std::string, Regularization>> regularization_names = {
-    {"none", Regularization::none},
-    {"slip_scale", Regularization::slip_scale},
-    {"time_scale", Regularization::time_scale}};
+// The job JSON spellings of a table of laws (solver/interface/friction/friction_laws.cpp).
+template <class Kind, class Law>
+std::vector<std::pair<std::string, Kind>> names_of(const std::vector<NamedLaw<Kind, Law>>& laws) {
+  std::vector<std::pair<std::string, Kind>> names;
+  for (const auto& named : laws)
+    names.emplace_back(named.name, named.kind);
+  return names;
+}
 
 nlohmann::json enum_schema(const std::vector<std::pair<std::string, Regularization>>& names,
                            const std::string& default_name) {
@@ -27,6 +31,7 @@ nlohmann::json with_default(nlohmann::json schema, double value) {
 }
 
 void read_regularization(ObjectReader& in, Friction& friction) {
+  const auto regularization_names = names_of(regularization_laws());
   if (friction.law == FrictionLaw::prakash_clifton) {
     in.reject("regularization",
               "is implied by law \"prakash_clifton\", the constant coefficient with the slip-scale "
@@ -52,10 +57,7 @@ void read_regularization(ObjectReader& in, Friction& friction) {
 } // namespace
 
 void read_friction(ObjectReader& in, Friction& friction) {
-  in.choice("law", friction.law,
-            {{"prakash_clifton", FrictionLaw::prakash_clifton},
-             {"coulomb", FrictionLaw::coulomb},
-             {"slip_weakening", FrictionLaw::slip_weakening}});
+  in.choice("law", friction.law, names_of(coefficient_laws()));
   read_regularization(in, friction);
   const Regularization regularization = effective_regularization(friction);
   // Plain coulomb took L, v_star and strength_update before the regularisation was a

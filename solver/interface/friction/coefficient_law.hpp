@@ -22,7 +22,18 @@ public:
   virtual double coefficient(const FrictionValues& values, double slip_path) const = 0;
 };
 
-// The law of params.friction.law, and its job JSON spelling (friction_laws.cpp).
+// A law of the job's choice with its job JSON spelling: a line of the tables in
+// friction_laws.cpp.
+template <class Kind, class Law> struct NamedLaw {
+  Kind kind;
+  const char* name;
+  const Law* law;
+};
+
+// Every coefficient law (friction.law), in the job schema's order (friction_laws.cpp).
+const std::vector<NamedLaw<FrictionLaw, CoefficientLaw>>& coefficient_laws();
+
+// The law of params.friction.law, and its job JSON spelling.
 const CoefficientLaw& coefficient_law(FrictionLaw law);
 const char* to_string(FrictionLaw law);
 

@@ -24,7 +24,11 @@ public:
 // The regularisation a law runs with: prakash_clifton's is always the slip scale.
 Regularization effective_regularization(const Friction& friction);
 
-// The regularisation law of `regularization`, and its job JSON spelling (friction_laws.cpp).
+// Every regularisation (friction.regularization), in the job schema's order
+// (friction_laws.cpp).
+const std::vector<NamedLaw<Regularization, RegularizationLaw>>& regularization_laws();
+
+// The regularisation law of `regularization`, and its job JSON spelling.
 const RegularizationLaw& regularization_law(Regularization regularization);
 const char* to_string(Regularization regularization);
 
