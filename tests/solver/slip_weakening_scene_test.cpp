@@ -67,11 +67,37 @@ TEST(SlipWeakeningScene, OverstressedPatchRuptureArrestsAtTheBarrier) {
     for (std::size_t i = 0; i < r.front.x1.size(); ++i)
       if (std::abs(r.front.x1[i]) > barrier && !std::isnan(r.front.arrival_time[i])) ++beyond;
     EXPECT_EQ(beyond, 0) << name << ": nodes beyond the barrier slipped";
+    // The rupture grows from the patch, both ways: the front arrives later the farther a
+    // node is from the patch, on either side.
+    auto arrival = [&](double x1) {
+      const int i = int(std::lround((x1 - p.geometry.x_min) / dx));
+      return r.front.arrival_time[i];
+    };
+    for (double side : {-1.0, 1.0}) {
+      EXPECT_LT(arrival(side * 0.5), arrival(side * 1.0)) << name;
+      EXPECT_LT(arrival(side * 1.0), arrival(side * 2.0)) << name;
+      EXPECT_LT(arrival(side * 2.0), arrival(side * 2.9)) << name;
+    }
     measure("slip weakening, overstressed patch, barrier at |x1| = 3 m, %s n_d = 20: outcome %s "
             "at t = %.3g s, arrest position %.4g m, propagation %.4g m, arrival at x1 = 2 m "
             "%.4g s, max V_r %.3g m/s",
             name, to_string(m.outcome), m.simulated_time, m.arrest_position, m.propagation_distance,
             m.arrival_time_at_probe, m.max_rupture_speed);
+  }
+}
+
+TEST(SlipWeakeningScene, WithoutTheBarrierTheRupturePassesIt) {
+  // The same scene without the profile: the rupture runs past |x1| = 3 m (so the barrier
+  // is what stopped it above).
+  for (Method method : {Method::finite_element, Method::spectral_bi}) {
+    SimulationParams p = barrier_scene(method);
+    p.profiles.clear();
+    p.time.duration = 5.0;
+    const RunResult r = run_simulation(p);
+    int beyond = 0;
+    for (std::size_t i = 0; i < r.front.x1.size(); ++i)
+      if (std::abs(r.front.x1[i]) > barrier + 0.5 && !std::isnan(r.front.arrival_time[i])) ++beyond;
+    EXPECT_GT(beyond, 20) << (method == Method::finite_element ? "FE" : "BI");
   }
 }
 
