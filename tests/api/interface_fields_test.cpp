@@ -209,6 +209,16 @@ TEST(InterfaceFields, MaterialFormsAreNotMixedAndCpExceedsSqrt2Cs) {
                "/material/p_wave_speed", {"rounds to 0.5"});
 }
 
+TEST(InterfaceFields, RunLimitsNameTheWaveSpeedsTheMaterialWasGivenIn) {
+  // The limits of a run (api/run_bounds.hpp) name E and nu for a material in moduli; for
+  // one in wave speeds they name the speed the job gave.
+  expect_error({{"material", {{"p_wave_speed", 1e120}, {"s_wave_speed", 1e119}}}},
+               "/material/s_wave_speed", {"time step would be as short as"});
+  expect_error({{"method", "spectral_bi"},
+                {"material", {{"p_wave_speed", 2000.0}, {"s_wave_speed", 1.0}}}},
+               "/material/p_wave_speed", {"c_p / c_s = 2e+03"});
+}
+
 TEST(InterfaceFields, NewFieldsAtTheirDefaultsKeepEveryHash) {
   const JobSpec paper = parsed(json::object());
   // Explicit defaults of the new fields: the same canonical form, the same hash.
