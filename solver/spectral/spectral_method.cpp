@@ -16,22 +16,6 @@ namespace {
 
 constexpr double two_pi = 2.0 * std::numbers::pi;
 
-// Contiguous mode ranges [split[m], split[m + 1]) of about equal convolution work.
-std::vector<int> split_modes(const ModeMemory& memory, long steps, int parts) {
-  std::vector<double> cumulative(memory.modes() + 1, 0.0);
-  for (int n = 0; n < memory.modes(); ++n)
-    cumulative[n + 1] = cumulative[n] + double(std::min(memory.length(n), steps)) + 1.0;
-  std::vector<int> split(parts + 1, memory.modes());
-  split[0] = 0;
-  for (int m = 1; m < parts; ++m) {
-    const double target = cumulative.back() * m / parts;
-    split[m] =
-        int(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
-    split[m] = std::clamp(split[m], split[m - 1], memory.modes());
-  }
-  return split;
-}
-
 } // namespace
 
 double SpectralMethod::time_step(const SimulationParams& p) {
@@ -73,32 +57,29 @@ double SpectralMethod::kernel_span(const SimulationParams& p) {
   return std::min(window, run) + 0.5;
 }
 
-SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
-    : params_(params), nx_(mesh_size(params).nx), modes_(nx_ / 2 + 1), dx_(mesh_size(params).dx),
-      dt_(time_step(params)), eta1_(params.material.density * params.material.s_wave_speed()),
-      eta2_(params.material.density * params.material.p_wave_speed()),
-      kernels_(params.material.s_wave_speed() / params.material.p_wave_speed(),
-               kernel_span(params)),
-      fft_(nx_), team_(threads) {
-  const Material& mat = params.material;
-  memory_ =
-      std::make_unique<ModeMemory>(modes_, params.geometry.width, dt_, mat.s_wave_speed(), eta1_,
-                                   params.spectral.memory_periods, max_steps(params), kernels_);
-  node_ = {eta1_ * dx_ * dt_, eta2_ * dx_ * dt_, dt_, dx_, params.friction};
+namespace {
 
-  mu_k_.resize(modes_);
-  for (int n = 0; n < modes_; ++n)
-    mu_k_[n] = mat.shear_modulus() * two_pi * n / params.geometry.width;
-  for (auto* v : {&d1_hat_, &d2_hat_, &v1_hat_, &v2_hat_, &v1_hat_new_, &v2_hat_new_, &f1_known_,
-                  &f2_known_, &f1_hat_, &f2_hat_})
-    v->assign(modes_, complex(0.0, 0.0));
-  sums_.resize(modes_);
-  for (auto* v :
-       {&f1_, &f2_, &d1_, &d2_, &v1_, &v2_, &v1_new_, &v2_new_, &load1_, &load2_, &slip_speed_})
+HalfSpaceGrid upper_grid(const SimulationParams& p, int threads) {
+  HalfSpaceGrid g;
+  g.nx = mesh_size(p).nx;
+  g.width = p.geometry.width;
+  g.dt = SpectralMethod::time_step(p);
+  g.memory_periods = p.spectral.memory_periods;
+  g.max_steps = SpectralMethod::max_steps(p);
+  g.kernel_span = SpectralMethod::kernel_span(p);
+  g.parts = threads;
+  return g;
+}
+
+} // namespace
+
+SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
+    : params_(params), nx_(mesh_size(params).nx), dx_(mesh_size(params).dx), dt_(time_step(params)),
+      team_(threads), upper_(params.material, upper_grid(params, team_.size())) {
+  node_ = {upper_.eta1() * dx_ * dt_, upper_.eta2() * dx_ * dt_, dt_, dx_, params.friction};
+  for (auto* v : {&load1_, &load2_, &slip_speed_})
     v->assign(nx_, 0.0);
   solved_.resize(nx_);
-  team_split_ = split_modes(*memory_, max_steps(params), team_.size());
-
   iface_ = resting_interface(params, nx_, dx_);
 }
 
@@ -122,45 +103,6 @@ std::vector<std::string> SpectralMethod::end_warnings(double /*simulated_time*/)
   return {msg};
 }
 
-void SpectralMethod::known_memory_term() {
-  // f_hat_1 = mu|k| K11(0) D1 - sum W11 V1 + i (mu|k| K12(0) D2 - sum W12 V2)
-  // f_hat_2 = mu|k| K22(0) D2 - sum W22 V2 - i (mu|k| K12(0) D1 - sum W12 V1)
-  // (the weights carry mu |k|). The Nyquist mode of a real field has no coupling.
-  team_.run([&](int member, int) {
-    const int first = team_split_[member], last = team_split_[member + 1];
-    if (first < last) memory_->history_sums(first, last, sums_.data() + first);
-  });
-  const complex i(0.0, 1.0);
-  const double k11 = kernels_.static11(), k22 = kernels_.static22(), k12 = kernels_.static12();
-  f1_known_[0] = f2_known_[0] = 0.0; // a uniform motion radiates plane waves: no memory
-  for (int n = 1; n < modes_; ++n) {
-    const ModeHistorySums& s = sums_[n];
-    const bool coupled = 2 * n != nx_;
-    const complex c1 = coupled ? i * (mu_k_[n] * k12 * d2_hat_[n] - s.w12_v2) : 0.0;
-    const complex c2 = coupled ? i * (mu_k_[n] * k12 * d1_hat_[n] - s.w12_v1) : 0.0;
-    f1_known_[n] = mu_k_[n] * k11 * d1_hat_[n] - s.w11_v1 + c1;
-    f2_known_[n] = mu_k_[n] * k22 * d2_hat_[n] - s.w22_v2 - c2;
-  }
-}
-
-void SpectralMethod::add_current_interval(const std::vector<complex>& v1,
-                                          const std::vector<complex>& v2) {
-  // D^{n+1/2} = D^n + dt/2 V and the lag-0 weight, both acting on this interval's V.
-  const complex i(0.0, 1.0);
-  const double half = 0.5 * dt_;
-  f1_hat_[0] = f2_hat_[0] = 0.0;
-  for (int n = 1; n < modes_; ++n) {
-    const KernelValues& w0 = memory_->current_weights(n);
-    const double a11 = mu_k_[n] * kernels_.static11() * half - w0.g11;
-    const double a22 = mu_k_[n] * kernels_.static22() * half - w0.g22;
-    const double a12 = 2 * n != nx_ ? mu_k_[n] * kernels_.static12() * half - w0.g12 : 0.0;
-    f1_hat_[n] = f1_known_[n] + a11 * v1[n] + i * a12 * v2[n];
-    f2_hat_[n] = f2_known_[n] + a22 * v2[n] - i * a12 * v1[n];
-  }
-  fft_.inverse(f1_hat_.data(), f1_.data());
-  fft_.inverse(f2_hat_.data(), f2_.data());
-}
-
 void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
   const double t_half = (double(step_) + 0.5) * dt_;
   const double sigma1 = params_.loading.shear_stress, sigma2 = params_.loading.normal_stress;
@@ -172,49 +114,49 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
     load1_[i] = load.t1;
     load2_[i] = load.t2;
     // The velocity without the plane's force: -sigma_2j = L_j  =>  V = (sigma0 + f + L)/eta.
-    const double v1_free = (sigma1 + f1_[i] + load.t1) / eta1_;
-    const double v2_free = (sigma2 + f2_[i] + load.t2) / eta2_;
-    solved_[i] = resolve_interface_node(node_, d2_[i], v1_free, v2_free, slip_speed[i],
+    HalfSpace::Motion& up = upper_.motion();
+    const double v1_free = (sigma1 + upper_.f1()[i] + load.t1) / upper_.eta1();
+    const double v2_free = (sigma2 + upper_.f2()[i] + load.t2) / upper_.eta2();
+    solved_[i] = resolve_interface_node(node_, up.d2[i], v1_free, v2_free, slip_speed[i],
                                         iface_.strength[i], iface_.pressure[i]);
-    v1_new_[i] = solved_[i].v1;
-    v2_new_[i] = solved_[i].v2;
+    up.v1_new[i] = solved_[i].v1;
+    up.v2_new[i] = solved_[i].v2;
   }
 }
 
 void SpectralMethod::step(bool /*compute_energy*/) {
-  known_memory_term();
+  team_.run([&](int member, int) { upper_.sum_history(member); });
+  upper_.known_memory_term();
 
   // Predictor: this interval's memory term with V^{n-1/2}; the strength update with the
   // slip speed of the last interval. Corrector: with the solved V^{n+1/2}, and the mean slip
   // speed over [t_{n-1/2}, t_{n+1/2}].
+  HalfSpace::Motion& up = upper_.motion();
   std::vector<double>& slip_speed = slip_speed_;
-  std::vector<complex>&v1_hat = v1_hat_new_, &v2_hat = v2_hat_new_;
   for (int i = 0; i < nx_; ++i)
-    slip_speed[i] = std::abs(v1_[i]);
-  add_current_interval(v1_hat_, v2_hat_);
+    slip_speed[i] = std::abs(up.v1[i]);
+  upper_.predict();
   solve_nodes(slip_speed);
   for (int pass = 1; pass <= params_.spectral.corrector_passes; ++pass) {
-    fft_.forward(v1_new_.data(), v1_hat.data());
-    fft_.forward(v2_new_.data(), v2_hat.data());
     for (int i = 0; i < nx_; ++i)
-      slip_speed[i] = std::abs(0.5 * (v1_[i] + v1_new_[i]));
-    add_current_interval(v1_hat, v2_hat);
+      slip_speed[i] = std::abs(0.5 * (up.v1[i] + up.v1_new[i]));
+    upper_.correct();
     solve_nodes(slip_speed);
   }
-  fft_.forward(v1_new_.data(), v1_hat.data());
-  fft_.forward(v2_new_.data(), v2_hat.data());
 
   // The interface after step n, and the energy over the step (V constant over it).
   const double c0_1 = -params_.loading.shear_stress * dx_;
   const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
+  const std::vector<double>&f1 = upper_.f1(), &f2 = upper_.f2();
+  const double eta1 = upper_.eta1(), eta2 = upper_.eta2();
   double work = 0, dissipated = 0, delivered = 0;
   for (int i = 0; i < nx_; ++i) {
     const InterfaceNodeStep& r = solved_[i];
-    const double v1 = v1_new_[i], v2 = v2_new_[i];
-    iface_.velocity[i] = 0.5 * (v1_[i] + v1);
+    const double v1 = up.v1_new[i], v2 = up.v2_new[i];
+    iface_.velocity[i] = 0.5 * (up.v1[i] + v1);
     iface_.half_velocity[i] = v1;
-    iface_.slip[i] = d1_[i];
-    iface_.opening[i] = d2_[i];
+    iface_.slip[i] = up.d1[i];
+    iface_.opening[i] = up.d2[i];
     iface_.shear_traction[i] = -r.contact_force1 / dx_;
     iface_.pressure[i] = r.pressure;
     iface_.strength[i] = r.strength;
@@ -223,26 +165,14 @@ void SpectralMethod::step(bool /*compute_energy*/) {
     work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
     dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);
     // Energy into the half-space: -(sigma - sigma0) . V = (eta V - f) . V per unit length.
-    delivered += dt_ * dx_ * ((eta1_ * v1 - f1_[i]) * v1 + (eta2_ * v2 - f2_[i]) * v2);
+    delivered += dt_ * dx_ * ((eta1 * v1 - f1[i]) * v1 + (eta2 * v2 - f2[i]) * v2);
   }
   energy_.external_work += work;
   energy_.dissipated += dissipated;
   energy_.kinetic = 0.0;
   energy_.strain += delivered;
 
-  memory_->push(v1_hat.data(), v2_hat.data());
-  for (int n = 0; n < modes_; ++n) {
-    d1_hat_[n] += dt_ * v1_hat[n];
-    d2_hat_[n] += dt_ * v2_hat[n];
-  }
-  v1_hat_.swap(v1_hat);
-  v2_hat_.swap(v2_hat);
-  for (int i = 0; i < nx_; ++i) {
-    d1_[i] += dt_ * v1_new_[i];
-    d2_[i] += dt_ * v2_new_[i];
-  }
-  v1_.swap(v1_new_);
-  v2_.swap(v2_new_);
+  upper_.finish_step();
   ++step_;
 }
 

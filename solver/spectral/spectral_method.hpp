@@ -22,13 +22,9 @@
 #include "solver/interface/interface_law.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
-#include "solver/spectral/half_space_kernels.hpp"
-#include "solver/spectral/mode_memory.hpp"
-#include "solver/spectral/real_fft.hpp"
+#include "solver/spectral/half_space.hpp"
 #include "solver/thread_team.hpp"
 
-#include <complex>
-#include <memory>
 #include <vector>
 
 namespace slipfront::spectral {
@@ -49,7 +45,7 @@ public:
   int nx() const { return nx_; }
   double dx() const { return dx_; }
   double time() const { return step_ * dt_; }
-  const ModeMemory& memory() const { return *memory_; }
+  const ModeMemory& memory() const { return upper_.memory(); }
 
   // Time step of the method: beta dx / c_s.
   static double time_step(const SimulationParams& params);
@@ -64,36 +60,18 @@ public:
   static double estimated_memory_bytes(const SimulationParams& params);
 
 private:
-  using complex = std::complex<double>;
-  void known_memory_term();
-  void add_current_interval(const std::vector<complex>& v1, const std::vector<complex>& v2);
   void solve_nodes(const std::vector<double>& slip_speed);
 
   SimulationParams params_;
-  int nx_, modes_;
+  int nx_;
   double dx_, dt_;
-  double eta1_, eta2_; // radiation damping rho c_s, rho c_p
-  HalfSpaceKernels kernels_;
-  std::unique_ptr<ModeMemory> memory_;
-  RealFft fft_;
   ThreadTeam team_;
+  HalfSpace upper_; // the solid x2 > 0
   InterfaceNodeConstants node_;
 
-  std::vector<double> mu_k_;                     // mu |k_n|
-  std::vector<complex> d1_hat_, d2_hat_;         // D^n in Fourier space
-  std::vector<complex> v1_hat_, v2_hat_;         // V^{n-1/2} in Fourier space
-  std::vector<complex> v1_hat_new_, v2_hat_new_; // V^{n+1/2} in Fourier space (scratch)
-  std::vector<complex> f1_known_, f2_known_;     // known part of f_hat at t_{n+1/2}
-  std::vector<complex> f1_hat_, f2_hat_;         // scratch
-  std::vector<ModeHistorySums> sums_;
-  std::vector<double> f1_, f2_;         // f at the nodes
-  std::vector<double> d1_, d2_;         // D^n at the nodes (slip, opening)
-  std::vector<double> v1_, v2_;         // V^{n-1/2} at the nodes
-  std::vector<double> v1_new_, v2_new_; // V^{n+1/2} being solved
-  std::vector<double> load1_, load2_;   // interface loads at t_{n+1/2} [Pa]
-  std::vector<double> slip_speed_;      // |V| entering the strength update (scratch)
+  std::vector<double> load1_, load2_; // interface loads at t_{n+1/2} [Pa]
+  std::vector<double> slip_speed_;    // |V| entering the strength update (scratch)
   std::vector<InterfaceNodeStep> solved_;
-  std::vector<int> team_split_; // mode ranges per team member
 
   InterfaceFields iface_;
   EnergyBalance energy_;
