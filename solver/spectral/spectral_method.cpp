@@ -18,9 +18,19 @@ constexpr double two_pi = 2.0 * std::numbers::pi;
 
 } // namespace
 
+double SpectralMethod::reference_shear_speed(const SimulationParams& p) {
+  const double upper = p.material.s_wave_speed();
+  return p.lower.elastic() ? std::max(upper, p.lower.material.s_wave_speed()) : upper;
+}
+
 double SpectralMethod::time_step(const SimulationParams& p) {
   const double dx = 1.0 / p.geometry.nodes_per_meter; // as mesh_size(p).dx, without the mesh
-  return p.spectral.time_step_factor * dx / p.material.s_wave_speed();
+  return p.spectral.time_step_factor * dx / reference_shear_speed(p);
+}
+
+double SpectralMethod::side_step_factor(const SimulationParams& p, const Material& side) {
+  // c_s dt / dx of this side: beta for the side that sets dt (exactly: the ratio is 1.0).
+  return p.spectral.time_step_factor * (side.s_wave_speed() / reference_shear_speed(p));
 }
 
 double SpectralMethod::step_bound(const SimulationParams& p) {
@@ -34,24 +44,37 @@ long SpectralMethod::max_steps(const SimulationParams& p) {
 double SpectralMethod::estimated_memory_bytes(const SimulationParams& p) {
   const int nx = mesh_size(p).nx, modes = nx / 2 + 1;
   const long steps = max_steps(p);
-  double lags = 0;
-  for (int n = 1; n < modes; ++n)
-    lags += double(ModeMemory::memory_length(n, p.geometry.width, time_step(p),
-                                             p.material.s_wave_speed(), p.spectral.memory_periods,
-                                             steps));
+  double lags = 0, table_values = 0;
+  for (const Material* side : solids(p)) {
+    for (int n = 1; n < modes; ++n)
+      lags +=
+          double(ModeMemory::memory_length(n, p.geometry.width, time_step(p), side->s_wave_speed(),
+                                           p.spectral.memory_periods, steps));
+    table_values += 6.0 * kernel_span(p, *side) / HalfSpaceKernels::table_step;
+  }
   const double memory = 7.0 * 8.0 * lags; // 4 history + 3 weight doubles a lag
-  const double fields = 40.0 * 8.0 * nx;  // nodal and modal vectors
-  const double table = 6.0 * 8.0 * kernel_span(p) / HalfSpaceKernels::table_step;
+  const double fields = 40.0 * 8.0 * nx * double(solids(p).size()); // nodal and modal vectors
+  const double table = 8.0 * table_values;
   const double records = 4.0 * 8.0 * double(steps);   // probe records
   const double sample_buffer = 64.0 * 6.0 * 8.0 * nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                     // code, libraries, HDF5 caches
   return memory + fields + table + records + sample_buffer + baseline;
 }
 
+std::vector<const Material*> SpectralMethod::solids(const SimulationParams& p) {
+  if (p.lower.elastic()) return {&p.material, &p.lower.material};
+  return {&p.material};
+}
+
 double SpectralMethod::kernel_span(const SimulationParams& p) {
+  return kernel_span(p, p.material);
+}
+
+double SpectralMethod::kernel_span(const SimulationParams& p, const Material& side) {
   // The last weight of mode n ends at (M_n + 1/2) |k_n| c_s dt <= 2 pi q + 3/2 pi beta, and
-  // never beyond the run: (max_steps + 1/2) |k_max| c_s dt with |k_max| = pi / dx.
-  const double beta = p.spectral.time_step_factor;
+  // never beyond the run: (max_steps + 1/2) |k_max| c_s dt with |k_max| = pi / dx (beta the
+  // side's c_s dt / dx).
+  const double beta = side_step_factor(p, side);
   const double window = two_pi * p.spectral.memory_periods + 1.5 * std::numbers::pi * beta;
   const double run = (step_bound(p) + 1.5) * std::numbers::pi * beta;
   return std::min(window, run) + 0.5;
@@ -59,14 +82,14 @@ double SpectralMethod::kernel_span(const SimulationParams& p) {
 
 namespace {
 
-HalfSpaceGrid upper_grid(const SimulationParams& p, int threads) {
+HalfSpaceGrid grid_of(const SimulationParams& p, const Material& side, int threads) {
   HalfSpaceGrid g;
   g.nx = mesh_size(p).nx;
   g.width = p.geometry.width;
   g.dt = SpectralMethod::time_step(p);
   g.memory_periods = p.spectral.memory_periods;
   g.max_steps = SpectralMethod::max_steps(p);
-  g.kernel_span = SpectralMethod::kernel_span(p);
+  g.kernel_span = SpectralMethod::kernel_span(p, side);
   g.parts = threads;
   return g;
 }
@@ -75,8 +98,12 @@ HalfSpaceGrid upper_grid(const SimulationParams& p, int threads) {
 
 SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
     : params_(params), nx_(mesh_size(params).nx), dx_(mesh_size(params).dx), dt_(time_step(params)),
-      team_(threads), upper_(params.material, upper_grid(params, team_.size())) {
+      team_(threads), upper_(params.material, grid_of(params, params.material, team_.size())) {
   node_ = {upper_.eta1() * dx_ * dt_, upper_.eta2() * dx_ * dt_, dt_, dx_, params.friction};
+  if (params.lower.elastic()) {
+    const Material& below = params.lower.material;
+    lower_ = std::make_unique<HalfSpace>(below, grid_of(params, below, team_.size()));
+  }
   for (auto* v : {&load1_, &load2_, &slip_speed_})
     v->assign(nx_, 0.0);
   solved_.resize(nx_);
@@ -103,9 +130,20 @@ std::vector<std::string> SpectralMethod::end_warnings(double /*simulated_time*/)
   return {msg};
 }
 
+double SpectralMethod::slip_rate(int i) const {
+  const double upper = upper_.motion().v1[i];
+  return lower_ ? upper - lower_->motion().v1[i] : upper;
+}
+
+double SpectralMethod::new_slip_rate(int i) const {
+  const double upper = upper_.motion().v1_new[i];
+  return lower_ ? upper - lower_->motion().v1_new[i] : upper;
+}
+
 void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
   const double t_half = (double(step_) + 0.5) * dt_;
   const double sigma1 = params_.loading.shear_stress, sigma2 = params_.loading.normal_stress;
+  HalfSpace::Motion& up = upper_.motion();
   for (int i = 0; i < nx_; ++i) {
     const double x1 = iface_.x1[i];
     InterfaceTraction load;
@@ -113,38 +151,69 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
     load.t2 += nucleation_traction(params_.nucleation, sigma2, x1, t_half);
     load1_[i] = load.t1;
     load2_[i] = load.t2;
-    // The velocity without the plane's force: -sigma_2j = L_j  =>  V = (sigma0 + f + L)/eta.
-    HalfSpace::Motion& up = upper_.motion();
-    const double v1_free = (sigma1 + upper_.f1()[i] + load.t1) / upper_.eta1();
-    const double v2_free = (sigma2 + upper_.f2()[i] + load.t2) / upper_.eta2();
-    solved_[i] = resolve_interface_node(node_, up.d2[i], v1_free, v2_free, slip_speed[i],
-                                        iface_.strength[i], iface_.pressure[i]);
-    up.v1_new[i] = solved_[i].v1;
-    up.v2_new[i] = solved_[i].v2;
+    // The upper solid without the interface force: -sigma_2j dx = L_j with
+    // sigma_2j = sigma0_j + f_j - eta_j V_j  =>  V = (sigma0 + f + L/dx) / eta (loads in Pa).
+    const InterfaceSide upper{node_.mass1, node_.mass2,
+                              (sigma1 + upper_.f1()[i] + load.t1) / upper_.eta1(),
+                              (sigma2 + upper_.f2()[i] + load.t2) / upper_.eta2()};
+    InterfaceSide lower;
+    double gap = up.d2[i];
+    if (lower_) {
+      // The lower solid in the true frame (its memory f' from its mirrored frame):
+      // sigma_12 = sigma0_1 - f'_1 + eta_1 V_1, sigma_22 = sigma0_2 + f'_2 + eta_2 V_2, and
+      // sigma_2j dx = -L_j without the interface force (docs/spectral-bi.md "Two half-spaces").
+      const HalfSpace& below = *lower_;
+      lower = {below.eta1() * dx_ * dt_, below.eta2() * dx_ * dt_,
+               -(sigma1 - below.f1()[i] + load.t1) / below.eta1(),
+               -(sigma2 + below.f2()[i] + load.t2) / below.eta2()};
+      gap += below.motion().d2[i]; // u2(upper) - u2(lower) = D_2 + D'_2
+    }
+    const SplitNodeStep pair = resolve_split_node(node_, gap, upper, lower, !lower_, slip_speed[i],
+                                                  iface_.strength[i], iface_.pressure[i]);
+    solved_[i] = pair.relative;
+    up.v1_new[i] = pair.upper.v1;
+    up.v2_new[i] = pair.upper.v2;
+    if (lower_) { // back to the mirrored frame
+      lower_->motion().v1_new[i] = pair.lower.v1;
+      lower_->motion().v2_new[i] = -pair.lower.v2;
+    }
   }
 }
 
 void SpectralMethod::step(bool /*compute_energy*/) {
-  team_.run([&](int member, int) { upper_.sum_history(member); });
+  team_.run([&](int member, int) {
+    upper_.sum_history(member);
+    if (lower_) lower_->sum_history(member);
+  });
   upper_.known_memory_term();
+  if (lower_) lower_->known_memory_term();
 
   // Predictor: this interval's memory term with V^{n-1/2}; the strength update with the
   // slip speed of the last interval. Corrector: with the solved V^{n+1/2}, and the mean slip
-  // speed over [t_{n-1/2}, t_{n+1/2}].
-  HalfSpace::Motion& up = upper_.motion();
+  // speed over [t_{n-1/2}, t_{n+1/2}]. Slip speeds are those of the relative motion.
   std::vector<double>& slip_speed = slip_speed_;
   for (int i = 0; i < nx_; ++i)
-    slip_speed[i] = std::abs(up.v1[i]);
+    slip_speed[i] = std::abs(slip_rate(i));
   upper_.predict();
+  if (lower_) lower_->predict();
   solve_nodes(slip_speed);
   for (int pass = 1; pass <= params_.spectral.corrector_passes; ++pass) {
     for (int i = 0; i < nx_; ++i)
-      slip_speed[i] = std::abs(0.5 * (up.v1[i] + up.v1_new[i]));
+      slip_speed[i] = std::abs(0.5 * (slip_rate(i) + new_slip_rate(i)));
     upper_.correct();
+    if (lower_) lower_->correct();
     solve_nodes(slip_speed);
   }
+  record_interface();
+  upper_.finish_step();
+  if (lower_) lower_->finish_step();
+  ++step_;
+}
 
-  // The interface after step n, and the energy over the step (V constant over it).
+void SpectralMethod::record_interface() {
+  // The interface after step n (relative motion: upper minus lower), and the energy over the
+  // step (V constant over it).
+  const HalfSpace::Motion& up = upper_.motion();
   const double c0_1 = -params_.loading.shear_stress * dx_;
   const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
   const std::vector<double>&f1 = upper_.f1(), &f2 = upper_.f2();
@@ -167,13 +236,34 @@ void SpectralMethod::step(bool /*compute_energy*/) {
     // Energy into the half-space: -(sigma - sigma0) . V = (eta V - f) . V per unit length.
     delivered += dt_ * dx_ * ((eta1 * v1 - f1[i]) * v1 + (eta2 * v2 - f2[i]) * v2);
   }
+  if (lower_) { // the lower side's part, and the relative motion replaces the upper's
+    const HalfSpace::Motion& lo = lower_->motion();
+    const std::vector<double>&g1 = lower_->f1(), &g2 = lower_->f2();
+    const double e1 = lower_->eta1(), e2 = lower_->eta2();
+    work = dissipated = 0;
+    double into_lower = 0;
+    for (int i = 0; i < nx_; ++i) {
+      const InterfaceNodeStep& r = solved_[i];
+      const double v1 = up.v1_new[i] - lo.v1_new[i], v2 = up.v2_new[i] + lo.v2_new[i];
+      iface_.velocity[i] = 0.5 * (slip_rate(i) + v1);
+      iface_.half_velocity[i] = v1;
+      iface_.slip[i] = up.d1[i] - lo.d1[i];
+      iface_.opening[i] = up.d2[i] + lo.d2[i];
+      // The loads act as +L on the upper side and -L on the lower, the interface force as +C
+      // and -C, the initial reaction as +C0 and -C0: each does its work on the relative motion.
+      work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
+      dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);
+      // In the mirrored frame (where lo and g live) the lower side is an upper half-space.
+      const double w1 = lo.v1_new[i], w2 = lo.v2_new[i];
+      into_lower += dt_ * dx_ * ((e1 * w1 - g1[i]) * w1 + (e2 * w2 - g2[i]) * w2);
+    }
+    delivered += into_lower;
+    energy_.lower_solid += into_lower;
+  }
   energy_.external_work += work;
   energy_.dissipated += dissipated;
   energy_.kinetic = 0.0;
   energy_.strain += delivered;
-
-  upper_.finish_step();
-  ++step_;
 }
 
 } // namespace slipfront::spectral

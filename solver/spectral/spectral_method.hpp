@@ -20,11 +20,13 @@
 
 #include "solver/interface/interface_fields.hpp"
 #include "solver/interface/interface_law.hpp"
+#include "solver/interface/split_node.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
 #include "solver/spectral/half_space.hpp"
 #include "solver/thread_team.hpp"
 
+#include <memory>
 #include <vector>
 
 namespace slipfront::spectral {
@@ -47,10 +49,18 @@ public:
   double time() const { return step_ * dt_; }
   const ModeMemory& memory() const { return upper_.memory(); }
 
-  // Time step of the method: beta dx / c_s.
+  // Time step of the method: beta dx / c_s, with the larger c_s of two elastic solids (each
+  // side's own c_s dt / dx then is at most beta: docs/spectral-bi.md "Two half-spaces").
   static double time_step(const SimulationParams& params);
-  // Kernel table length needed for these parameters (scaled time).
+  static double reference_shear_speed(const SimulationParams& params); // the c_s of dt
+  // c_s dt / dx of a half-space of material `side`.
+  static double side_step_factor(const SimulationParams& params, const Material& side);
+  // The elastic solids of the run: the upper one, and the lower one if it is elastic.
+  static std::vector<const Material*> solids(const SimulationParams& params);
+  // Kernel table length needed for these parameters (scaled time), of the upper solid or
+  // of the solid `side`.
   static double kernel_span(const SimulationParams& params);
+  static double kernel_span(const SimulationParams& params, const Material& side);
   // Steps of a run that goes to `duration`, in double (may be inf for an impossible job).
   static double step_bound(const SimulationParams& params);
   // The same as an integer; throws std::invalid_argument above max_run_steps
@@ -61,12 +71,16 @@ public:
 
 private:
   void solve_nodes(const std::vector<double>& slip_speed);
+  void record_interface();
+  double slip_rate(int i) const;     // V^{n-1/2}, upper minus lower, at node i
+  double new_slip_rate(int i) const; // V^{n+1/2}
 
   SimulationParams params_;
   int nx_;
   double dx_, dt_;
   ThreadTeam team_;
-  HalfSpace upper_; // the solid x2 > 0
+  HalfSpace upper_;                  // the solid x2 > 0
+  std::unique_ptr<HalfSpace> lower_; // the solid x2 < 0 in its mirrored frame (none: rigid)
   InterfaceNodeConstants node_;
 
   std::vector<double> load1_, load2_; // interface loads at t_{n+1/2} [Pa]
