@@ -40,8 +40,9 @@ public:
   const InterfaceFields& interface() const override { return iface_; }
   const EnergyBalance& energy() const override { return energy_; }
   MeshInfo mesh_info() const override;
-  // Plain Coulomb friction at time_step_factor >= 0.4 grows a mesh-scale mode that the
-  // continuum does not have (docs/verification.md, BI findings): said at the end of the run.
+  // Said at the end of the run: plain Coulomb friction at time_step_factor >= 0.4 grows a
+  // mesh-scale mode that the continuum does not have (docs/verification.md, BI findings);
+  // between two different solids it is ill-posed (the continuum's growth rate ~ 1/dx).
   std::vector<std::string> end_warnings(double simulated_time) const override;
 
   int nx() const { return nx_; }

@@ -6,9 +6,13 @@
 //     rupture slides the interface (the slip-induced normal stress of one side cancels the
 //     other's), where the rigid plane changes it;
 //   - a lower solid ever stiffer gives the rigid plane's run;
-//   - the energy: the balance closes, and each half-space received a non-negative energy.
+//   - the energy: the balance closes, and each half-space received a non-negative energy;
+//   - the bimaterial Prakash-Clifton scene: the slip pulse in the preferred direction (that
+//     of the compliant solid's slip) travels at the generalized Rayleigh speed.
 #include "verification_support.hpp"
 
+#include "solver/simulation.hpp"
+#include "solver/spectral/bimaterial_relations.hpp"
 #include "solver/spectral/spectral_method.hpp"
 
 #include <gtest/gtest.h>
@@ -28,6 +32,11 @@ SimulationParams two_solids(double width, double nodes_per_meter, const Material
   p.lower.side = LowerSide::elastic;
   p.lower.material = lower;
   return p;
+}
+
+Material from_speeds(double rho, double cp, double cs) {
+  const double mu = rho * cs * cs, nu = (cp * cp - 2 * cs * cs) / (2 * (cp * cp - cs * cs));
+  return {rho, 2 * mu * (1 + nu), nu};
 }
 
 Material softer_and_lighter() {
@@ -91,6 +100,50 @@ TEST(SpectralTwoSolids, UniformOpeningSeparatesTheSidesAtTheirImpedances) {
   EXPECT_LT(e2, 1e-12);
   EXPECT_EQ(traction, 0.0);
   measure("BI two solids, uniform opening: V1 rel. error %.1e, V2 rel. error %.1e", e1, e2);
+}
+
+// dt = beta dx / c_s of the faster solid, so that each half-space's own c_s dt / dx is at most
+// beta (docs/spectral-bi.md "Two half-spaces"). The paper's scene on a lower solid with c_s
+// x 1.18 (the presets' contrast; same rho and nu), n_d = 20: beta = 0.75 runs to the end; the
+// step of the slower solid (beta = 0.75 for it, 0.885 for the faster one) diverges, and the
+// faster (lower) half-space is the one that returns energy.
+TEST(SpectralTwoSolids, TheTimeStepIsTheFasterSolidsAndTheOtherWouldDiverge) {
+  SimulationParams p;
+  p.method = Method::spectral_bi;
+  p.geometry.nodes_per_meter = 20;
+  p.threads = 1;
+  p.lower.side = LowerSide::elastic;
+  p.lower.material = p.material;
+  p.lower.material.young_modulus *= 1.18 * 1.18;
+  const double dx = 1.0 / 20;
+  p.spectral.time_step_factor = 0.75;
+  EXPECT_DOUBLE_EQ(spectral::SpectralMethod::time_step(p),
+                   0.75 * dx / p.lower.material.s_wave_speed());
+  const RunResult stable = run_simulation(p);
+  EXPECT_NE(stable.metrics.outcome, Outcome::diverged) << stable.metrics.message;
+  p.spectral.time_step_factor = 0.75 * 1.18; // dt = 0.75 dx / c_s of the slower solid
+  const RunResult slow_solids_step = run_simulation(p);
+  EXPECT_EQ(slow_solids_step.metrics.outcome, Outcome::diverged);
+  EXPECT_NE(slow_solids_step.metrics.message.find("energy in the lower solid"), std::string::npos)
+      << slow_solids_step.metrics.message;
+  measure("BI two solids, c_s- = 1.18 c_s+, n_d = 20: beta 0.75 of the faster solid %s after "
+          "%ld steps; 0.75 of the slower: %s",
+          stable.metrics.outcome == Outcome::diverged ? "diverged" : "stable", stable.metrics.steps,
+          slow_solids_step.metrics.message.c_str());
+}
+
+TEST(SpectralTwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
+  SimulationParams p = two_solids(2.0, 10.0, softer_and_lighter());
+  p.friction.law = FrictionLaw::coulomb;
+  p.spectral.time_step_factor = 0.25;
+  const auto flagged = spectral::SpectralMethod(p).end_warnings(1.0);
+  ASSERT_EQ(flagged.size(), 1u);
+  EXPECT_NE(flagged[0].find("ill-posed"), std::string::npos) << flagged[0];
+  p.lower.material = p.material; // identical solids: the homogeneous problem, well-posed
+  EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
+  p.lower.material = softer_and_lighter();
+  p.friction.law = FrictionLaw::prakash_clifton;
+  EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
 }
 
 // A sliding rupture without any normal load: an extra shear traction on |x1| <= 1.5 m lifts
@@ -191,6 +244,59 @@ TEST(SpectralTwoSolids, AStiffLowerSolidGivesTheRigidPlanesRun) {
   measure("BI two solids: max slip difference from the rigid plane's run, relative: %.2e at "
           "E- = 100 E+, %.2e at 1000 E+ (ratio %.2f)",
           d10, d30, d10 / d30);
+}
+
+// The bimaterial_prakash_clifton scene of issue 21 (upper rho 2730.834 kg/m^3, c_p 4537.973,
+// c_s 2620 m/s; lower 2745.739, 5354.808, 3091.6 m/s; -130 MPa; mu = 0.7, L = 1 mm,
+// V* = 0.26 m/s; 100.1 MPa on |x1| <= 10 m, the patch as an extra shear load from t = 0) with
+// the background shear 90.5 MPa instead of 89.18: there the rupture arrests at about +50 m
+// before its pulse is steady; at 90.5 MPa (and 90.8) the pulse in +x1 runs to the end of the
+// run. The peak slip rate on x1 > 0 moves at a constant speed: the least-squares slope of its
+// position over t in [0.012, 0.065] s: measured 2543 m/s (-1.0 %). Over t in [0.013, 0.103] s
+// on a 600 m wide strip: 2535 m/s at dx = 0.4 m, 2539 m/s at dx = 0.2 m (2535 m/s at 90.8 MPa;
+// 2552 m/s with L = 3 mm): 0.7-1.4 % below c_GR = 2569.71 m/s, and far from the other speeds
+// of the pair (c_R of the upper solid 2408.8, c_s 2620, c_R of the lower 2842.4, c_s 3091.6
+// m/s). Bound: within 2 % of c_GR.
+TEST(SpectralTwoSolids, TheSlipPulseInThePreferredDirectionRunsAtTheGeneralizedRayleighSpeed) {
+  SimulationParams p;
+  p.method = Method::spectral_bi;
+  p.material = from_speeds(2730.834, 4537.973, 2620.0);
+  p.lower.side = LowerSide::elastic;
+  p.lower.material = from_speeds(2745.739, 5354.808, 3091.6);
+  p.geometry.width = 400.0;
+  p.geometry.x_min = -200.0;
+  p.geometry.nodes_per_meter = 2.5; // dx = 0.4 m
+  p.loading.normal_stress = -130e6;
+  p.loading.shear_stress = 90.5e6;
+  p.friction.mu = 0.7;
+  p.friction.L = 1e-3;
+  p.friction.v_star = 0.26;
+  p.nucleation.enabled = false;
+  p.extra_load = [](double x1, double) {
+    return InterfaceTraction{std::abs(x1) <= 10.0 ? 100.1e6 - 90.5e6 : 0.0, 0.0};
+  };
+  spectral::SpectralMethod method(p, 2);
+  const int n = method.nx();
+  double st = 0, sx = 0, stt = 0, stx = 0, peak = 0;
+  int samples = 0;
+  for (long step = 0; method.time() < 0.065; ++step) {
+    method.step(false);
+    const double t = method.time() - method.dt();
+    const InterfaceFields& f = method.interface();
+    if (step % 10 != 0 || t < 0.012) continue;
+    int best = n / 2;
+    for (int i = n / 2; i < n; ++i)
+      if (std::abs(f.velocity[i]) > std::abs(f.velocity[best])) best = i;
+    st += t, sx += f.x1[best], stt += t * t, stx += t * f.x1[best], ++samples;
+    peak = std::max(peak, std::abs(f.velocity[best]));
+  }
+  const double speed = (samples * stx - st * sx) / (samples * stt - st * st);
+  const double c_gr = spectral::generalized_rayleigh_speed(p.material, p.lower.material);
+  EXPECT_LT(std::abs(speed / c_gr - 1), 0.02);
+  EXPECT_GT(peak, 0.3) << "a pulse, not a wave: the interface slides at its peak";
+  measure("BI bimaterial Prakash-Clifton scene (dx = 0.4 m): pulse speed in +x1 %.1f m/s, "
+          "c_GR %.2f m/s (%.2f %%), peak slip rate %.2f m/s",
+          speed, c_gr, 100 * (speed / c_gr - 1), peak);
 }
 
 } // namespace
