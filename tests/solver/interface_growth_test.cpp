@@ -283,7 +283,8 @@ TEST(InterfaceGrowth, SpectralBiBimaterialCoulombIsIllPosedPrakashCliftonBoundsI
 
 // Not a check: one measurement chosen by environment variables (GROWTH_METHOD fe|bi,
 // GROWTH_LAW pc|coulomb, GROWTH_L, GROWTH_ND, GROWTH_ZETA, GROWTH_BETA (BI time-step factor),
-// GROWTH_Q (BI memory periods), GROWTH_T, GROWTH_LOWER rigid|bimaterial), for the studies of docs/small-l-study.md. Run with
+// GROWTH_Q (BI memory periods), GROWTH_T, GROWTH_LOWER rigid|bimaterial), for the studies of
+// docs/small-l-study.md. Run with
 // --gtest_also_run_disabled_tests.
 TEST(InterfaceGrowth, DISABLED_Measure) {
   auto env = [](const char* name, const char* fallback) {
