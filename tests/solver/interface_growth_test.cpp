@@ -250,7 +250,8 @@ TEST(InterfaceGrowth, SpectralBiPrakashCliftonDoesNotGrowCoulombOnlyAtLongSteps)
 // Ranjith & Rice 2001): steady sliding is unstable at every wavelength, with a growth rate
 // Re(p) |k| c_s, so the finest mode the mesh holds grows fastest and the rate scales as 1/dx.
 // The continuum's root for mu = 0.75 is p = 0.0322 - 0.9815 i (F = Kc11 + mu Kc21 = 0 with the
-// interface relation of solver/spectral/bimaterial_relations.hpp), i.e. rate dx / c_s =
+// interface relation of solver/spectral/bimaterial_relations.hpp;
+// tests/solver/reference/bimaterial_coulomb_stability.py), i.e. rate dx / c_s =
 // 0.0322 pi = 0.101 at k = pi / dx; measured 0.074, 0.079, 0.078 at n_d = 20, 40, 80 (the
 // mesh's finest modes are not the continuum's). Prakash-Clifton (L = 5e-5 m) bounds it as
 // dx -> 0: 2.16, 2.74, 3.08 /s at n_d = 40, 80, 160 (ratios 1.27, 1.12 per halving of dx,
