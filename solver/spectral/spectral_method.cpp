@@ -44,18 +44,17 @@ long SpectralMethod::max_steps(const SimulationParams& p) {
 double SpectralMethod::estimated_memory_bytes(const SimulationParams& p) {
   const int nx = mesh_size(p).nx, modes = nx / 2 + 1;
   const long steps = max_steps(p);
-  double lags = 0, table_values = 0;
+  double lags = 0, table = 0; // table: the kernel tables
   for (const Material* side : solids(p)) {
     for (int n = 1; n < modes; ++n)
       lags +=
           double(ModeMemory::memory_length(n, p.geometry.width, time_step(p), side->s_wave_speed(),
                                            p.spectral.memory_periods, steps));
-    table_values += 6.0 * kernel_span(p, *side) / HalfSpaceKernels::table_step;
+    table += 6.0 * 8.0 * kernel_span(p, *side) / HalfSpaceKernels::table_step;
   }
   const double memory = 7.0 * 8.0 * lags; // 4 history + 3 weight doubles a lag
   const double fields = 40.0 * 8.0 * nx * double(solids(p).size()); // nodal and modal vectors
-  const double table = 8.0 * table_values;
-  const double records = 4.0 * 8.0 * double(steps);   // probe records
+  const double records = 4.0 * 8.0 * double(steps);                 // probe records
   const double sample_buffer = 64.0 * 6.0 * 8.0 * nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                     // code, libraries, HDF5 caches
   return memory + fields + table + records + sample_buffer + baseline;
