@@ -2,7 +2,8 @@
 // particle velocity that the largest initial load of a node would cause, |tau| / (rho c_s)), a
 // non-finite value anywhere (NaN fails the speed test; the energy sums on the steps they
 // are evaluated), a strength outside its physical range (an unstable strength update), or a
-// negative energy in the solid (a scheme that returns more energy than it received).
+// negative energy in a solid (a scheme that returns more energy than it received; each of
+// two solids on its own).
 // Also keeps the largest |V| seen (the max_slip_velocity metric).
 #pragma once
 
@@ -29,6 +30,7 @@ public:
   double max_slip_velocity() const { return max_slip_velocity_; }
 
 private:
+  bool two_solids_;          // a lower elastic solid: passivity is checked per solid
   std::vector<double> mu_0_; // static coefficient of each node
   double speed_limit_ = 0;
   double max_coulomb_strength_ = 0; // the largest mu_0 p seen, mu_0 p0 included
