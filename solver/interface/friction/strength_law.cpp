@@ -13,11 +13,19 @@ FrictionState StrengthLaw::resting_state(const FrictionValues& values, double pr
   return {coefficient_->static_coefficient(values) * std::max(0.0, pressure), 0.0};
 }
 
-double StrengthLaw::strength(const FrictionValues& values, const FrictionState& state) const {
-  // (mu(s) / mu_0) c*: exactly c* for a constant mu (x / x = 1); mu_0 = 0 holds nothing.
-  const double mu_0 = coefficient_->static_coefficient(values);
+namespace {
+
+// (mu(s) / mu_0) c*: exactly c* for a constant mu (x / x = 1); mu_0 = 0 holds nothing.
+double scaled_strength(const CoefficientLaw& law, const FrictionValues& values, double mu_0,
+                       const FrictionState& state) {
   if (!(mu_0 > 0.0)) return 0.0;
-  return coefficient_->coefficient(values, state.slip_path) / mu_0 * state.filtered;
+  return law.coefficient(values, state.slip_path) / mu_0 * state.filtered;
+}
+
+} // namespace
+
+double StrengthLaw::strength(const FrictionValues& values, const FrictionState& state) const {
+  return scaled_strength(*coefficient_, values, coefficient_->static_coefficient(values), state);
 }
 
 FrictionStep StrengthLaw::advance(const FrictionValues& values, const FrictionState& state,
@@ -30,7 +38,7 @@ FrictionStep StrengthLaw::advance(const FrictionValues& values, const FrictionSt
   out.state.filtered =
       regularization_->advance(values, update_, state.filtered, c_start, c_end, slip_speed, dt);
   out.state.slip_path = state.slip_path + dt * slip_speed;
-  out.strength = strength(values, out.state);
+  out.strength = scaled_strength(*coefficient_, values, mu_0, out.state);
   return out;
 }
 
