@@ -214,9 +214,9 @@ TEST(InterfaceFields, RunLimitsNameTheWaveSpeedsTheMaterialWasGivenIn) {
   // one in wave speeds they name the speed the job gave.
   expect_error({{"material", {{"p_wave_speed", 1e120}, {"s_wave_speed", 1e119}}}},
                "/material/s_wave_speed", {"time step would be as short as"});
-  expect_error({{"method", "spectral_bi"},
-                {"material", {{"p_wave_speed", 2000.0}, {"s_wave_speed", 1.0}}}},
-               "/material/p_wave_speed", {"c_p / c_s = 2e+03"});
+  expect_error(
+      {{"method", "spectral_bi"}, {"material", {{"p_wave_speed", 2000.0}, {"s_wave_speed", 1.0}}}},
+      "/material/p_wave_speed", {"c_p / c_s = 2e+03"});
 }
 
 TEST(InterfaceFields, NewFieldsAtTheirDefaultsKeepEveryHash) {
