@@ -1,6 +1,7 @@
 #include "api/job_schema.hpp"
 
 #include "api/job_reader.hpp"
+#include "api/presets.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -243,6 +244,18 @@ nlohmann::json job_json_schema() {
     schema["x-methods"] = methods;
     (*parent)["properties"][name] = schema;
   }
+  // Not a field of the job but a shorthand for one (api/presets.hpp): expanded before the
+  // fields are read, so it has no default and never appears in a stored spec.
+  nlohmann::json names = nlohmann::json::array();
+  for (const Preset& preset : presets())
+    names.push_back(preset.name);
+  root["properties"]["preset"] = {
+      {"type", "string"},
+      {"enum", names},
+      {"description", "start from this preset (GET /api/v1/presets): the job is the preset's "
+                      "spec with the other members merged over it (JSON merge patch, RFC 7396; "
+                      "docs/presets.md)"},
+      {"x-methods", {"fe", "spectral_bi"}}};
   return root;
 }
 

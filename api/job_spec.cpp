@@ -4,18 +4,22 @@
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
+#include "api/presets.hpp"
 #include "api/result_estimate.hpp"
 #include "api/run_bounds.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
 
-ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits) {
+ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limits) {
   ParseResult result;
-  if (!document.is_object()) {
-    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(document)});
+  if (!given.is_object()) {
+    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(given)});
     return result;
   }
+  // {"preset": NAME, ...}: the preset's spec with the job's members merged over it.
+  const nlohmann::json document = expand_preset(given, result.errors);
+  if (!result.errors.empty()) return result;
 
   JobSpec job;
   ObjectReader reader(&document, "", result.errors);

@@ -43,7 +43,8 @@ struct ParseResult {
   bool ok() const { return errors.empty(); }
 };
 
-// Validate a parsed JSON document and build the job.
+// Validate a parsed JSON document and build the job. A "preset" member is expanded first
+// (api/presets.hpp): the job is the preset's spec with the other members merged over it.
 ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits = {});
 
 // Parse text first (a syntax error is one FieldError with pointer "" and the parser's

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   if (command == "run") return run_command(args);
   if (command == "validate") return validate_command(args);
   if (command == "schema") return schema_command(args);
+  if (command == "presets") return presets_command(args);
   if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
   if (command == "--version" || command == "version") {
     std::cout << "slipfront " << slipfront::code_version() << '\n';

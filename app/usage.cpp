@@ -69,9 +69,12 @@ usage:
   slipfront schema [--markdown]
       The job schema: JSON Schema (also served at /api/v1/schema/job.json), or the field
       tables of docs/api-job-spec.md.
+  slipfront presets [NAME] [--json]
+      The presets a job may start from (the field's standard scenes and the examples);
+      with NAME its job as JSON. A job may name one: {"preset": NAME, ...} (docs/presets.md).
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [--max-memory SIZE] [...]
       Run the HTTP job server (docs/server.md).
-  slipfront run|validate|serve --help   the options of one command
+  slipfront run|validate|presets|serve --help   the options of one command
   slipfront --version
   slipfront help | --help
 

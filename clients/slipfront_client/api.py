@@ -164,6 +164,13 @@ class Api:
                                 headers=headers, ok=(200, 201), idempotent=True)
         return response.json()
 
+    def presets(self):
+        """GET /presets: [{name, origin, title, description, reference, spec}]."""
+        return self.get_json(f"{API}/presets")["presets"]
+
+    def preset(self, name):
+        return self.get_json(f"{API}/presets/{name}")
+
     def job(self, job_id, fields=None):
         params = {"fields": ",".join(fields)} if fields else None
         return self.get_json(f"{API}/jobs/{job_id}", params=params)

@@ -204,6 +204,15 @@ const char* document = R"json({
         "responses": {"200": {"description": "{method, spec, memory_estimate_bytes}", "content": {"application/json": {}}},
           "400": {"$ref": "#/components/responses/Problem"}}}
     },
+    "/api/v1/presets": {
+      "get": {"summary": "The presets a job may start from: the field's standard scenes (presets/) and the example jobs (examples/); a job names one with \"preset\": NAME (docs/presets.md)",
+        "responses": {"200": {"description": "{presets: [{name, origin, title, description, reference, spec}]}", "content": {"application/json": {}}}}}
+    },
+    "/api/v1/presets/{name}": {
+      "get": {"summary": "One preset: {name, origin, title, description, reference, spec}",
+        "parameters": [{"name": "name", "in": "path", "required": true, "schema": {"type": "string"}}],
+        "responses": {"200": {"description": "the preset", "content": {"application/json": {}}}, "404": {"$ref": "#/components/responses/Problem"}}}
+    },
     "/api/v1/studies": {
       "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist)", "security": [{"bearer": []}],
         "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/StudyRequest"}}}},
