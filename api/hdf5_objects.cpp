@@ -132,24 +132,37 @@ Handle create_group(hid_t parent, const std::string& name) {
                          "creating group " + name));
 }
 
-void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
-                  const std::string& units) {
-  const hsize_t size = values.size();
-  Handle space(check_id(H5Screate_simple(1, &size, nullptr), "dataspace of " + name));
+namespace {
+
+// A float64 dataset of `rank` (1 or 2) dimensions `dims`, written whole from `values` (row-major),
+// chunked by whole rows of about vector_chunk values and compressed when not empty.
+void write_array(hid_t parent, const std::string& name, const double* values, int rank,
+                 const hsize_t* dims, const std::string& units) {
+  const hsize_t columns = rank == 2 ? dims[1] : 1;
+  const hsize_t size = dims[0] * columns;
+  Handle space(check_id(H5Screate_simple(rank, dims, nullptr), "dataspace of " + name));
   Handle properties; // contiguous when empty: a chunk may not be empty
   if (size > 0) {
-    const hsize_t chunk = std::min(size, vector_chunk);
-    properties = compressed_layout(1, &chunk);
+    const hsize_t chunk[2] = {std::clamp<hsize_t>(vector_chunk / columns, 1, dims[0]), columns};
+    properties = compressed_layout(rank, chunk);
   }
   Handle dataset(
       check_id(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
                           properties.valid() ? properties.get() : H5P_DEFAULT, H5P_DEFAULT),
                "creating dataset " + name));
   if (size > 0) {
-    check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+    check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values),
           "writing dataset " + name);
   }
   write_attribute(dataset.get(), "units", units);
+}
+
+} // namespace
+
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  const std::string& units) {
+  const hsize_t size = values.size();
+  write_array(parent, name, values.data(), 1, &size, units);
 }
 
 Handle open_dataset(hid_t parent, const std::string& name) {
