@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+"""Stations of real runs, FE and spectral BI, read back with h5py (docs/hdf5-layout.md
+"/stations"): every step recorded; on a node the station's series are that node's /interface
+columns bit for bit (the interface sampled every step); between two nodes, and across the
+periodic seam, their weighted sum; the rupture time is the first crossing of the recorded
+|slip_rate|, the same in the file and the metrics. A run without stations has no /stations
+group.
+
+usage: check_stations.py SLIPFRONT WORK_DIR
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+# The paper's domain [-10, 30) at n_d = 10 (dx = 0.1 m): stations on nodes (0, 6, 11), halfway
+# between two (6.05), and between the last node (29.9) and x_min + width = node 0 (29.95).
+STATIONS = [0.0, 6.0, 6.05, 11.0, 29.95]
+SEAM = 4
+JOBS = {
+    "fe": {"geometry": {"nodes_per_meter": 10}, "time": {"duration": 6}},
+    "spectral_bi": {"method": "spectral_bi", "geometry": {"nodes_per_meter": 10},
+                    "time": {"duration": 6}},
+}
+SERIES = {"slip_rate": "m/s", "slip": "m", "shear_traction": "Pa", "normal_traction": "Pa"}
+
+
+def fail(message):
+    sys.exit(f"check_stations: {message}")
+
+
+def expect(condition, message):
+    if not condition:
+        fail(message)
+
+
+def run(slipfront, job, work_dir, name):
+    job_path = os.path.join(work_dir, f"{name}.json")
+    result = os.path.join(work_dir, f"{name}.h5")
+    with open(job_path, "w") as f:
+        json.dump(job, f)
+    done = subprocess.run([slipfront, "run", job_path, "--output", result, "--quiet",
+                           "--threads", "1"], capture_output=True, text=True, timeout=600)
+    expect(done.returncode == 0, f"{name}: exit {done.returncode}: {done.stderr}")
+    return result, json.loads(done.stdout)
+
+
+def first_crossing(time, speed, threshold):
+    """The rupture time rule of docs/hdf5-layout.md, from a recorded series."""
+    above = np.nonzero(np.abs(speed) > threshold)[0]
+    if above.size == 0:
+        return math.nan
+    k = above[0]
+    if k == 0:
+        return time[0]
+    before, now = abs(speed[k - 1]), abs(speed[k])
+    return time[k - 1] + (threshold - before) / (now - before) * (time[k] - time[k - 1])
+
+
+def check_file(name, path, metrics):
+    with h5py.File(path, "r") as f:
+        s, i = f["stations"], f["interface"]
+        threshold = s.attrs["rupture_threshold"]
+        expect(threshold == 1e-3, f"{name}: rupture_threshold {threshold}")
+        expect(s["x1"][()].tolist() == STATIONS, f"{name}: /stations/x1 {s['x1'][()]}")
+        time = s["time"][()]
+        m, n = time.size, len(STATIONS)
+        expect(m == metrics["steps"], f"{name}: {m} rows for {metrics['steps']} steps")
+        expect(np.allclose(time, np.arange(m) * metrics["dt"], rtol=0, atol=1e-12 * time[-1]),
+               f"{name}: /stations/time is not every step")
+        expect(np.array_equal(i["time"][()], time), f"{name}: /interface is not every step")
+        for field, units in SERIES.items():
+            d = s[field]
+            expect(d.shape == (m, n), f"{name}: {field} shape {d.shape}")
+            expect(d.attrs["units"] == units, f"{name}: {field} units {d.attrs['units']!r}")
+            scales = [[scale.name for scale in dim.values()] for dim in d.dims]
+            expect(scales == [["/stations/time"], ["/stations/x1"]],
+                   f"{name}: {field} scales {scales}")
+        node_x1, weight = s["node_x1"][()], s["node_weight"][()]
+        x1 = i["x1"][()]
+        interface = {"slip_rate": i["slip_velocity"][()], "slip": i["slip"][()],
+                     "shear_traction": i["shear_traction"][()],
+                     "normal_traction": -i["contact_pressure"][()]}
+        for k, station in enumerate(STATIONS):
+            columns = [int(np.argmin(np.abs(x1 - node_x1[k, j]))) for j in range(2)]
+            expect(all(abs(x1[c] - node_x1[k, j]) < 1e-9 for j, c in enumerate(columns)),
+                   f"{name}: the nodes of {station} are not interface nodes")
+            on_node = weight[k, 1] == 0.0
+            expect(on_node == (station in (0.0, 6.0, 11.0)), f"{name}: station {station} weights")
+            for field in SERIES:
+                got = s[field][:, k]
+                if on_node:
+                    expect(np.array_equal(got, interface[field][:, columns[0]]),
+                           f"{name}: {field} at {station} is not its node's, bit for bit")
+                else:
+                    want = (weight[k, 0] * interface[field][:, columns[0]]
+                            + weight[k, 1] * interface[field][:, columns[1]])
+                    scale = np.max(np.abs(interface[field])) or 1.0
+                    expect(np.allclose(got, want, rtol=0, atol=1e-13 * scale),
+                           f"{name}: {field} at {station} is not the nodes' weighted sum")
+            if not on_node:
+                expect(abs(weight[k, 0] - 0.5) < 1e-9, f"{name}: weights at {station}")
+        expect(np.allclose(node_x1[SEAM], [29.9, -10.0], rtol=0, atol=1e-12),
+               f"{name}: the seam station reads {node_x1[SEAM]}")
+        expect(np.all(s["normal_traction"][0, :] < 0), f"{name}: normal traction not compressive")
+        rupture = s["rupture_time"][()]
+        for k in range(n):
+            want = first_crossing(time, s["slip_rate"][:, k], threshold)
+            got = rupture[k]
+            expect((math.isnan(want) and math.isnan(got)) or abs(got - want) <= 1e-12 * time[-1],
+                   f"{name}: rupture time at {STATIONS[k]}: {got}, recomputed {want}")
+            listed = metrics["stations"][k]
+            expect(listed["x1"] == STATIONS[k], f"{name}: metrics station {k} x1")
+            expect((listed["rupture_time"] is None and math.isnan(got)) or
+                   listed["rupture_time"] == got, f"{name}: metrics rupture time at {STATIONS[k]}")
+        expect(not math.isnan(rupture[1]) and rupture[2] > rupture[1],
+               f"{name}: the rupture must reach 6 m and then 6.05 m: {rupture}")
+        return s["slip"][()], s["slip_rate"][()], time, rupture
+
+
+def main():
+    if len(sys.argv) != 3:
+        fail(__doc__)
+    slipfront, work_dir = sys.argv[1:3]
+    os.makedirs(work_dir, exist_ok=True)
+    for method, base in JOBS.items():
+        job = dict(base, stations={"x1": STATIONS},
+                   output={"interval": 1e-9, "space_stride": 1})
+        path, metrics = run(slipfront, job, work_dir, f"stations_{method}")
+        stored = check_file(method, path, metrics)
+        print(f"ok {method}: {stored[2].size} steps, rupture times {stored[3].tolist()}")
+
+    # Without stations: no group, no metrics entry.
+    path, metrics = run(slipfront, JOBS["spectral_bi"], work_dir, "no_stations")
+    with h5py.File(path, "r") as f:
+        expect("stations" not in f, "a run without stations has a /stations group")
+    expect("stations" not in metrics, "a run without stations lists stations in its metrics")
+    print("ok: no stations, no /stations group")
+
+
+if __name__ == "__main__":
+    main()
