@@ -19,9 +19,11 @@ constexpr int interrupted = 130; // SIGINT (128 + 2)
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);
 int schema_command(const std::vector<std::string>& args);
+int stations_command(const std::vector<std::string>& args);
 void print_usage(std::ostream& out);
 void print_run_usage(std::ostream& out);
 void print_validate_usage(std::ostream& out);
+void print_stations_usage(std::ostream& out);
 
 // True if the arguments ask for help (--help or -h anywhere).
 bool wants_help(const std::vector<std::string>& args);

@@ -3,8 +3,8 @@
 "/stations"): every step recorded; on a node the station's series are that node's /interface
 columns bit for bit (the interface sampled every step); between two nodes, and across the
 periodic seam, their weighted sum; the rupture time is the first crossing of the recorded
-|slip_rate|, the same in the file and the metrics. A run without stations has no /stations
-group.
+|slip_rate|, the same in the file, the metrics and the CSV of `slipfront stations`. A run
+without stations has no /stations group.
 
 usage: check_stations.py SLIPFRONT WORK_DIR
 """
@@ -122,6 +122,37 @@ def check_file(name, path, metrics):
         return s["slip"][()], s["slip_rate"][()], time, rupture
 
 
+def check_csv(slipfront, name, path, stored):
+    slip, slip_rate, time, rupture = stored
+    done = subprocess.run([slipfront, "stations", path, "--csv", "-"], capture_output=True,
+                          text=True, timeout=60)
+    expect(done.returncode == 0, f"{name}: stations --csv exit {done.returncode}: {done.stderr}")
+    lines = done.stdout.splitlines()
+    comments = [line for line in lines if line.startswith("#")]
+    expect(any("slip_rate [m/s]" in c for c in comments), f"{name}: no units in the CSV header")
+    rows = [line for line in lines if not line.startswith("#")]
+    expect(rows[0] == "station_x1,time,slip,slip_rate,shear_traction,normal_traction",
+           f"{name}: CSV header {rows[0]!r}")
+    values = np.array([[float(v) for v in row.split(",")] for row in rows[1:]])
+    m = time.size
+    expect(values.shape == (m * len(STATIONS), 6), f"{name}: CSV shape {values.shape}")
+    for k, station in enumerate(STATIONS):
+        block = values[k * m:(k + 1) * m]
+        expect(np.all(block[:, 0] == station), f"{name}: CSV station column")
+        expect(np.array_equal(block[:, 1], time), f"{name}: CSV time at {station}")
+        expect(np.array_equal(block[:, 2], slip[:, k]), f"{name}: CSV slip at {station}")
+        expect(np.array_equal(block[:, 3], slip_rate[:, k]), f"{name}: CSV slip_rate at {station}")
+        listed = [c for c in comments if c.startswith(f"# station_x1 = {station:g}:")]
+        expect(len(listed) == 1, f"{name}: no rupture time comment for {station}")
+        text = listed[0].rsplit("= ", 1)[1]
+        expect(text == "nan" if math.isnan(rupture[k]) else float(text) == rupture[k],
+               f"{name}: CSV rupture time {text} at {station}")
+    table = subprocess.run([slipfront, "stations", path], capture_output=True, text=True,
+                           timeout=60)
+    expect(table.returncode == 0 and "rupture_time [s]" in table.stdout and
+           "(on the node)" in table.stdout, f"{name}: stations table:\n{table.stdout}")
+
+
 def main():
     if len(sys.argv) != 3:
         fail(__doc__)
@@ -132,13 +163,18 @@ def main():
                    output={"interval": 1e-9, "space_stride": 1})
         path, metrics = run(slipfront, job, work_dir, f"stations_{method}")
         stored = check_file(method, path, metrics)
+        check_csv(slipfront, method, path, stored)
         print(f"ok {method}: {stored[2].size} steps, rupture times {stored[3].tolist()}")
 
-    # Without stations: no group, no metrics entry.
+    # Without stations: no group, no metrics entry, and the command says so.
     path, metrics = run(slipfront, JOBS["spectral_bi"], work_dir, "no_stations")
     with h5py.File(path, "r") as f:
         expect("stations" not in f, "a run without stations has a /stations group")
     expect("stations" not in metrics, "a run without stations lists stations in its metrics")
+    done = subprocess.run([slipfront, "stations", path], capture_output=True, text=True,
+                          timeout=60)
+    expect(done.returncode == 1 and "has no stations" in done.stderr,
+           f"stations of a file without: exit {done.returncode}: {done.stderr}")
     print("ok: no stations, no /stations group")
 
 

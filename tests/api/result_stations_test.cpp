@@ -1,7 +1,8 @@
 // The /stations group of the result file (written by ResultFileWriter, read back by
-// api::read_stations).
+// api::read_stations) and the stations' CSV export (api/station_csv.hpp).
 #include "api/result_file.hpp"
 #include "api/result_stations.hpp"
+#include "api/station_csv.hpp"
 #include "synthetic_run.hpp"
 
 #include <gtest/gtest.h>
@@ -11,10 +12,12 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace fs = std::filesystem;
 using slipfront::StationRecords;
 using slipfront::api::read_stations;
+using slipfront::api::write_stations_csv;
 
 namespace {
 
@@ -116,4 +119,34 @@ TEST_F(ResultStations, UnreadableFilesSayWhy) {
   std::ofstream(path("text.h5")) << "not HDF5";
   EXPECT_FALSE(read_stations(path("text.h5"), why).has_value());
   EXPECT_EQ(why, "the result file cannot be opened as HDF5");
+}
+
+// Numbers in their shortest exact form (fixed or scientific, whichever is shorter).
+TEST(StationCsv, LongFormatWithUnitsAndRuptureTimesInTheHeader) {
+  std::ostringstream out;
+  write_stations_csv(out, two_stations());
+  EXPECT_EQ(out.str(),
+            "# slipfront stations: one row per station and time step, every step of the run\n"
+            "# units: station_x1 [m], time [s], slip [m], slip_rate [m/s], shear_traction [Pa], "
+            "normal_traction [Pa] (negative in compression)\n"
+            "# rupture_time [s]: the first time |slip_rate| > rupture_threshold = 0.001 m/s, "
+            "linear in time between steps (nan: never)\n"
+            "# station_x1 = 4.5: rupture_time = 0.0625\n"
+            "# station_x1 = -2: rupture_time = nan\n"
+            "station_x1,time,slip,slip_rate,shear_traction,normal_traction\n"
+            "4.5,0,0,0,7e+07,-1.2e+08\n"
+            "4.5,0.125,0.000125,0.002,6.5e+07,-1.2e+08\n"
+            "4.5,0.25,0.013,0.1,6.3e+07,-1.1e+08\n"
+            "-2,0,0,0,7e+07,-1.2e+08\n"
+            "-2,0.125,0,0,7e+07,-1.2e+08\n"
+            "-2,0.25,1.25e-05,1e-04,6.9e+07,-1.2e+08\n");
+}
+
+TEST(StationCsv, NumbersReadBackExactly) {
+  StationRecords r = two_stations();
+  r.slip[5] = 0.1 + 0.2; // 0.30000000000000004: needs all 17 digits
+  std::ostringstream out;
+  write_stations_csv(out, r);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("-2,0.25,0.30000000000000004,"), std::string::npos) << text;
 }
