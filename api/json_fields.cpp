@@ -242,8 +242,10 @@ void ObjectReader::number_list(const std::string& key, std::vector<double>& targ
   const std::string each = "finite number" + (range.empty() ? "" : " " + range);
   if (const nlohmann::json* member = raw(key)) {
     if (!member->is_array() || member->size() > max_items) {
-      error(key, "must be an array of at most " + std::to_string(max_items) + " numbers, got " +
-                     describe_value(*member));
+      const std::string got =
+          member->is_array() ? std::to_string(member->size()) + " items" : describe_value(*member);
+      error(key,
+            "must be an array of at most " + std::to_string(max_items) + " numbers, got " + got);
     } else {
       std::vector<double> items;
       for (std::size_t i = 0; i < member->size(); ++i) {

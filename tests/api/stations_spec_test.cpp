@@ -81,7 +81,7 @@ TEST(StationsSpec, TypesAndCountsAreChecked) {
   EXPECT_EQ(reason_at(result, "/stations/x1"), "must be an array of at most 64 numbers, got 4.5");
   result = parse_job({{"stations", {{"x1", std::vector<double>(65, 1.0)}}}});
   EXPECT_EQ(reason_at(result, "/stations/x1"),
-            "must be an array of at most 64 numbers, got an array");
+            "must be an array of at most 64 numbers, got 65 items");
   std::vector<double> many(64);
   for (int i = 0; i < 64; ++i)
     many[i] = -10.0 + 0.5 * i;
