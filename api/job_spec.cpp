@@ -77,9 +77,11 @@ std::string spec_hash(const nlohmann::json& canonical) {
 }
 
 // The scene of a study (docs/metrics.md "Critical length"): everything but L and n_d (and what
-// never changes the metrics, as in spec_hash).
+// never changes the metrics, as in spec_hash), and but the stations: where a run is watched
+// does not change the scene.
 std::string scene_hash(const nlohmann::json& canonical) {
   nlohmann::json scene = physics_canonical(canonical); // so the method separates scenes
+  scene.erase("stations");
   if (scene.contains("friction") && scene["friction"].is_object()) scene["friction"].erase("L");
   if (scene.contains("geometry") && scene["geometry"].is_object())
     scene["geometry"].erase("nodes_per_meter");

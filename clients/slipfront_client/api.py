@@ -250,6 +250,10 @@ class Api:
     def front(self, job_id):
         return self.get_json(f"{API}/jobs/{job_id}/front")
 
+    def stations_csv(self, job_id):
+        """The job's stations, every step, as CSV text (docs/hdf5-layout.md "Stations as CSV")."""
+        return self.request("GET", f"{API}/jobs/{job_id}/stations.csv").text
+
     def create_study(self, study):
         response = self.request("POST", f"{API}/studies", json_body=study, ok=(200, 201, 202),
                                 idempotent=False)

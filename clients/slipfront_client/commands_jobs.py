@@ -1,4 +1,4 @@
-"""The job subcommands: submit, status, list, cancel, download, presets."""
+"""The job subcommands: submit, status, list, cancel, download, presets, stations."""
 
 import argparse
 import os
@@ -89,6 +89,15 @@ def add_parsers(sub, common):
     p.add_argument("--xdmf", action="store_true",
                    help="also write the XDMF sidecar (ParaView, VisIt) beside it, as FILE.xdmf")
     p.set_defaults(func=cmd_download)
+
+    p = sub.add_parser("stations", parents=[common], help="a job's on-fault stations",
+                       description="The rupture time at each station of a finished job, or with "
+                                   "--csv every step in the long format (station_x1,time,slip,"
+                                   "slip_rate,shear_traction,normal_traction; units in the "
+                                   "header comments).")
+    p.add_argument("id")
+    p.add_argument("--csv", metavar="FILE", help="write the CSV to FILE ('-': standard output)")
+    p.set_defaults(func=cmd_stations)
 
 
 def cmd_submit(args, ctx):
@@ -230,4 +239,29 @@ def cmd_download(args, ctx):
         with open(xdmf, "w", encoding="utf-8") as f:
             f.write(text)
         print(xdmf)
+    return 0
+
+
+def cmd_stations(args, ctx):
+    from . import stations  # here: numpy only for the commands that need it
+
+    text = ctx.api().stations_csv(args.id)
+    if args.csv == "-":
+        sys.stdout.write(text)
+        return 0
+    if args.csv:
+        with open(args.csv, "w", encoding="utf-8") as f:
+            f.write(text)
+        if not args.quiet:
+            log(f"stations of job {args.id} written to {args.csv}")
+        return 0
+    st = stations.parse_stations_csv(text)
+    rows = [{"x1": float(x), "rupture_time": None if t != t else float(t)}  # NaN: never
+            for x, t in zip(st.x1, st.rupture_time)]
+    if args.json:
+        print_json({"rupture_threshold": st.rupture_threshold, "stations": rows})
+        return 0
+    print(f"rupture threshold {st.rupture_threshold:g} m/s, {st.time.size} steps")
+    print("\n".join(table(rows, [("station_x1 [m]", lambda r: r["x1"]),
+                                  ("rupture_time [s]", lambda r: r["rupture_time"])])))
     return 0

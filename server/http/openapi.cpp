@@ -198,6 +198,14 @@ const char* document = R"json({
           "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"},
           "409": {"$ref": "#/components/responses/Problem"}, "410": {"$ref": "#/components/responses/Problem"}}}
     },
+    "/api/v1/jobs/{id}/stations.csv": {
+      "get": {"summary": "The job's on-fault stations, every recorded step, as CSV in the long format (docs/hdf5-layout.md, \"Stations as CSV\")",
+        "description": "Comment lines first (# units, the rupture threshold, each station's rupture time; nan: never), then the header station_x1,time,slip,slip_rate,shear_traction,normal_traction and one row per station and time step, station by station. Units: m, s, m, m/s, Pa, Pa; normal_traction is negative in compression. Read with pandas.read_csv(url, comment='#').",
+        "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "The stations as CSV", "content": {"text/csv": {"schema": {"type": "string"}}}},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
+          "410": {"$ref": "#/components/responses/Problem"}}}
+    },
     "/api/v1/job-defaults": {
       "get": {"summary": "The canonical spec of an empty job of a method: every field with its default (the web view's submit form starts from it)",
         "parameters": [{"name": "method", "in": "query", "schema": {"type": "string", "enum": ["fe", "spectral_bi"], "default": "fe"}}],
