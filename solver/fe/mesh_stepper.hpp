@@ -1,12 +1,20 @@
-// The FE method's mesh stepper: the elastic block of the solid on the rigid plane
-// (solver/fe/elastic_block.hpp), the interface, and one explicit central-difference step (the
-// RuptureMethod around it: solver/fe/finite_element_method.hpp).
+// The FE method's mesh stepper: the elastic block of the upper solid (solver/fe/elastic_block.hpp)
+// on the rigid plane or on a second elastic block, the lower solid (params.lower); the
+// interface between them; and one explicit central-difference step (the RuptureMethod around
+// it: solver/fe/finite_element_method.hpp).
 //
 // Perturbation formulation: u, v are the displacement and velocity on top of the uniform,
-// stuck, pre-stressed initial state. The top keeps its remote traction, so it is free for
-// the perturbation (or absorbing). At an interface node the plane exerts the total force
-// C = (C1, C2); in the initial state C0 = dx (-tau1_0, |tau2_0|), so the perturbation sees
-// C - C0 (the release of the pre-stress when the node slips or opens).
+// stuck, pre-stressed initial state. The far boundaries keep their remote traction, so they
+// are free for the perturbation (or absorbing). At an interface node the lower side (the plane
+// or the lower solid's node) exerts the total force C = (C1, C2) on the upper solid's node,
+// and the upper node -C on the lower node; in the initial state C0 = dx (-tau1_0, |tau2_0|),
+// so the perturbation of the upper block sees C - C0 and that of the lower block -(C - C0)
+// (the release of the pre-stress when the pair slips or opens).
+//
+// Two solids (docs/physics.md "Two solids"): the lower block is an ElasticBlock in its mirrored
+// frame y' = -x2. Level r of a step does row r of each block (a row beyond a block's height is
+// nothing); level 0 is the interface, where the pair of nodes i is solved by the split-node law
+// (solver/interface/split_node.hpp) in the true frame.
 //
 // Central differences (explicit Newmark beta = 0, gamma = 1/2) in leapfrog form:
 //   v^{n+1/2} = v^{n-1/2} + dt M^-1 (F^n - K u^n),   u^{n+1} = u^n + dt v^{n+1/2},
@@ -30,6 +38,7 @@
 #include "solver/params.hpp"
 #include "solver/thread_team.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace slipfront::fe {
@@ -61,14 +70,17 @@ public:
 
   const InterfaceFields& interface() const { return iface_; }
   const EnergyBalance& energy() const { return energy_; }
-  // The upper solid's block (x2 >= 0).
+  // The upper solid's block (x2 >= 0), and the lower solid's in its mirrored frame (x2 <= 0;
+  // null on the rigid plane).
   const ElasticBlock& upper() const { return upper_; }
+  const ElasticBlock* lower() const { return lower_ ? &*lower_ : nullptr; }
+  ElasticBlock* lower() { return lower_ ? &*lower_ : nullptr; } // for verification set-ups
   const VectorField& displacement() const { return upper_.displacement(); }
   const VectorField& velocity() const { return upper_.velocity(); }
   VectorField& displacement() { return upper_.displacement(); } // for verification set-ups
   VectorField& velocity() { return upper_.velocity(); }
-  // Mark every row as possibly non-zero (after a test wrote initial fields by hand); with
-  // the mesh damping on, also recomputes w = u + a v from them.
+  // Mark every row of both blocks as possibly non-zero (after a test wrote initial fields by
+  // hand); with the mesh damping on, also recomputes w = u + a v from them.
   void activate_all_rows();
   double damping_coefficient() const { return upper_.damping_coefficient(); } // a [s]
   // Skip the quiet far field (rows and columns that hold exact zeros; on by default). Off,
@@ -89,6 +101,7 @@ private:
     InterfaceFields iface; // the interface after the step
     EnergyBalance energy;  // the balance after the step
     BlockStepRecord upper; // per-row energy terms and node updates of the upper block
+    BlockStepRecord lower; // ... and of the lower block (with an elastic lower solid)
     double work = 0;       // work of the load changes in the step
   };
   // Row step r of a step (solver/fe/level_pipeline.hpp): row 0 is the interface.
@@ -99,6 +112,7 @@ private:
 
   SimulationParams params_;
   ElasticBlock upper_;
+  std::optional<ElasticBlock> lower_; // the lower solid's block, mirrored; none: the rigid plane
   double dt_, stable_dt_;
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   InterfaceNodeConstants node_;
