@@ -63,6 +63,7 @@ void MeshStepper::interface_row(LevelRecord& level) {
   // perturbation sees C - C0 (the lower block -(C - C0)).
   const double c0_1 = -params_.loading.shear_stress * dx;
   const double c0_2 = std::abs(params_.loading.normal_stress) * dx;
+  const PairForce c0{c0_1, c0_2};
   const InterfaceRowOf up = interface_row_of(upper_);
   // The lower block's row in its mirrored frame (u'_2 = -u_2, F'_2 = -F_2); unused when rigid.
   const bool two_solids = lower_.has_value();
@@ -70,8 +71,14 @@ void MeshStepper::interface_row(LevelRecord& level) {
   double work = 0, dissipated = 0, kinetic = 0, strain = 0;
   double lower_dissipated = 0, lower_kinetic = 0, lower_strain = 0;
   for (int i = 0; i < nx; ++i) {
-    double f1 = -up.kx[i] + load1_[i] - c0_1; // every force on the upper node but C
-    double f2 = -up.ky[i] + load2_[i] - c0_2;
+    // Every force on the upper node but C; on the plane with -C0 (the plane takes C), between
+    // two solids without (the pair's internal force C0, PairForce in split_node.hpp).
+    double f1 = -up.kx[i] + load1_[i];
+    double f2 = -up.ky[i] + load2_[i];
+    if (!two_solids) {
+      f1 -= c0_1;
+      f2 -= c0_2;
+    }
     if (up.damped) { // the damping force -a K v^{n-1/2}
       f1 -= up.kdx[i];
       f2 -= up.kdy[i];
@@ -81,13 +88,13 @@ void MeshStepper::interface_row(LevelRecord& level) {
     // interval is that of the last half step.
     const InterfaceSide upper{up.mass, up.mass, v1_old + dt_ * f1 / up.mass,
                               v2_old + dt_ * f2 / up.mass};
-    InterfaceSide lower;                        // true frame
-    double gap = up.uy[i];                      // u2(upper) - u2(lower)
-    double slip_speed = std::abs(v1_old);       // |V^{n-1/2}|
-    double w1_old = 0, w2_old = 0;              // the lower node's v^{n-1/2}, mirrored
-    if (two_solids) {                           // every force on the lower node but -C:
-      double g1 = -lo.kx[i] - load1_[i] + c0_1; //   -L1 + C0_1 along x1,
-      double g2 = -lo.ky[i] + load2_[i] - c0_2; //   (-1) (-L2 + C0_2) along y' = -x2
+    InterfaceSide lower;                  // true frame
+    double gap = up.uy[i];                // u2(upper) - u2(lower)
+    double slip_speed = std::abs(v1_old); // |V^{n-1/2}|
+    double w1_old = 0, w2_old = 0;        // the lower node's v^{n-1/2}, mirrored
+    if (two_solids) {                     // every force on the lower node but -(C - C0):
+      double g1 = -lo.kx[i] - load1_[i];  //   -L1 along x1,
+      double g2 = -lo.ky[i] + load2_[i];  //   (-1) (-L2) along y' = -x2
       if (lo.damped) {
         g1 -= lo.kdx[i];
         g2 -= lo.kdy[i];
@@ -99,7 +106,7 @@ void MeshStepper::interface_row(LevelRecord& level) {
       slip_speed = std::abs(v1_old - w1_old);
     }
     const SplitNodeStep s = resolve_split_node(node_, gap, upper, lower, !two_solids, slip_speed,
-                                               iface_.strength[i], iface_.pressure[i]);
+                                               iface_.strength[i], iface_.pressure[i], c0);
     const InterfaceNodeStep& r = s.relative;
     const double v1_new = s.upper.v1, v2_new = s.upper.v2;
     up.vx[i] = v1_new;
