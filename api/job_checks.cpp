@@ -129,19 +129,9 @@ void check_initial_stick(const JobSpec& job, std::vector<FieldError>& errors) {
   }
 }
 
-// The spectral method's two half-spaces (issue 21, section 4) are not in this build yet: an
-// elastic lower solid is for the finite elements only, refused rather than silently ignored.
-void check_lower_method(const JobSpec& job, std::vector<FieldError>& errors) {
-  if (job.params.method == Method::spectral_bi && job.params.lower.elastic())
-    errors.push_back({"/lower/solid", "\"elastic\" is available with method \"fe\" only (the "
-                                      "spectral_bi method has the rigid plane below the "
-                                      "half-space)"});
-}
-
 } // namespace
 
 void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) {
-  check_lower_method(job, errors);
   check_mesh(job, errors);
   check_probe(job, "/probe/arrival_x1", job.params.probes.arrival_x1, errors);
   check_probe(job, "/probe/spectrum_x1", job.params.probes.spectrum_x1, errors);

@@ -148,11 +148,29 @@ TEST(JobLower, TheLowerSolidsFieldsAreRangeChecked) {
   refused({{"height", "auto"}, {"young_modulus", 1e12}}, "/lower/height", "auto");
 }
 
-TEST(JobLower, SpectralBiHasNoLowerBlockYet) {
-  const ParseResult result =
-      parse_job({{"method", "spectral_bi"}, {"lower", {{"solid", "elastic"}, {"height", 5}}}});
-  ASSERT_FALSE(result.ok());
-  EXPECT_NE(reason_at(result, "/lower/solid").find("\"fe\""), std::string::npos);
-  EXPECT_NE(reason_at(result, "/lower/height").find("half-space"), std::string::npos);
-  EXPECT_TRUE(parse_job({{"method", "spectral_bi"}, {"lower", {{"solid", "rigid"}}}}).ok());
+TEST(JobLower, SpectralBiTakesTheLowerSolidAsAHalfSpace) {
+  const json lower = {{"solid", "elastic"}, {"density", 2.0}, {"young_modulus", 5.0}};
+  const ParseResult bi = parse_job({{"method", "spectral_bi"}, {"lower", lower}});
+  ASSERT_TRUE(bi.ok()) << bi.errors.front().pointer << ": " << bi.errors.front().reason;
+  EXPECT_TRUE(bi.spec->params.lower.elastic());
+  EXPECT_FALSE(bi.spec->canonical["lower"].contains("height"));
+  EXPECT_FALSE(bi.spec->canonical["lower"].contains("bottom_boundary"));
+  // A half-space has no height and no far boundary.
+  json with_height = lower;
+  with_height["height"] = 5;
+  with_height["bottom_boundary"] = "absorbing";
+  const ParseResult refused = parse_job({{"method", "spectral_bi"}, {"lower", with_height}});
+  EXPECT_NE(reason_at(refused, "/lower/height").find("half-space"), std::string::npos);
+  EXPECT_NE(reason_at(refused, "/lower/bottom_boundary").find("half-space"), std::string::npos);
+  // The same two solids by FE: the scene of the BI job is its counterpart (the block's height
+  // and bottom boundary dropped).
+  json fe_lower = lower;
+  fe_lower["height"] = 10;
+  const ParseResult fe = parse_job({{"lower", fe_lower}, {"geometry", {{"height", 10}}}});
+  ASSERT_TRUE(fe.ok());
+  EXPECT_EQ(slipfront::api::counterpart_scene_hash(fe.spec->canonical),
+            slipfront::api::scene_hash(bi.spec->canonical));
+  EXPECT_EQ(slipfront::api::counterpart_scene_hash(bi.spec->canonical),
+            slipfront::api::scene_hash(
+                parse_job({{"lower", lower}, {"geometry", json::object()}}).spec->canonical));
 }
