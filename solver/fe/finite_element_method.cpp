@@ -1,6 +1,7 @@
 #include "solver/fe/finite_element_method.hpp"
 
 #include "solver/fe/stable_time_step.hpp"
+#include "solver/interface/ill_posedness.hpp"
 #include "solver/mesh_size.hpp"
 
 #include <algorithm>
@@ -19,7 +20,8 @@ int thread_count(const SimulationParams& params) {
 } // namespace
 
 FiniteElementMethod::FiniteElementMethod(const SimulationParams& params)
-    : threads_(thread_count(params)), mesh_(params), team_(threads_) {}
+    : threads_(thread_count(params)), mesh_(params), team_(threads_),
+      ill_posed_warning_(bimaterial_coulomb_warning(params)) {}
 
 namespace {
 
@@ -102,6 +104,7 @@ std::vector<std::string> FiniteElementMethod::end_warnings(double simulated_time
     for (std::string& w :
          reflection_warning(*lower, "bottom", "lower block's bottom", simulated_time))
       warnings.push_back(std::move(w));
+  if (!ill_posed_warning_.empty()) warnings.push_back(ill_posed_warning_);
   return warnings;
 }
 

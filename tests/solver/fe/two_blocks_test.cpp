@@ -2,7 +2,8 @@
 // level pipeline changes no bit under temporal blocking (1-3 threads) or quiet skipping;
 // identical materials keep the normal traction at its initial value (mode II symmetry); a
 // stiff, heavy lower solid approaches the rigid plane; a bimaterial run is stable, balances
-// its energy and dissipates; the step is the smaller of the two blocks' stable steps.
+// its energy and dissipates; the step is the smaller of the two blocks' stable steps; plain
+// Coulomb friction between different solids is flagged ill-posed.
 #include "bit_compare.hpp"
 #include "scene_support.hpp"
 
@@ -280,6 +281,26 @@ TEST(TwoSolids, ABimaterialRunIsStableBalancesItsEnergyAndDissipates) {
                         "(rigid %.4g), propagation %.3g m, D = %.4g",
                         m.energy_error, m.max_slip_velocity, rigid.metrics.max_slip_velocity,
                         m.propagation_distance, e.dissipated.back());
+}
+
+TEST(TwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
+  SimulationParams p = two_solid_scene(bimaterial_lower(), 2.0, TopBoundary::traction);
+  p.geometry.height = 2.0;
+  p.friction.law = FrictionLaw::coulomb;
+  const auto ill_posed = [&] {
+    for (const std::string& w : FiniteElementMethod(p).end_warnings(0.0))
+      if (w.find("ill-posed") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(ill_posed());
+  p.lower.material = p.material; // identical solids: the homogeneous problem, well-posed
+  EXPECT_FALSE(ill_posed());
+  p.lower.material = bimaterial_lower();
+  p.friction.law = FrictionLaw::prakash_clifton;
+  EXPECT_FALSE(ill_posed());
+  p.lower = LowerSolid{}; // the rigid plane
+  p.friction.law = FrictionLaw::coulomb;
+  EXPECT_FALSE(ill_posed());
 }
 
 } // namespace
