@@ -102,7 +102,7 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
   }
 }
 
-void check_probe(const JobSpec& job, const char* pointer, double x1,
+void check_probe(const JobSpec& job, const std::string& pointer, double x1,
                  std::vector<FieldError>& errors) {
   const Geometry& g = job.params.geometry;
   if (any_error(errors, {"/geometry/width", "/geometry/x_min"}) || has_error(errors, pointer)) {
@@ -111,6 +111,20 @@ void check_probe(const JobSpec& job, const char* pointer, double x1,
   if (x1 < g.x_min || x1 >= g.x_min + g.width) {
     errors.push_back({pointer, "must lie in the domain [x_min, x_min + width) = [" + text(g.x_min) +
                                    ", " + text(g.x_min + g.width) + "), got " + text(x1)});
+  }
+}
+
+// Every station lies in the domain, and no two at the same x1 (the CSV export keys its rows
+// by station_x1).
+void check_stations(const JobSpec& job, std::vector<FieldError>& errors) {
+  const std::vector<double>& x1 = job.params.stations.x1;
+  for (std::size_t i = 0; i < x1.size(); ++i) {
+    const std::string pointer = "/stations/x1/" + std::to_string(i);
+    check_probe(job, pointer, x1[i], errors);
+    const auto first = std::find(x1.begin(), x1.begin() + long(i), x1[i]);
+    if (first != x1.begin() + long(i))
+      errors.push_back({pointer, "repeats station " + std::to_string(first - x1.begin()) +
+                                     " (x1 = " + text(x1[i]) + "): each station once"});
   }
 }
 
@@ -135,6 +149,7 @@ void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) 
   check_mesh(job, errors);
   check_probe(job, "/probe/arrival_x1", job.params.probes.arrival_x1, errors);
   check_probe(job, "/probe/spectrum_x1", job.params.probes.spectrum_x1, errors);
+  check_stations(job, errors);
   check_initial_stick(job, errors);
 }
 

@@ -8,6 +8,7 @@ constexpr int max_threads = 256;
 constexpr std::size_t max_name_length = 256;
 constexpr std::size_t max_tags = 32;
 constexpr std::size_t max_tag_length = 64;
+constexpr std::size_t max_stations = 64;
 
 void read_material(ObjectReader& in, Material& material) {
   in.number("density", material.density, positive());
@@ -152,6 +153,13 @@ void read_probes(ObjectReader& in, Probes& probes) {
   in.number("front_threshold", probes.front_threshold, positive());
 }
 
+// On-fault stations (docs/hdf5-layout.md "/stations"); api/job_checks.cpp checks that each
+// lies in the domain.
+void read_stations(ObjectReader& in, Stations& stations) {
+  in.number_list("x1", stations.x1, max_stations, any_finite());
+  in.number("rupture_threshold", stations.rupture_threshold, positive());
+}
+
 } // namespace
 
 void read_job_fields(ObjectReader& in, JobSpec& job) {
@@ -178,6 +186,10 @@ void read_job_fields(ObjectReader& in, JobSpec& job) {
   in.object("time", [&](ObjectReader& t) { read_time(t, params.time, params.method); });
   in.object("output", [&](ObjectReader& o) { read_output(o, params.output); });
   in.object("probe", [&](ObjectReader& p) { read_probes(p, params.probes); });
+  in.object("stations", [&](ObjectReader& s) { read_stations(s, params.stations); });
+  // Without stations the section changes nothing: it stays out of the canonical form, so the
+  // specs written before it existed keep their hashes.
+  if (params.stations.x1.empty()) in.omit_canonical("stations");
   in.integer("threads", params.threads, 0, max_threads);
   in.string("name", job.name, max_name_length);
   in.string_list("tags", job.tags, max_tags, max_tag_length);

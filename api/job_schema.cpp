@@ -1,6 +1,7 @@
 #include "api/job_schema.hpp"
 
 #include "api/job_reader.hpp"
+#include "api/presets.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -105,6 +106,14 @@ const std::map<std::string, Words>& field_words() {
       {"/probe/spectrum_x1",
        {"m", "where tau_s(t) is recorded for the spectral L_c estimate; inside the domain"}},
       {"/probe/front_threshold", {"m/s", "slip velocity that defines the slip front"}},
+      {"/stations/x1",
+       {"m", "on-fault stations: each inside [x_min, x_min + width), each once; the interface is "
+             "recorded there every step, linearly between the two nodes around it (exact on a "
+             "node), into /stations of the result file, with the rupture time in the metrics "
+             "(docs/hdf5-layout.md). Empty: no stations"}},
+      {"/stations/rupture_threshold",
+       {"m/s", "a station's rupture time is the first time its \\|V\\| exceeds this "
+               "(interpolated linearly between steps)"}},
       {"/threads", {"", "worker threads of the run; 0 = all hardware threads"}},
       {"/name", {"", "free text"}},
       {"/tags", {"", "free text, for filtering"}},
@@ -141,7 +150,7 @@ std::string format_number(double value) {
 std::string type_text(const nlohmann::json& schema) {
   if (schema.contains("oneOf")) return "number or `\"auto\"`";
   const std::string type = schema.at("type");
-  if (type == "array") return "array of strings";
+  if (type == "array") return "array of " + schema["items"]["type"].get<std::string>() + "s";
   return type;
 }
 
@@ -167,6 +176,11 @@ std::string allowed_text(const nlohmann::json& schema) {
   if (type == "string")
     return "at most " + std::to_string(schema["maxLength"].get<long>()) +
            " characters, no control characters";
+  if (type == "array" && schema["items"]["type"] == "number") {
+    const std::string each = allowed_text(schema["items"]);
+    return "at most " + std::to_string(schema["maxItems"].get<long>()) + " numbers" +
+           (each == "any" ? "" : ", each " + each);
+  }
   if (type == "array")
     return "at most " + std::to_string(schema["maxItems"].get<long>()) +
            " non-empty strings of at most " +
@@ -261,14 +275,26 @@ nlohmann::json job_json_schema() {
     schema["x-methods"] = methods;
     (*parent)["properties"][name] = schema;
   }
+  // Not a field of the job but a shorthand for one (api/presets.hpp): expanded before the
+  // fields are read, so it has no default and never appears in a stored spec.
+  nlohmann::json names = nlohmann::json::array();
+  for (const Preset& preset : presets())
+    names.push_back(preset.name);
+  root["properties"]["preset"] = {
+      {"type", "string"},
+      {"enum", names},
+      {"description", "start from this preset (GET /api/v1/presets): the job is the preset's "
+                      "spec with the other members merged over it (JSON merge patch, RFC 7396; "
+                      "docs/presets.md)"},
+      {"x-methods", {"fe", "spectral_bi"}}};
   return root;
 }
 
 std::string job_fields_markdown() {
   // The docs' order of sections; a section not listed here comes last.
-  const std::vector<std::string> order = {"top level",  "spectral_bi", "fe",      "material",
-                                          "geometry",   "lower",       "loading", "friction",
-                                          "nucleation", "time",        "output",  "probe"};
+  const std::vector<std::string> order = {
+      "top level", "spectral_bi", "fe",   "material", "geometry", "lower",   "loading",
+      "friction",  "nucleation",  "time", "output",   "probe",    "stations"};
   std::map<std::string, std::string> rows;
   std::vector<std::string> titles = order;
   for (const JobField& field : job_fields()) {

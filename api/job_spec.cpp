@@ -4,18 +4,22 @@
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
+#include "api/presets.hpp"
 #include "api/result_estimate.hpp"
 #include "api/run_bounds.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
 
-ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits) {
+ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limits) {
   ParseResult result;
-  if (!document.is_object()) {
-    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(document)});
+  if (!given.is_object()) {
+    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(given)});
     return result;
   }
+  // {"preset": NAME, ...}: the preset's spec with the job's members merged over it.
+  const nlohmann::json document = expand_preset(given, result.errors);
+  if (!result.errors.empty()) return result;
 
   JobSpec job;
   ObjectReader reader(&document, "", result.errors);
@@ -77,9 +81,11 @@ std::string spec_hash(const nlohmann::json& canonical) {
 }
 
 // The scene of a study (docs/metrics.md "Critical length"): everything but L and n_d (and what
-// never changes the metrics, as in spec_hash).
+// never changes the metrics, as in spec_hash), and but the stations: where a run is watched
+// does not change the scene.
 std::string scene_hash(const nlohmann::json& canonical) {
   nlohmann::json scene = physics_canonical(canonical); // so the method separates scenes
+  scene.erase("stations");
   if (scene.contains("friction") && scene["friction"].is_object()) scene["friction"].erase("L");
   if (scene.contains("geometry") && scene["geometry"].is_object())
     scene["geometry"].erase("nodes_per_meter");

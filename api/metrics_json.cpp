@@ -24,6 +24,15 @@ const char* top_name(TopBoundary top) {
   return top == TopBoundary::absorbing ? "absorbing" : "traction";
 }
 
+// The rupture time at each station (docs/metrics.md "Stations"), null where it never ruptured.
+nlohmann::json stations_json(const StationRecords& stations) {
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t s = 0; s < stations.x1.size(); ++s)
+    list.push_back({{"x1", json_number(stations.x1[s])},
+                    {"rupture_time", json_number(stations.rupture_time[s])}});
+  return list;
+}
+
 } // namespace
 
 const char* method_name(Method method) {
@@ -95,6 +104,7 @@ nlohmann::json metrics_json(const RunResult& result) {
     j["mesh"]["lower_ny"] = result.mesh.lower_ny;
     j["mesh"]["lower_height"] = json_number(result.mesh.lower_height);
   }
+  if (!result.stations.empty()) j["stations"] = stations_json(result.stations);
   j["code_version"] = code_version();
   j["method"] = "fe";
   j["method_description"] = discretisation;

@@ -1,6 +1,7 @@
 #include "api/run_bounds.hpp"
 
 #include "api/number_text.hpp"
+#include "solver/run/station_recorder.hpp"
 #include "solver/simulation.hpp"
 #include "solver/step_count.hpp"
 
@@ -164,13 +165,27 @@ void check_time_steps(const SimulationParams& p, std::vector<FieldError>& errors
   }
 }
 
+// The stations record every step: stations x steps within max_station_record_bytes. Call
+// it after check_time_steps (the step count is then finite).
+void check_station_record(const SimulationParams& p, std::vector<FieldError>& errors) {
+  const double bytes = StationRecorder::record_bytes(p.stations, step_count_bound(p));
+  if (bytes <= max_station_record_bytes) return;
+  errors.push_back({"/stations/x1",
+                    "the " + std::to_string(p.stations.x1.size()) + " stations would record " +
+                        text(bytes / 1e9) + " GB over up to " + text(step_count_bound(p)) +
+                        " time steps, more than the limit " + text(max_station_record_bytes / 1e9) +
+                        " GB: use fewer stations or a shorter duration"});
+}
+
 } // namespace
 
 void check_run_bounds(const JobSpec& job, std::vector<FieldError>& errors) {
   const SimulationParams& p = job.params;
   if (!check_wave_speeds(p, upper_solid, errors)) return;
   if (p.lower.elastic() && !check_wave_speeds(p, lower_solid, errors)) return;
+  const std::size_t before = errors.size();
   check_time_steps(p, errors);
+  if (errors.size() == before) check_station_record(p, errors);
 }
 
 } // namespace slipfront::api

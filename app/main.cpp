@@ -1,5 +1,5 @@
-// The `slipfront` executable: run, validate, serve (docs/api-job-spec.md "The CLI", docs/server.md;
-// usage in app/usage.cpp).
+// The `slipfront` executable: run, validate, schema, stations, serve (docs/api-job-spec.md "The
+// CLI", docs/server.md; usage in app/usage.cpp).
 #include "app/commands.hpp"
 
 #include "server/serve.hpp"
@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   if (command == "run") return run_command(args);
   if (command == "validate") return validate_command(args);
   if (command == "schema") return schema_command(args);
+  if (command == "presets") return presets_command(args);
+  if (command == "stations") return stations_command(args);
   if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
   if (command == "--version" || command == "version") {
     std::cout << "slipfront " << slipfront::code_version() << '\n';
