@@ -275,6 +275,17 @@ void ObjectReader::object(const std::string& key, const std::function<void(Objec
   set_canonical(key, child.canonical());
 }
 
+std::vector<std::string>
+ObjectReader::present_fields_of(const std::function<void(ObjectReader&)>& read) {
+  std::vector<FieldError> dropped;
+  ObjectReader probe(object_, pointer_, dropped);
+  read(probe);
+  std::vector<std::string> present;
+  for (const std::string& key : probe.known_)
+    if (raw(key) != nullptr) present.push_back(key);
+  return present;
+}
+
 void ObjectReader::finish() {
   if (object_ == nullptr) return;
   std::string known_list;
