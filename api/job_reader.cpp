@@ -13,20 +13,20 @@ constexpr std::size_t max_tags = 32;
 constexpr std::size_t max_tag_length = 64;
 constexpr std::size_t max_stations = 64;
 
-// "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp).
-void read_height(ObjectReader& in, Geometry& geometry) {
+// "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp),
+// for the upper block (geometry) and the lower one (lower).
+void read_height(ObjectReader& in, double& height, bool& auto_height) {
   if (const nlohmann::json* member = in.raw("height")) {
     if (*member == "auto") {
-      geometry.auto_height = true;
+      auto_height = true;
     } else if (member->is_number() && positive().contains(member->get<double>())) {
-      geometry.height = member->get<double>();
-      geometry.auto_height = false;
+      height = member->get<double>();
+      auto_height = false;
     } else {
       in.error("height", "must be a finite number > 0 or \"auto\", got " + describe_value(*member));
     }
   }
-  in.set_canonical("height",
-                   geometry.auto_height ? nlohmann::json("auto") : nlohmann::json(geometry.height));
+  in.set_canonical("height", auto_height ? nlohmann::json("auto") : nlohmann::json(height));
   in.describe("height", {{"oneOf",
                           {{{"type", "number"}, {"exclusiveMinimum", 0}},
                            {{"type", "string"}, {"const", "auto"}}}}});
@@ -41,7 +41,7 @@ void reject_for_method(ObjectReader& in, const std::string& key, const char* why
 void read_geometry(ObjectReader& in, SimulationParams& params) {
   in.number("width", params.geometry.width, positive());
   if (params.method == Method::finite_element) {
-    read_height(in, params.geometry);
+    read_height(in, params.geometry.height, params.geometry.auto_height);
   } else {
     reject_for_method(in, "height", "the half-space has no height; remove the field");
   }
@@ -53,6 +53,39 @@ void read_geometry(ObjectReader& in, SimulationParams& params) {
   } else {
     reject_for_method(in, "top_boundary", "the half-space has no top; remove the field");
   }
+}
+
+// The fields of an elastic lower solid: its material and, for the FE block, its height and
+// far (bottom) boundary.
+void read_elastic_lower(ObjectReader& in, LowerSolid& lower, Method method) {
+  read_material(in, lower.material);
+  if (method == Method::finite_element) {
+    read_height(in, lower.height, lower.auto_height);
+    in.choice("bottom_boundary", lower.bottom,
+              {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
+  } else {
+    reject_for_method(in, "height", "the lower half-space has no height; remove the field");
+    reject_for_method(in, "bottom_boundary",
+                      "the lower half-space has no far boundary; remove the field");
+  }
+}
+
+// What lies below the interface (docs/physics.md "Two solids"): the rigid plane (the default,
+// which has no other field) or a second elastic solid.
+void read_lower(ObjectReader& in, SimulationParams& params) {
+  LowerSolid& lower = params.lower;
+  in.choice("solid", lower.side, {{"rigid", LowerSide::rigid}, {"elastic", LowerSide::elastic}});
+  if (lower.elastic()) {
+    read_elastic_lower(in, lower, params.method);
+    return;
+  }
+  const auto elastic_fields = [&](ObjectReader& r) {
+    LowerSolid ignored;
+    read_elastic_lower(r, ignored, params.method);
+  };
+  for (const std::string& key : in.present_fields_of(elastic_fields))
+    in.error(key, "is used only with \"solid\": \"elastic\" (below the interface is the rigid "
+                  "plane, which has no material, height or boundary)");
 }
 
 void read_loading(ObjectReader& in, Loading& loading) {
@@ -123,6 +156,7 @@ void read_job_fields(ObjectReader& in, JobSpec& job) {
   }
   in.object("material", [&](ObjectReader& m) { read_material(m, params.material); });
   in.object("geometry", [&](ObjectReader& g) { read_geometry(g, params); });
+  in.object("lower", [&](ObjectReader& l) { read_lower(l, params); });
   in.object("loading", [&](ObjectReader& l) { read_loading(l, params.loading); });
   in.object("friction", [&](ObjectReader& f) { read_friction(f, params.friction); });
   read_profiles(in, params.friction, params.profiles);

@@ -59,6 +59,24 @@ const std::map<std::string, Words>& field_words() {
                "height · n_d) must be whole numbers of elements, 3 to 1e7 along x1"}},
       {"/geometry/top_boundary",
        {"", "the top keeps the remote traction, or absorbs waves (Lysmer–Kuhlemeyer dashpots)"}},
+      {"/lower/solid",
+       {"", "what lies below the interface (docs/physics.md \"Two solids\"): the rigid plane of "
+            "the paper, or a second elastic solid (FE: a block below the interface; "
+            "spectral_bi: a half-space). Every other field of `lower` is used only with "
+            "`\"elastic\"`"}},
+      {"/lower/density", {"kg/m^3", "rho of the lower solid"}},
+      {"/lower/young_modulus", {"Pa", "E of the lower solid"}},
+      {"/lower/poisson_ratio", {"", "nu of the lower solid"}},
+      {"/lower/p_wave_speed",
+       {"m/s", "c_p of the lower solid, with s_wave_speed instead of young_modulus and "
+               "poisson_ratio (as in material)"}},
+      {"/lower/s_wave_speed", {"m/s", "c_s of the lower solid, with p_wave_speed"}},
+      {"/lower/height",
+       {"m", "the lower block's height below the interface; `\"auto\"` as geometry.height, with "
+             "the lower solid's c_p"}},
+      {"/lower/bottom_boundary",
+       {"", "the lower block's far boundary x2 = -height keeps the remote traction, or absorbs "
+            "waves (Lysmer–Kuhlemeyer dashpots)"}},
       {"/loading/normal_stress",
        {"Pa", "tau2_0; negative = compressive (the solid must be pressed on the plane)"}},
       {"/loading/shear_stress",
@@ -242,20 +260,24 @@ std::string allowed_text(const nlohmann::json& schema) {
 
 std::vector<JobField> job_fields() {
   // FE is the default method: its record gives the defaults of the fields both methods read.
-  const SchemaRecorder fe = record_fields(nlohmann::json::object());
-  const SchemaRecorder bi = record_fields({{"method", "spectral_bi"}});
+  // The fields of an elastic lower solid are read only when it is chosen: two more records.
+  const nlohmann::json elastic_lower = {{"solid", "elastic"}};
+  const std::pair<SchemaRecorder, bool> records[] = {
+      {record_fields(nlohmann::json::object()), false},
+      {record_fields({{"method", "spectral_bi"}}), true},
+      {record_fields({{"lower", elastic_lower}}), false},
+      {record_fields({{"method", "spectral_bi"}, {"lower", elastic_lower}}), true},
+  };
   std::vector<JobField> fields;
   std::map<std::string, std::size_t> index;
-  for (const auto& r : fe) {
-    index[r.pointer] = fields.size();
-    fields.push_back({r.pointer, r.schema, true, false, "", ""});
-  }
-  for (const auto& r : bi) {
-    if (auto found = index.find(r.pointer); found != index.end()) {
-      fields[found->second].spectral_bi = true;
-    } else {
-      index[r.pointer] = fields.size();
-      fields.push_back({r.pointer, r.schema, false, true, "", ""});
+  for (const auto& [record, spectral_bi] : records) {
+    for (const auto& r : record) {
+      auto found = index.find(r.pointer);
+      if (found == index.end()) {
+        found = index.emplace(r.pointer, fields.size()).first;
+        fields.push_back({r.pointer, r.schema, false, false, "", ""});
+      }
+      (spectral_bi ? fields[found->second].spectral_bi : fields[found->second].fe) = true;
     }
   }
   fields[index.at("/method")].schema["default"] = "fe";
@@ -330,8 +352,8 @@ nlohmann::json job_json_schema() {
 std::string job_fields_markdown() {
   // The docs' order of sections; a section not listed here comes last.
   const std::vector<std::string> order = {
-      "top level",  "spectral_bi", "fe",   "material", "geometry", "loading", "friction",
-      "profiles/*", "nucleation",  "time", "output",   "probe",    "stations"};
+      "top level", "spectral_bi", "fe",         "material", "geometry", "lower", "loading",
+      "friction",  "profiles/*",  "nucleation", "time",     "output",   "probe", "stations"};
   std::map<std::string, std::string> rows;
   std::vector<std::string> titles = order;
   for (const JobField& field : job_fields()) {

@@ -69,6 +69,10 @@ nlohmann::json physics_canonical(const nlohmann::json& canonical) {
   if (const auto fe = physics.find("fe"); fe != physics.end() && fe->is_object() &&
                                           fe->size() == 1 && fe->value("mesh_damping", -1.0) == 0.0)
     physics.erase("fe");
+  // "lower": {"solid": "rigid"} is the rigid plane of every record before the section existed.
+  if (const auto lower = physics.find("lower");
+      lower != physics.end() && *lower == nlohmann::json{{"solid", "rigid"}})
+    physics.erase("lower");
   return physics;
 }
 
@@ -99,6 +103,10 @@ std::string counterpart_scene_hash(const nlohmann::json& canonical) {
     if (other.contains("geometry") && other["geometry"].is_object()) {
       other["geometry"].erase("height");
       other["geometry"].erase("top_boundary");
+    }
+    if (other.contains("lower") && other["lower"].is_object()) {
+      other["lower"].erase("height");
+      other["lower"].erase("bottom_boundary");
     }
     if (other.contains("time") && other["time"].is_object()) other["time"].erase("safety_factor");
   }

@@ -56,9 +56,10 @@ std::string canonical_text(const nlohmann::json& canonical);
 
 // The canonical spec without what does not change the metrics (`name`, `tags`, `threads`,
 // `output`; `stations` is in it when the job has stations, since they add their rupture times
-// to the metrics, and left out of the canonical form when it has none) and without `"method": "fe"`
-// (the default, left out so that FE hashes are those of the records made before the method field
-// existed).
+// to the metrics, and left out of the canonical form when it has none) and without the
+// defaults that older records did not have (`"method": "fe"`, the undamped `"fe"` section,
+// `"lower": {"solid": "rigid"}`), so that their hashes stay those of the records made before
+// these fields existed.
 nlohmann::json physics_canonical(const nlohmann::json& canonical);
 
 // SHA-256 (lower-case hex) of the canonical text of physics_canonical(canonical).
@@ -70,7 +71,8 @@ std::string scene_hash(const nlohmann::json& canonical);
 
 // The scene of the same physics by the other method: the spec with "method" swapped and the
 // fields only one method has dropped (FE: geometry.height, geometry.top_boundary,
-// time.safety_factor and the "fe" section; BI: the "spectral_bi" section). Empty if the
+// lower.height, lower.bottom_boundary, time.safety_factor and the "fe" section; BI: the
+// "spectral_bi" section). Empty if the
 // swapped spec is not valid.
 std::string counterpart_scene_hash(const nlohmann::json& canonical);
 

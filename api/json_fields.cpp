@@ -326,6 +326,17 @@ void ObjectReader::optional_number(const std::string& key, std::optional<double>
   record(key, number_schema(allowed));
 }
 
+std::vector<std::string>
+ObjectReader::present_fields_of(const std::function<void(ObjectReader&)>& read) {
+  std::vector<FieldError> dropped;
+  ObjectReader probe(object_, pointer_, dropped);
+  read(probe);
+  std::vector<std::string> present;
+  for (const std::string& key : probe.known_)
+    if (raw(key) != nullptr) present.push_back(key);
+  return present;
+}
+
 void ObjectReader::finish() {
   if (object_ == nullptr) return;
   std::string known_list;

@@ -114,6 +114,11 @@ public:
   std::size_t error_count() const { return errors_.size(); } // of the whole document so far
   std::string pointer(const std::string& key) const { return child_pointer(pointer_, key); }
 
+  // The members of this object that `read` would read, marked as known; their values and
+  // errors are dropped. For fields that another field's choice rules out: the caller then
+  // names each one given in an error of its own.
+  std::vector<std::string> present_fields_of(const std::function<void(ObjectReader&)>& read);
+
   // Records every member that was never asked for as an unknown field.
   void finish();
   const nlohmann::json& canonical() const { return canonical_; }

@@ -55,6 +55,10 @@ std::string method_description(const SimulationParams& params) {
     method = text;
   } else {
     method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
+    if (params.lower.elastic())
+      method += std::string("; lower solid: elastic block (split-node interface), bottom "
+                            "boundary: ") +
+                top_name(params.lower.bottom);
     if (params.fe.mesh_damping > 0) {
       char text[200];
       std::snprintf(text, sizeof text,
@@ -100,6 +104,10 @@ nlohmann::json metrics_json(const RunResult& result) {
                {"dx", json_number(result.mesh.dx)},
                {"height", json_number(result.mesh.height)},
                {"threads", result.mesh.threads}};
+  if (result.mesh.lower_ny > 0) { // FE with an elastic lower solid: its block
+    j["mesh"]["lower_ny"] = result.mesh.lower_ny;
+    j["mesh"]["lower_height"] = json_number(result.mesh.lower_height);
+  }
   if (!result.stations.empty()) j["stations"] = stations_json(result.stations);
   j["code_version"] = code_version();
   j["method"] = "fe";

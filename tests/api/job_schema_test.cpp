@@ -14,6 +14,11 @@
 namespace slipfront::api {
 namespace {
 
+// A field of an elastic lower solid (read only with "lower": {"solid": "elastic"}).
+bool elastic_lower_field(const std::string& pointer) {
+  return pointer.rfind("/lower/", 0) == 0 && pointer != "/lower/solid";
+}
+
 // A field of the items of an array of objects is "/profiles/*/mu": in a job, item 0.
 std::string job_pointer(const JobField& field) {
   std::string pointer = field.pointer;
@@ -35,10 +40,12 @@ nlohmann::json context_for(const JobField& field) {
   if (p == "/friction/regularization") job["friction"]["law"] = "coulomb";
   if (p == "/nucleation/x1_min" || p == "/nucleation/x1_max" || p == "/nucleation/shear_stress")
     job["nucleation"]["type"] = "overstressed_patch";
-  if (p == "/material/p_wave_speed" || p == "/material/s_wave_speed") {
-    const Material paper; // the default material in its other form
-    job["material"] = {{"p_wave_speed", paper.p_wave_speed()},
-                       {"s_wave_speed", paper.s_wave_speed()}};
+  if (elastic_lower_field(p)) job["lower"]["solid"] = "elastic";
+  if (name == "p_wave_speed" || name == "s_wave_speed") { // of `material` or `lower`
+    const Material paper;                                 // the default material in its other form
+    const std::string section = p.substr(1, p.rfind('/') - 1);
+    job[section]["p_wave_speed"] = paper.p_wave_speed();
+    job[section]["s_wave_speed"] = paper.s_wave_speed();
   }
   if (p.starts_with("/stations/")) job["stations"]["x1"] = {0.0};
   // An entry that sets a shear stress far outside the domain: valid whatever the field.
@@ -60,10 +67,11 @@ bool has_error_at(const ParseResult& result, const std::string& pointer) {
                      [&](const FieldError& e) { return e.pointer == pointer; });
 }
 
-// Fields with no default: the other form of the material, and the values of a `profiles`
+// Fields with no default: the other form of a material, and the values of a `profiles`
 // entry (each is optional, an entry sets what it gives).
 bool without_default(const std::string& pointer) {
   return pointer == "/material/p_wave_speed" || pointer == "/material/s_wave_speed" ||
+         pointer == "/lower/p_wave_speed" || pointer == "/lower/s_wave_speed" ||
          (pointer.starts_with("/profiles/*/") && pointer != "/profiles/*/outside");
 }
 
@@ -95,7 +103,8 @@ TEST(JobSchema, MethodSpecificFieldsAreMarked) {
     if (!f.fe) bi_only.insert(f.pointer);
   }
   EXPECT_EQ(fe_only, (std::set<std::string>{"/fe/mesh_damping", "/geometry/height",
-                                            "/geometry/top_boundary", "/time/safety_factor"}));
+                                            "/geometry/top_boundary", "/lower/bottom_boundary",
+                                            "/lower/height", "/time/safety_factor"}));
   EXPECT_EQ(bi_only,
             (std::set<std::string>{"/spectral_bi/corrector_passes", "/spectral_bi/memory_periods",
                                    "/spectral_bi/time_step_factor"}));
