@@ -1,5 +1,6 @@
 #include "api/job_checks.hpp"
 
+#include "api/interface_checks.hpp"
 #include "api/number_text.hpp"
 #include "solver/simulation.hpp"
 
@@ -13,7 +14,6 @@ namespace {
 constexpr double whole_elements_tolerance = 1e-9; // relative
 constexpr double min_elements_along_x1 = 3.0;     // a periodic row needs distinct neighbours
 constexpr double max_elements_per_axis = 1e7;     // node indices stay far inside an int
-constexpr double strength_tolerance = 1e-12;      // relative: a load equal to mu |p| may stick
 
 bool has_error(const std::vector<FieldError>& errors, const std::string& pointer) {
   return std::any_of(errors.begin(), errors.end(),
@@ -128,21 +128,6 @@ void check_stations(const JobSpec& job, std::vector<FieldError>& errors) {
   }
 }
 
-// The initial state is uniform and stuck: the shear load may not exceed the static strength.
-void check_initial_stick(const JobSpec& job, std::vector<FieldError>& errors) {
-  const SimulationParams& p = job.params;
-  if (any_error(errors, {"/loading/normal_stress", "/loading/shear_stress", "/friction/mu"})) {
-    return;
-  }
-  const double strength = p.friction.mu * std::abs(p.loading.normal_stress);
-  if (std::abs(p.loading.shear_stress) > strength * (1.0 + strength_tolerance)) {
-    errors.push_back({"/loading/shear_stress",
-                      "|shear_stress| must not exceed the static strength mu * |normal_stress| = " +
-                          text(strength) + " Pa (the initial state is stuck), got " +
-                          text(p.loading.shear_stress)});
-  }
-}
-
 } // namespace
 
 void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) {
@@ -150,7 +135,7 @@ void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) 
   check_probe(job, "/probe/arrival_x1", job.params.probes.arrival_x1, errors);
   check_probe(job, "/probe/spectrum_x1", job.params.probes.spectrum_x1, errors);
   check_stations(job, errors);
-  check_initial_stick(job, errors);
+  check_interface_setup(job, errors); // api/interface_checks.hpp: the initial state is stuck
 }
 
 void check_memory(const JobSpec& job, const ValidationLimits& limits,

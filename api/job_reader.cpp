@@ -1,5 +1,8 @@
 #include "api/job_reader.hpp"
 
+#include "api/interface_reader.hpp"
+#include "api/material_reader.hpp"
+
 namespace slipfront::api {
 
 namespace {
@@ -9,12 +12,6 @@ constexpr std::size_t max_name_length = 256;
 constexpr std::size_t max_tags = 32;
 constexpr std::size_t max_tag_length = 64;
 constexpr std::size_t max_stations = 64;
-
-void read_material(ObjectReader& in, Material& material) {
-  in.number("density", material.density, positive());
-  in.number("young_modulus", material.young_modulus, positive());
-  in.number("poisson_ratio", material.poisson_ratio, open_interval(0.0, 0.5));
-}
 
 // "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp),
 // for the upper block (geometry) and the lower one (lower).
@@ -96,26 +93,6 @@ void read_loading(ObjectReader& in, Loading& loading) {
   in.number("shear_stress", loading.shear_stress, any_finite());
 }
 
-void read_friction(ObjectReader& in, Friction& friction) {
-  in.choice("law", friction.law,
-            {{"prakash_clifton", FrictionLaw::prakash_clifton}, {"coulomb", FrictionLaw::coulomb}});
-  in.number("mu", friction.mu, non_negative());
-  in.number("L", friction.L, positive());
-  in.number("v_star", friction.v_star, positive());
-  in.choice("strength_update", friction.update,
-            {{"exponential_ramp", StrengthUpdate::exponential_ramp},
-             {"exponential", StrengthUpdate::exponential},
-             {"explicit_euler", StrengthUpdate::explicit_euler}});
-}
-
-void read_nucleation(ObjectReader& in, Nucleation& nucleation) {
-  in.boolean("enabled", nucleation.enabled);
-  in.number("a", nucleation.a, positive());
-  in.number("b", nucleation.b, positive());
-  in.number("v", nucleation.v, non_negative());
-  in.number("alpha", nucleation.alpha, closed_interval(0.0, 1.0));
-}
-
 void read_time(ObjectReader& in, TimeControl& time, Method method) {
   in.number("duration", time.duration, positive());
   if (method == Method::finite_element) {
@@ -182,6 +159,7 @@ void read_job_fields(ObjectReader& in, JobSpec& job) {
   in.object("lower", [&](ObjectReader& l) { read_lower(l, params); });
   in.object("loading", [&](ObjectReader& l) { read_loading(l, params.loading); });
   in.object("friction", [&](ObjectReader& f) { read_friction(f, params.friction); });
+  read_profiles(in, params.friction, params.profiles);
   in.object("nucleation", [&](ObjectReader& n) { read_nucleation(n, params.nucleation); });
   in.object("time", [&](ObjectReader& t) { read_time(t, params.time, params.method); });
   in.object("output", [&](ObjectReader& o) { read_output(o, params.output); });

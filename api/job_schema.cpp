@@ -43,6 +43,11 @@ const std::map<std::string, Words>& field_words() {
       {"/material/density", {"kg/m^3", "rho"}},
       {"/material/young_modulus", {"Pa", "E"}},
       {"/material/poisson_ratio", {"", "nu; 0.5 (incompressible) has no finite c_p"}},
+      {"/material/p_wave_speed",
+       {"m/s", "c_p: with s_wave_speed instead of young_modulus and poisson_ratio (not mixed); "
+               "more than sqrt(2) · c_s (poisson_ratio > 0). Converted with mu = rho c_s², "
+               "nu = (c_p² − 2 c_s²)/(2 (c_p² − c_s²)), E = 2 mu (1 + nu) (docs/physics.md)"}},
+      {"/material/s_wave_speed", {"m/s", "c_s: with p_wave_speed (see there)"}},
       {"/geometry/width", {"m", "w: x1 in [x_min, x_min + w), periodic"}},
       {"/geometry/height",
        {"m", "h; `\"auto\"`: the smallest height whose top reflection cannot reach the "
@@ -62,6 +67,10 @@ const std::map<std::string, Words>& field_words() {
       {"/lower/density", {"kg/m^3", "rho of the lower solid"}},
       {"/lower/young_modulus", {"Pa", "E of the lower solid"}},
       {"/lower/poisson_ratio", {"", "nu of the lower solid"}},
+      {"/lower/p_wave_speed",
+       {"m/s", "c_p of the lower solid, with s_wave_speed instead of young_modulus and "
+               "poisson_ratio (as in material)"}},
+      {"/lower/s_wave_speed", {"m/s", "c_s of the lower solid, with p_wave_speed"}},
       {"/lower/height",
        {"m", "the lower block's height below the interface; `\"auto\"` as geometry.height, with "
              "the lower solid's c_p"}},
@@ -71,25 +80,67 @@ const std::map<std::string, Words>& field_words() {
       {"/loading/normal_stress",
        {"Pa", "tau2_0; negative = compressive (the solid must be pressed on the plane)"}},
       {"/loading/shear_stress",
-       {"Pa", "tau1_0; positive drives the solid towards +x1. At most mu · \\|normal_stress\\| "
-              "(the initial state is stuck)"}},
-      {"/friction/law", {"", "regularised (paper eq. 1) or plain Coulomb"}},
-      {"/friction/mu", {"", "friction coefficient (static = kinetic)"}},
-      {"/friction/L", {"m", "characteristic length of the regularisation"}},
-      {"/friction/v_star", {"m/s", "reference velocity V*"}},
+       {"Pa", "tau1_0; positive drives the solid towards +x1. At most mu_0 · "
+              "\\|normal_stress\\| outside the nucleation patch (the initial state is stuck)"}},
+      {"/friction/law",
+       {"", "the coefficient: `prakash_clifton` (constant mu with the slip-scale regularisation "
+            "of paper eq. 1), `coulomb` (constant mu, regularisation as chosen) or "
+            "`slip_weakening` (mu from mu_s to mu_d over D_c of slip path; docs/physics.md)"}},
+      {"/friction/regularization",
+       {"", "the normal stress seen by friction (coulomb and slip_weakening; prakash_clifton "
+            "is always `slip_scale` and takes no value here): `none` (the contact pressure), "
+            "`slip_scale` (paper eq. 1, L and v_star; coulomb with it is prakash_clifton) or "
+            "`time_scale` (t_star)"}},
+      {"/friction/mu", {"", "friction coefficient, static = kinetic (coulomb, prakash_clifton)"}},
+      {"/friction/mu_s", {"", "static coefficient (slip_weakening)"}},
+      {"/friction/mu_d", {"", "dynamic coefficient, at most mu_s (slip_weakening)"}},
+      {"/friction/D_c", {"m", "slip-weakening distance (slip_weakening)"}},
+      {"/friction/L",
+       {"m", "characteristic length of the slip-scale regularisation (also taken, and "
+             "unused, by plain coulomb: its records keep their hash)"}},
+      {"/friction/v_star",
+       {"m/s", "reference velocity V* of the slip-scale regularisation (as L for plain "
+               "coulomb)"}},
+      {"/friction/t_star", {"s", "time of the time-scale regularisation"}},
       {"/friction/strength_update",
        {"", "how the strength ODE is advanced in a step (docs/physics.md): exact for \\|V\\| "
             "frozen and p linear over the step (second order); exact for \\|V\\| and p frozen at "
             "the step's end (the reference scheme of docs/physics.md, first order); or forward "
-            "Euler (unstable once "
-            "dt (\\|V\\|+V*)/L > 2; for failure studies)"}},
-      {"/nucleation/enabled",
-       {"", "apply the nucleation load (the moving ellipse of the paper's "
-            "appendix A)"}},
-      {"/nucleation/a", {"m", "a_ell"}},
-      {"/nucleation/b", {"m", "b_ell"}},
-      {"/nucleation/v", {"m/s", "v_ell: speed of the ellipse towards +x1"}},
-      {"/nucleation/alpha", {"", "largest relative reduction of the normal load"}},
+            "Euler (unstable once dt k > 2, k = (\\|V\\|+V*)/L or 1/t*; for failure studies). "
+            "With a regularisation only (plain coulomb takes it unused, as L)"}},
+      {"/nucleation/enabled", {"", "start the rupture at all (false: no nucleation of any type)"}},
+      {"/nucleation/type",
+       {"", "`ellipse`: the moving ellipse of the paper's appendix A (a, b, v, alpha); "
+            "`overstressed_patch`: a uniform initial shear stress in [x1_min, x1_max] (x1_min, "
+            "x1_max, shear_stress)"}},
+      {"/nucleation/a", {"m", "a_ell (ellipse)"}},
+      {"/nucleation/b", {"m", "b_ell (ellipse)"}},
+      {"/nucleation/v", {"m/s", "v_ell: speed of the ellipse towards +x1 (ellipse)"}},
+      {"/nucleation/alpha", {"", "largest relative reduction of the normal load (ellipse)"}},
+      {"/nucleation/x1_min",
+       {"m", "left end of the overstressed patch (closed interval), inside the domain"}},
+      {"/nucleation/x1_max",
+       {"m", "right end of the overstressed patch, inside the domain; the patch must hold a "
+             "node"}},
+      {"/nucleation/shear_stress",
+       {"Pa", "the initial shear stress in the patch (applied after the profiles; may exceed "
+              "the static strength)"}},
+      {"/profiles",
+       {"", "piecewise-constant overrides along x1 of the initial stresses and the friction "
+            "values, applied in order after the uniform values (entries: below)"}},
+      {"/profiles/*/x1_min", {"m", "left end of the closed interval; absent: unbounded"}},
+      {"/profiles/*/x1_max", {"m", "right end of the closed interval; absent: unbounded"}},
+      {"/profiles/*/outside",
+       {"", "apply to x1 < x1_min or x1 > x1_max (strict) instead of the interval"}},
+      {"/profiles/*/shear_stress", {"Pa", "initial shear stress tau1_0 there"}},
+      {"/profiles/*/normal_stress", {"Pa", "initial normal stress tau2_0 there, < 0"}},
+      {"/profiles/*/mu", {"", "mu there (a value the friction law uses, as in friction)"}},
+      {"/profiles/*/mu_s", {"", "mu_s there (slip_weakening)"}},
+      {"/profiles/*/mu_d", {"", "mu_d there (slip_weakening)"}},
+      {"/profiles/*/D_c", {"m", "D_c there (slip_weakening)"}},
+      {"/profiles/*/L", {"m", "L there (slip-scale regularisation)"}},
+      {"/profiles/*/v_star", {"m/s", "V* there (slip-scale regularisation)"}},
+      {"/profiles/*/t_star", {"s", "t* there (time-scale regularisation)"}},
       {"/time/duration", {"s", "simulated time"}},
       {"/time/safety_factor",
        {"", "dt = safety_factor × the stable step of the discrete system; above 1 the scheme is "
@@ -135,7 +186,8 @@ SchemaRecorder record_fields(const nlohmann::json& document) {
   return recorder;
 }
 
-// "/friction/L" -> {"friction", "L"}; "/threads" -> {"", "threads"}.
+// "/friction/L" -> {"friction", "L"}; "/threads" -> {"", "threads"}; a field of the items
+// of an array of objects: "/profiles/*/mu" -> {"profiles/*", "mu"}.
 std::pair<std::string, std::string> split_pointer(const std::string& pointer) {
   const auto slash = pointer.rfind('/');
   return {slash == 0 ? "" : pointer.substr(1, slash - 1), pointer.substr(slash + 1)};
@@ -155,6 +207,7 @@ std::string type_text(const nlohmann::json& schema) {
 }
 
 std::string default_text(const nlohmann::json& schema) {
+  if (!schema.contains("default")) return "none";
   const nlohmann::json& value = schema.at("default");
   if (value.is_string() || value.is_array()) return "`" + value.dump() + "`";
   if (value.is_number_float()) return format_number(value.get<double>());
@@ -176,6 +229,8 @@ std::string allowed_text(const nlohmann::json& schema) {
   if (type == "string")
     return "at most " + std::to_string(schema["maxLength"].get<long>()) +
            " characters, no control characters";
+  if (type == "array" && schema["items"]["type"] == "object")
+    return "at most " + std::to_string(schema["maxItems"].get<long>()) + " entries";
   if (type == "array" && schema["items"]["type"] == "number") {
     const std::string each = allowed_text(schema["items"]);
     return "at most " + std::to_string(schema["maxItems"].get<long>()) + " numbers" +
@@ -258,7 +313,11 @@ nlohmann::json job_json_schema() {
   for (const JobField& field : job_fields()) {
     const auto [section, name] = split_pointer(field.pointer);
     nlohmann::json* parent = &root;
-    if (!section.empty()) {
+    if (section.size() > 2 && section.ends_with("/*")) { // a field of an array's items
+      nlohmann::json& items = root["properties"][section.substr(0, section.size() - 2)]["items"];
+      items["additionalProperties"] = false;
+      parent = &items;
+    } else if (!section.empty()) {
       nlohmann::json& object = root["properties"][section];
       if (object.is_null())
         object = {{"type", "object"},
@@ -293,8 +352,8 @@ nlohmann::json job_json_schema() {
 std::string job_fields_markdown() {
   // The docs' order of sections; a section not listed here comes last.
   const std::vector<std::string> order = {
-      "top level", "spectral_bi", "fe",   "material", "geometry", "lower",   "loading",
-      "friction",  "nucleation",  "time", "output",   "probe",    "stations"};
+      "top level", "spectral_bi", "fe",         "material", "geometry", "lower", "loading",
+      "friction",  "profiles/*",  "nucleation", "time",     "output",   "probe", "stations"};
   std::map<std::string, std::string> rows;
   std::vector<std::string> titles = order;
   for (const JobField& field : job_fields()) {

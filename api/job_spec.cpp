@@ -25,6 +25,7 @@ ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limit
   ObjectReader reader(&document, "", result.errors);
   read_job_fields(reader, job);
   reader.finish();
+  job.canonical = reader.canonical(); // the run bounds name fields in the form they were given
   check_job_consistency(job, result.errors);
   if (!result.errors.empty()) return result;
   // The wave speeds, the time step and the step count before any estimate uses them.
@@ -37,7 +38,6 @@ ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limit
   check_result_size(job, limits, result.errors);
   if (!result.errors.empty()) return result;
 
-  job.canonical = reader.canonical();
   job.sha256 = spec_hash(job.canonical);
   result.spec = std::move(job);
   return result;

@@ -98,7 +98,7 @@ ObjectReader::ObjectReader(const nlohmann::json* object, std::string pointer,
 
 void ObjectReader::record(const std::string& key, nlohmann::json schema) {
   if (recorder_ == nullptr) return;
-  if (canonical_.contains(key)) schema["default"] = canonical_[key];
+  if (canonical_.contains(key) && !schema.contains("default")) schema["default"] = canonical_[key];
   recorder_->push_back({pointer(key), std::move(schema)});
 }
 
@@ -106,9 +106,15 @@ void ObjectReader::describe(const std::string& key, nlohmann::json schema) {
   record(key, std::move(schema));
 }
 
-namespace {
+void ObjectReader::reject(const std::string& key, const std::string& why, nlohmann::json schema) {
+  if (raw(key) != nullptr) error(key, why);
+  record(key, std::move(schema));
+}
 
-// JSON Schema bounds of an interval (an absent bound is left out).
+void ObjectReader::error_here(std::string reason) {
+  errors_.push_back({pointer_, std::move(reason)});
+}
+
 nlohmann::json number_schema(const Interval& allowed) {
   nlohmann::json schema = {{"type", "number"}};
   if (std::isfinite(allowed.lo))
@@ -117,8 +123,6 @@ nlohmann::json number_schema(const Interval& allowed) {
     schema[allowed.hi_open ? "exclusiveMaximum" : "maximum"] = allowed.hi;
   return schema;
 }
-
-} // namespace
 
 const nlohmann::json* ObjectReader::raw(const std::string& key) {
   known_.insert(key);
@@ -273,6 +277,53 @@ void ObjectReader::object(const std::string& key, const std::function<void(Objec
   read(child);
   child.finish();
   set_canonical(key, child.canonical());
+}
+
+void ObjectReader::object_list(const std::string& key, std::size_t max_items,
+                               const std::function<void(ObjectReader&, std::size_t)>& read) {
+  const nlohmann::json* member = raw(key);
+  if (recorder_ != nullptr) {
+    record(key, {{"type", "array"},
+                 {"maxItems", max_items},
+                 {"items", {{"type", "object"}}},
+                 {"default", nlohmann::json::array()}});
+    ObjectReader item(nullptr, pointer(key) + "/*", errors_, recorder_); // the items' fields
+    read(item, 0);
+  }
+  if (member == nullptr) return;
+  if (!member->is_array() || member->size() > max_items) {
+    error(key, "must be an array of at most " + std::to_string(max_items) + " objects, got " +
+                   describe_value(*member));
+    return;
+  }
+  nlohmann::json items = nlohmann::json::array();
+  for (std::size_t i = 0; i < member->size(); ++i) {
+    const nlohmann::json& element = (*member)[i];
+    const std::string at = pointer(key) + "/" + std::to_string(i);
+    if (!element.is_object()) {
+      errors_.push_back({at, "must be an object, got " + describe_value(element)});
+      continue;
+    }
+    ObjectReader item(&element, at, errors_, nullptr);
+    read(item, i);
+    item.finish();
+    items.push_back(item.canonical());
+  }
+  if (!items.empty()) set_canonical(key, std::move(items));
+}
+
+void ObjectReader::optional_number(const std::string& key, std::optional<double>& target,
+                                   const Interval& allowed) {
+  if (const nlohmann::json* member = raw(key)) {
+    double value = 0;
+    number(key, value, allowed);
+    if (member->is_number() && allowed.contains(member->get<double>()))
+      target = value;
+    else
+      canonical_.erase(key);
+    return;
+  }
+  record(key, number_schema(allowed));
 }
 
 std::vector<std::string>

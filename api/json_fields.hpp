@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -38,6 +39,9 @@ Interval non_negative();                        // >= 0
 Interval open_interval(double lo, double hi);   // (lo, hi)
 Interval closed_interval(double lo, double hi); // [lo, hi]
 Interval left_open(double lo, double hi);       // (lo, hi]
+
+// The JSON Schema of a number in `allowed` (an absent bound is left out).
+nlohmann::json number_schema(const Interval& allowed);
 
 // A short description of a JSON value for error messages: 0.5, "abc", true, null, an object.
 std::string describe_value(const nlohmann::json& value);
@@ -78,6 +82,15 @@ public:
 
   // A nested object, read by `read`; its canonical form becomes a member of this one.
   void object(const std::string& key, const std::function<void(ObjectReader&)>& read);
+  // An array of at most `max_items` objects, each read by `read` with its index. Its
+  // canonical form is the array of theirs, left out when the array is empty or absent (a
+  // job without it keeps the hash it had before the field existed). A recorder sees the
+  // array and, as "<array>/*/<field>", the fields of its items.
+  void object_list(const std::string& key, std::size_t max_items,
+                   const std::function<void(ObjectReader&, std::size_t)>& read);
+  // An optional number without a default: set (and in the canonical form) only if given.
+  void optional_number(const std::string& key, std::optional<double>& target,
+                       const Interval& allowed);
 
   // For fields with a shape of their own: the raw member (null if absent), marked as known.
   const nlohmann::json* raw(const std::string& key);
@@ -86,8 +99,19 @@ public:
   // the canonical text, and so the hashes, of the specs written before it existed).
   void omit_canonical(const std::string& key) { canonical_.erase(key); }
   void error(const std::string& key, std::string reason);
-  // For a field read through raw(): its schema, when a recorder listens.
+  // For a field read through raw(): its schema, when a recorder listens (with "default"
+  // if the schema has none and the canonical form holds the key).
   void describe(const std::string& key, nlohmann::json schema);
+  // A field this job has no use for (another law's parameter, the other form of a
+  // material): an error saying `why` if it is given. The schema still lists it: `schema`
+  // is recorded (with its default) when a recorder listens.
+  void reject(const std::string& key, const std::string& why, nlohmann::json schema);
+  // Leaves `key` out of the canonical form (a field at a default that must not enter it).
+  void drop_canonical(const std::string& key) { canonical_.erase(key); }
+  // An error about this object itself (its pointer).
+  void error_here(std::string reason);
+  bool present() const { return object_ != nullptr; }        // the object was given
+  std::size_t error_count() const { return errors_.size(); } // of the whole document so far
   std::string pointer(const std::string& key) const { return child_pointer(pointer_, key); }
 
   // The members of this object that `read` would read, marked as known; their values and

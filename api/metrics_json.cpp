@@ -2,7 +2,8 @@
 // part of the API).
 #include "api/json_number.hpp"
 #include "api/run_job.hpp"
-#include "solver/interface/prakash_clifton.hpp"
+#include "solver/interface/friction/regularization_law.hpp"
+#include "solver/interface/friction/strength_update.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -66,9 +67,12 @@ std::string method_description(const SimulationParams& params) {
       method += text;
     }
   }
-  if (params.friction.law == FrictionLaw::coulomb) return method + "; friction: coulomb";
-  return method + "; friction: prakash_clifton, " + to_string(params.friction.update) +
-         " strength update";
+  const Regularization regularization = effective_regularization(params.friction);
+  method += std::string("; friction: ") + to_string(params.friction.law);
+  if (regularization == Regularization::none) return method;
+  if (params.friction.law != FrictionLaw::prakash_clifton) // its regularisation is implied
+    method += std::string(", ") + to_string(regularization) + " regularization";
+  return method + ", " + to_string(params.friction.update) + " strength update";
 }
 
 nlohmann::json metrics_json(const RunResult& result) {

@@ -1,5 +1,6 @@
 #include "api/run_bounds.hpp"
 
+#include "api/material_reader.hpp"
 #include "api/number_text.hpp"
 #include "solver/run/station_recorder.hpp"
 #include "solver/simulation.hpp"
@@ -181,11 +182,23 @@ void check_station_record(const SimulationParams& p, std::vector<FieldError>& er
 
 void check_run_bounds(const JobSpec& job, std::vector<FieldError>& errors) {
   const SimulationParams& p = job.params;
-  if (!check_wave_speeds(p, upper_solid, errors)) return;
-  if (p.lower.elastic() && !check_wave_speeds(p, lower_solid, errors)) return;
   const std::size_t before = errors.size();
-  check_time_steps(p, errors);
-  if (errors.size() == before) check_station_record(p, errors);
+  if (check_wave_speeds(p, upper_solid, errors) &&
+      (!p.lower.elastic() || check_wave_speeds(p, lower_solid, errors))) {
+    const std::size_t steps_before = errors.size();
+    check_time_steps(p, errors);
+    if (errors.size() == steps_before) check_station_record(p, errors);
+  }
+  // A material given in wave speeds (api/material_reader.hpp): its E comes from c_s, its nu
+  // from c_p / c_s.
+  const bool speeds = job.canonical.is_object() &&
+                      given_in_wave_speeds(job.canonical.value("material", nlohmann::json()));
+  if (!speeds) return;
+  for (std::size_t k = before; k < errors.size(); ++k) {
+    std::string& pointer = errors[k].pointer;
+    if (pointer == "/material/young_modulus") pointer = "/material/s_wave_speed";
+    if (pointer == "/material/poisson_ratio") pointer = "/material/p_wave_speed";
+  }
 }
 
 } // namespace slipfront::api

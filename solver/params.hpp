@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slipfront {
@@ -48,34 +51,78 @@ struct Loading {
   double shear_stress = 0.0105;   // tau1_0 [Pa], drives the solid towards +x1
 };
 
+// The coefficient law of friction (docs/physics.md "Friction"; solver/interface/friction/).
 enum class FrictionLaw {
-  prakash_clifton, // simplified Prakash-Clifton regularisation (paper eq. 1)
-  coulomb,         // tau_s = mu * max(0, p) at every instant
+  prakash_clifton, // constant mu with the slip-scale regularisation (paper eq. 1)
+  coulomb,         // constant mu; regularisation as Friction::regularization (none by default)
+  slip_weakening,  // linear slip weakening: mu from mu_s to mu_d over D_c of slip path
 };
 
-// How the strength ODE d(tau_s)/dt = -(|V|+V*)/L (tau_s - mu p) is advanced over a step
-// (solver/interface/friction.hpp has the formulas, docs/physics.md the accuracy of each).
+// How the normal stress that enters the strength follows the contact pressure
+// (docs/physics.md "Regularisation"): sigma* = max(0, p) at every instant, or the ODE
+// d sigma*/dt = -k (sigma* - max(0, p)) with k = (|V| + V*)/L (slip scale, paper eq. 1) or
+// k = 1/t* (time scale).
+enum class Regularization { none, slip_scale, time_scale };
+
+// How the regularisation ODE is advanced over a step (solver/interface/friction/
+// strength_update.hpp has the formulas, docs/physics.md the accuracy of each).
 enum class StrengthUpdate {
   exponential_ramp, // exact for |V| frozen and p linear over the step: second order, stable
   exponential,      // exact for |V| and p frozen (p of the step's end): first order, stable
-  explicit_euler,   // forward Euler: unstable once dt (|V|+V*)/L > 2 (for failure studies)
+  explicit_euler,   // forward Euler: unstable once dt k > 2 (for failure studies)
 };
 
-struct Friction {
+// The numbers of the friction law at one interface node: the job's uniform values, which
+// `profiles` may override along x1. Each law reads only its own (the others are inert).
+struct FrictionValues {
+  double mu = 0.75;     // constant coefficient (coulomb, prakash_clifton)
+  double mu_s = 0.75;   // static coefficient (slip_weakening)
+  double mu_d = 0.5;    // dynamic coefficient (slip_weakening), <= mu_s
+  double D_c = 1e-3;    // slip-weakening distance [m]
+  double L = 5e-5;      // characteristic length of the slip-scale regularisation [m]
+  double v_star = 1e-4; // reference velocity V* of the slip-scale regularisation [m/s]
+  double t_star = 1e-3; // time of the time-scale regularisation [s]
+};
+
+struct Friction : FrictionValues {
   FrictionLaw law = FrictionLaw::prakash_clifton;
-  double mu = 0.75;     // static = kinetic coefficient
-  double L = 5e-5;      // characteristic length [m]
-  double v_star = 1e-4; // reference velocity V* [m/s]
+  // For coulomb and slip_weakening; prakash_clifton is always slip_scale.
+  Regularization regularization = Regularization::none;
   StrengthUpdate update = StrengthUpdate::exponential_ramp;
 };
 
-// Nucleation ellipse in the x1-t plane (paper appendix A, after Cochard & Rice 2000).
+enum class NucleationType {
+  ellipse,           // the moving ellipse of the paper's appendix A (after Cochard & Rice 2000)
+  overstressed_patch // a uniform initial shear stress inside [x1_min, x1_max]
+};
+
+// How the rupture is started (docs/physics.md "Nucleation"). enabled = false: not at all.
 struct Nucleation {
   bool enabled = true;
+  NucleationType type = NucleationType::ellipse;
   double a = 0.6;     // a_ell [m]
   double b = 3.6;     // b_ell [m]
   double v = 0.825;   // v_ell [m/s]
   double alpha = 0.8; // largest relative reduction of the normal load
+  // The overstressed patch: the initial shear stress [Pa] in the closed interval [x1_min, x1_max].
+  double x1_min = -0.5, x1_max = 0.5;
+  double shear_stress = 0.012;
+  bool ellipse() const { return enabled && type == NucleationType::ellipse; }
+  bool patch() const { return enabled && type == NucleationType::overstressed_patch; }
+};
+
+// A piecewise-constant override of the initial stresses and the friction values along x1
+// (docs/physics.md "Profiles"), applied after the uniform values, in the order given.
+struct Profile {
+  double x1_min = -std::numeric_limits<double>::infinity(); // closed interval [x1_min, x1_max]
+  double x1_max = std::numeric_limits<double>::infinity();
+  bool outside = false;                              // apply to x1 < x1_min or x1 > x1_max instead
+  std::optional<double> shear_stress, normal_stress; // [Pa]
+  std::vector<std::pair<double FrictionValues::*, double>> friction; // (value, number)
+  bool covers(double x1) const {
+    const bool inside = x1 >= x1_min && x1 <= x1_max;
+    return outside ? !inside : inside;
+  }
 };
 
 struct TimeControl {
@@ -158,6 +205,7 @@ struct SimulationParams {
   LowerSolid lower; // below the interface: the rigid plane unless a job asks otherwise
   Loading loading;
   Friction friction;
+  std::vector<Profile> profiles; // overrides along x1 of loading and friction, in order
   Nucleation nucleation;
   TimeControl time;
   OutputSampling output;

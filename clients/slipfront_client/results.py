@@ -52,8 +52,11 @@ class Result:
         return f"L = {self.L:g} m, {nd_text}" if self.L is not None else nd_text
 
     def wave_speeds(self):
-        """(c_s, c_p) of the run's material (plane strain)."""
+        """(c_s, c_p) of the run's material (plane strain), in either form of the job's
+        `material` (moduli, or wave speeds as given: docs/api-job-spec.md)."""
         m = self.spec.get("material") or {}
+        if "s_wave_speed" in m and "p_wave_speed" in m:
+            return float(m["s_wave_speed"]), float(m["p_wave_speed"])
         rho = m.get("density", 1.0)
         E = m.get("young_modulus", 2.5)
         nu = m.get("poisson_ratio", 0.25)

@@ -57,7 +57,8 @@ double FiniteElementMethod::estimated_memory_bytes(const SimulationParams& param
   if (params.lower.elastic()) nodes += double(m.nx + 2) * lower_mesh_size(params).ny;
   // u and v, two components each; with the mesh damping also w = u + a v.
   const double fields = (params.fe.mesh_damping > 0 ? 6.0 : 4.0) * 8.0 * nodes;
-  const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
+  // interface fields, per-node parameters and friction state, front, buffers
+  const double interface = 36.0 * 8.0 * m.nx;
   // Probe records (4 doubles a step) for the longest possible run.
   const double records = 4.0 * 8.0 * step_count_bound(params);
   const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer

@@ -54,16 +54,11 @@ void MeshStepper::interface_row(LevelRecord& level) {
     InterfaceTraction extra;
     if (params_.extra_load) extra = params_.extra_load(x1, t);
     const double nucleation =
-        nucleation_traction(params_.nucleation, params_.loading.normal_stress, x1, t);
+        nucleation_traction(params_.nucleation, parameters_.normal_stress[i], x1, t);
     load1_[i] = extra.t1 * dx;
     load2_[i] = (nucleation + extra.t2) * dx;
   }
   const bool compute_energy = level.compute_energy;
-  // The initial contact force on the upper solid, C0 = dx (-tau1_0, |tau2_0|); the
-  // perturbation sees C - C0 (the lower block -(C - C0)).
-  const double c0_1 = -params_.loading.shear_stress * dx;
-  const double c0_2 = std::abs(params_.loading.normal_stress) * dx;
-  const PairForce c0{c0_1, c0_2};
   const InterfaceRowOf up = interface_row_of(upper_);
   // The lower block's row in its mirrored frame (u'_2 = -u_2, F'_2 = -F_2); unused when rigid.
   const bool two_solids = lower_.has_value();
@@ -71,6 +66,11 @@ void MeshStepper::interface_row(LevelRecord& level) {
   double work = 0, dissipated = 0, kinetic = 0, strain = 0;
   double lower_dissipated = 0, lower_kinetic = 0, lower_strain = 0;
   for (int i = 0; i < nx; ++i) {
+    // The initial contact force on the upper solid, C0_i = dx (-tau0_i, |sigma0_i|) (the
+    // node's initial stresses); the perturbation sees C - C0 (the lower block -(C - C0)).
+    const double c0_1 = -parameters_.shear_stress[i] * dx;
+    const double c0_2 = std::abs(parameters_.normal_stress[i]) * dx;
+    const PairForce c0{c0_1, c0_2};
     // Every force on the upper node but C; on the plane with -C0 (the plane takes C), between
     // two solids without (the pair's internal force C0, PairForce in split_node.hpp).
     double f1 = -up.kx[i] + load1_[i];
@@ -105,9 +105,11 @@ void MeshStepper::interface_row(LevelRecord& level) {
       gap = up.uy[i] + lo.uy[i];
       slip_speed = std::abs(v1_old - w1_old);
     }
-    const SplitNodeStep s = resolve_split_node(node_, gap, upper, lower, !two_solids, slip_speed,
-                                               iface_.strength[i], iface_.pressure[i], c0);
+    const SplitNodeStep s =
+        resolve_split_node(node_, parameters_.friction[i], gap, upper, lower, !two_solids,
+                           slip_speed, friction_[i], iface_.pressure[i], c0);
     const InterfaceNodeStep& r = s.relative;
+    friction_[i] = r.friction;
     const double v1_new = s.upper.v1, v2_new = s.upper.v2;
     up.vx[i] = v1_new;
     up.vy[i] = v2_new;

@@ -37,8 +37,10 @@ MeshStepper::MeshStepper(const SimulationParams& params)
   const double dx = upper_.dx();
   load1_.assign(nx, 0.0);
   load2_.assign(nx, 0.0);
-  node_ = {upper_.node_mass(0), upper_.node_mass(0), dt_, dx, params.friction};
-  iface_ = resting_interface(params, nx, dx);
+  node_ = {upper_.node_mass(0), upper_.node_mass(0), dt_, dx, StrengthLaw(params.friction)};
+  parameters_ = interface_parameters(params, nx, dx);
+  friction_ = resting_friction(parameters_, node_.law);
+  iface_ = resting_interface(parameters_, node_.law);
 }
 
 void MeshStepper::reserve_scratch(int members) {

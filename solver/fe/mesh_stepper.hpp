@@ -7,9 +7,10 @@
 // stuck, pre-stressed initial state. The far boundaries keep their remote traction, so they
 // are free for the perturbation (or absorbing). At an interface node the lower side (the plane
 // or the lower solid's node) exerts the total force C = (C1, C2) on the upper solid's node,
-// and the upper node -C on the lower node; in the initial state C0 = dx (-tau1_0, |tau2_0|),
-// so the perturbation of the upper block sees C - C0 and that of the lower block -(C - C0)
-// (the release of the pre-stress when the pair slips or opens).
+// and the upper node -C on the lower node; in the initial state C0_i = dx (-tau0_i, |sigma0_i|)
+// (the node's initial stresses, interface_parameters.hpp), so the perturbation of the upper block
+// sees C - C0 and that of the lower block -(C - C0) (the release of the pre-stress when the pair
+// slips or opens).
 //
 // Two solids (docs/physics.md "Two solids"): the lower block is an ElasticBlock in its mirrored
 // frame y' = -x2. Level r of a step does row r of each block (a row beyond a block's height is
@@ -35,6 +36,7 @@
 #include "solver/fe/elastic_block.hpp"
 #include "solver/interface/interface_fields.hpp"
 #include "solver/interface/interface_law.hpp"
+#include "solver/interface/interface_parameters.hpp"
 #include "solver/params.hpp"
 #include "solver/thread_team.hpp"
 
@@ -116,6 +118,8 @@ private:
   double dt_, stable_dt_;
   std::vector<double> load1_, load2_; // interface load changes of this step [N/m]
   InterfaceNodeConstants node_;
+  InterfaceParameters parameters_;      // tau0, sigma0 and friction values per interface node
+  std::vector<FrictionState> friction_; // the friction state of each interface node
   InterfaceFields iface_;
   EnergyBalance energy_;
   std::vector<LevelRecord> levels_;                 // the steps of the last trip

@@ -4,7 +4,6 @@
 
 #include "solver/params.hpp"
 
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -25,26 +24,6 @@ struct InterfaceFields {
   std::vector<double> strength;       // tau_s used in step n
   std::vector<std::int8_t> state;     // NodeState in step n
 };
-
-// The uniform, stuck, pre-stressed initial state of nx interface nodes spaced dx from
-// x_min: no motion, tau1 = tau1_0, p = |tau2_0|, tau_s(0) = mu p0 (docs/physics.md "Load",
-// "Regularisation").
-inline InterfaceFields resting_interface(const SimulationParams& params, int nx, double dx) {
-  const double p0 = std::abs(params.loading.normal_stress);
-  InterfaceFields f;
-  f.x1.resize(nx);
-  for (int i = 0; i < nx; ++i)
-    f.x1[i] = params.geometry.x_min + i * dx;
-  f.velocity.assign(nx, 0.0);
-  f.half_velocity.assign(nx, 0.0);
-  f.slip.assign(nx, 0.0);
-  f.opening.assign(nx, 0.0);
-  f.shear_traction.assign(nx, params.loading.shear_stress);
-  f.pressure.assign(nx, p0);
-  f.strength.assign(nx, params.friction.mu * p0);
-  f.state.assign(nx, std::int8_t(NodeState::stick));
-  return f;
-}
 
 // Energy terms since t = 0 (per unit thickness) after the step; see docs/physics.md.
 struct EnergyBalance {

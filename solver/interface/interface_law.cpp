@@ -1,14 +1,13 @@
 #include "solver/interface/interface_law.hpp"
 
-#include "solver/interface/friction.hpp"
-
 #include <cmath>
 
 namespace slipfront {
 
-InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double u2,
-                                         double v1_trial, double v2_trial, double slip_speed,
-                                         double strength, double previous_pressure) {
+InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c,
+                                         const FrictionValues& friction, double u2, double v1_trial,
+                                         double v2_trial, double slip_speed,
+                                         const FrictionState& state, double previous_pressure) {
   InterfaceNodeStep out;
   // 1. Next normal displacement of the trial (free) motion.
   const double u2_trial = u2 + c.dt * v2_trial;
@@ -22,8 +21,10 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c, double
   // 3. Strength over the step from the last one to this one: the pressure goes from the
   //    last step's to this step's, the slip speed is that of the last interval (FE: the
   //    last half step's, the velocity over that interval in the leapfrog scheme).
-  out.strength =
-      advance_strength(c.friction, strength, previous_pressure, out.pressure, slip_speed, c.dt);
+  const FrictionStep friction_step =
+      c.law.advance(friction, state, previous_pressure, out.pressure, slip_speed, c.dt);
+  out.strength = friction_step.strength;
+  out.friction = friction_step.state;
 
   // 4. Tangential: stick if the plane can hold the node, else slip at strength.
   // The constrained velocities are set exactly (not through the force, whose round-off

@@ -1,6 +1,7 @@
 #include "solver/interface/nucleation.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace slipfront {
 
@@ -11,7 +12,7 @@ double eta0(const Nucleation& n) {
 } // namespace
 
 double nucleation_traction(const Nucleation& n, double normal_stress, double x1, double t) {
-  if (!n.enabled) return 0.0;
+  if (!n.ellipse()) return 0.0;
   const double xi = (x1 - n.v * t) / n.a;
   const double eta = (x1 + n.v * t) / n.b - eta0(n);
   const double inside = 1.0 - xi * xi - eta * eta;
@@ -23,12 +24,18 @@ double nucleation_traction(const Nucleation& n, double normal_stress, double x1,
 // and x1 = (p + q + b eta0)/2, v t = (q - p + b eta0)/2. The extremes of p + q and q - p
 // over the ellipse are +-sqrt(a^2 + b^2).
 Interval nucleation_patch(const Nucleation& n) {
+  if (n.patch()) return {n.x1_min, n.x1_max};
+  if (!n.ellipse()) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {inf, -inf};
+  }
   const double r = std::sqrt(n.a * n.a + n.b * n.b);
   const double c = n.b * eta0(n); // = r
   return {(c - r) / 2.0, (c + r) / 2.0};
 }
 
 double nucleation_end_time(const Nucleation& n) {
+  if (!n.ellipse()) return 0.0;
   const double r = std::sqrt(n.a * n.a + n.b * n.b);
   return (n.b * eta0(n) + r) / (2.0 * n.v);
 }

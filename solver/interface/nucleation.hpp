@@ -1,7 +1,9 @@
-// Nucleation of the paper's appendix A (after Cochard & Rice 2000, appendix B).
+// Nucleation (docs/physics.md "Nucleation"): the moving ellipse of the paper's appendix A
+// (after Cochard & Rice 2000, appendix B), or an overstressed patch (a prestress, set up in
+// interface_parameters.hpp), or none.
 //
-// With xi = (x1 - v t)/a, eta = (x1 + v t)/b - eta0, eta0 = sqrt(a^2 + b^2)/b, inside the
-// ellipse 1 - xi^2 - eta^2 > 0 the normal load is reduced by alpha |tau2_0| (1 - xi^2 -
+// The ellipse: with xi = (x1 - v t)/a, eta = (x1 + v t)/b - eta0, eta0 = sqrt(a^2 + b^2)/b, inside
+// the ellipse 1 - xi^2 - eta^2 > 0 the normal load is reduced by alpha |tau2_0| (1 - xi^2 -
 // eta^2)^2: a tensile traction of that size acts on the solid at the interface.
 #pragma once
 
@@ -9,16 +11,19 @@
 
 namespace slipfront {
 
-// Tensile traction [Pa] (>= 0, pulling the solid off the plane) at (x1, t).
+// Tensile traction [Pa] (>= 0, pulling the solid off the plane) of the ellipse at (x1, t),
+// normal_stress the node's tau2_0; 0 for any other nucleation.
 double nucleation_traction(const Nucleation& nucleation, double normal_stress, double x1, double t);
 
-// The x1 interval the ellipse covers over all t >= 0 (the nucleation patch).
+// The nucleation patch: the x1 interval the ellipse covers over all t >= 0, or the
+// overstressed patch [x1_min, x1_max]; empty (lo > hi) without nucleation.
 struct Interval {
   double lo, hi;
 };
 Interval nucleation_patch(const Nucleation& nucleation);
 
-// Last time at which the ellipse is active anywhere.
+// The last time at which the nucleation acts: the ellipse's end; 0 for the overstressed
+// patch (a prestress, there from the start) and without nucleation.
 double nucleation_end_time(const Nucleation& nucleation);
 
 } // namespace slipfront

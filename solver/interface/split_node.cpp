@@ -12,9 +12,9 @@ double effective_mass(double upper, double lower) {
 
 } // namespace
 
-SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
-                                 const InterfaceSide& upper, const InterfaceSide& lower,
-                                 bool lower_rigid, double slip_speed, double strength,
+SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, const FrictionValues& friction,
+                                 double gap, const InterfaceSide& upper, const InterfaceSide& lower,
+                                 bool lower_rigid, double slip_speed, const FrictionState& state,
                                  double previous_pressure, const PairForce& internal) {
   SplitNodeStep out;
   out.upper = upper;
@@ -23,8 +23,8 @@ SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
     InterfaceNodeConstants rigid = c;
     rigid.mass1 = upper.mass1;
     rigid.mass2 = upper.mass2;
-    out.relative = resolve_interface_node(rigid, gap, upper.v1, upper.v2, slip_speed, strength,
-                                          previous_pressure);
+    out.relative = resolve_interface_node(rigid, friction, gap, upper.v1, upper.v2, slip_speed,
+                                          state, previous_pressure);
     out.upper.v1 = out.relative.v1;
     out.upper.v2 = out.relative.v2;
     out.lower.v1 = out.lower.v2 = 0.0;
@@ -39,7 +39,7 @@ SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
   const double rel1 = (upper.v1 - lower.v1) - c.dt * internal.f1 / pair.mass1;
   const double rel2 = (upper.v2 - lower.v2) - c.dt * internal.f2 / pair.mass2;
   const InterfaceNodeStep& r = out.relative =
-      resolve_interface_node(pair, gap, rel1, rel2, slip_speed, strength, previous_pressure);
+      resolve_interface_node(pair, friction, gap, rel1, rel2, slip_speed, state, previous_pressure);
   const double force1 = r.contact_force1 - internal.f1; // C - F on the upper side
 
   // 2. Tangential: a stuck pair moves together at its centre-of-mass velocity (exactly one

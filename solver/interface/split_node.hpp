@@ -41,14 +41,15 @@ struct SplitNodeStep {
   InterfaceSide upper, lower; // the masses as given, the velocities of the next half step
 };
 
-// `c`: dt, dx and the friction law (its masses are not used); gap: u2(upper) - u2(lower) now
-// (>= 0); slip_speed, strength, previous_pressure as for resolve_interface_node; `internal`:
-// the pair force the trial velocities leave out. With `lower_rigid` the lower side and
-// `internal` are ignored (zero motion, infinite mass: the plane takes any force, so the upper
-// trial velocity holds every force but the plane's, as for resolve_interface_node).
-SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
-                                 const InterfaceSide& upper, const InterfaceSide& lower,
-                                 bool lower_rigid, double slip_speed, double strength,
+// `c`: dt, dx and the friction law (its masses are not used); friction: the pair's friction
+// values; gap: u2(upper) - u2(lower) now (>= 0); slip_speed, state, previous_pressure as for
+// resolve_interface_node; `internal`: the pair force the trial velocities leave out. With
+// `lower_rigid` the lower side and `internal` are ignored (zero motion, infinite mass: the
+// plane takes any force, so the upper trial velocity holds every force but the plane's, as
+// for resolve_interface_node).
+SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, const FrictionValues& friction,
+                                 double gap, const InterfaceSide& upper, const InterfaceSide& lower,
+                                 bool lower_rigid, double slip_speed, const FrictionState& state,
                                  double previous_pressure, const PairForce& internal = {});
 
 } // namespace slipfront

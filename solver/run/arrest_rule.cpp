@@ -7,8 +7,8 @@
 namespace slipfront {
 
 ArrestRule::ArrestRule(const SimulationParams& params)
-    : quiet_after_(params.nucleation.enabled ? nucleation_end_time(params.nucleation) : 0.0),
-      window_(params.time.arrest_window), stop_on_arrest_(params.time.stop_on_arrest) {}
+    : quiet_after_(nucleation_end_time(params.nucleation)), window_(params.time.arrest_window),
+      stop_on_arrest_(params.time.stop_on_arrest) {}
 
 bool ArrestRule::update(double t_n, double last_new_arrival) {
   const double quiet_since = std::max(quiet_after_, last_new_arrival);

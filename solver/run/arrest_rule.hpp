@@ -16,7 +16,7 @@ public:
   bool arrested() const { return arrested_; } // at the last update
 
 private:
-  double quiet_after_; // the end of the nucleation (0 without it)
+  double quiet_after_; // the end of the ellipse (0 without it, and for a patch)
   double window_;
   bool stop_on_arrest_;
   bool arrested_ = false;

@@ -1,17 +1,25 @@
 #include "solver/run/divergence_check.hpp"
 
+#include "solver/interface/interface_parameters.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace slipfront {
 
-DivergenceCheck::DivergenceCheck(const SimulationParams& params)
-    : mu_(params.friction.mu), two_solids_(params.lower.elastic()),
-      max_coulomb_strength_(params.friction.mu * std::abs(params.loading.normal_stress)) {
+DivergenceCheck::DivergenceCheck(const SimulationParams& params, const std::vector<double>& x1)
+    : two_solids_(params.lower.elastic()) {
+  const CoefficientLaw& law = coefficient_law(params.friction.law);
+  double load_scale = 0;
+  for (const double x : x1) {
+    const NodeParameters node = node_parameters(params, x);
+    mu_0_.push_back(law.static_coefficient(node.friction));
+    max_coulomb_strength_ =
+        std::max(max_coulomb_strength_, mu_0_.back() * std::abs(node.normal_stress));
+    load_scale = std::max(load_scale, std::abs(node.normal_stress) + std::abs(node.shear_stress));
+  }
   const Material& mat = params.material;
-  const double load_scale =
-      std::abs(params.loading.normal_stress) + std::abs(params.loading.shear_stress);
   speed_limit_ = 1000.0 * load_scale / (mat.density * mat.s_wave_speed());
 }
 
@@ -21,11 +29,11 @@ void DivergenceCheck::check(const InterfaceFields& f) {
     const double v = std::abs(f.velocity[i]);
     if (!(v <= speed_limit_)) diverged_ = true; // also catches NaN
     max_slip_velocity_ = std::max(max_slip_velocity_, v);
-    max_coulomb_strength_ = std::max(max_coulomb_strength_, mu_ * f.pressure[i]);
+    max_coulomb_strength_ = std::max(max_coulomb_strength_, mu_0_[i] * f.pressure[i]);
   }
-  // A stable strength update makes tau_s a convex combination of its start and the mu p
-  // of the step (friction.hpp), so it stays within [0, the largest mu p seen, p0
-  // included]; leaving that range means the update is unstable
+  // A stable strength update makes c* a convex combination of its start and the mu_0 p of
+  // the step (friction/strength_update.hpp), and mu(s) <= mu_0, so tau_s stays within
+  // [0, the largest mu_0 p seen, p0 included]; leaving that range means the update is unstable
   // even if it stays bounded (explicit Euler with dt (|V| + V*) / L > 2).
   for (int i = 0; i < nx && strength_message_.empty(); ++i) {
     const double ts = f.strength[i];

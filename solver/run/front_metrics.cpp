@@ -76,9 +76,7 @@ void derive_front_metrics(const SimulationParams& p, double dx,
                           Metrics& m) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const int nx = int(arrival_time.size());
-  const auto patch = p.nucleation.enabled ? nucleation_patch(p.nucleation)
-                                          : Interval{std::numeric_limits<double>::infinity(),
-                                                     -std::numeric_limits<double>::infinity()};
+  const Interval patch = nucleation_patch(p.nucleation); // empty without nucleation
   front.x1.resize(nx);
   for (int i = 0; i < nx; ++i)
     front.x1[i] = p.geometry.x_min + i * dx;

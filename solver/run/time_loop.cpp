@@ -49,7 +49,7 @@ Observers set_up_observers(const SimulationParams& params, const RunHooks& hooks
       StationRecorder(params.stations, params.geometry.x_min, mesh.dx, int(x1.size()), total_steps),
       InterfaceSampler(hooks.sink, params.output, dt, total_steps, x1),
       EnergyRecorder(dt),
-      DivergenceCheck(params),
+      DivergenceCheck(params, x1),
       FrontTracker(mesh.nx, params.probes.front_threshold),
       ArrestRule(params),
       ProgressReporter(hooks, params.time.duration, dt, total_steps, started)};

@@ -1,5 +1,6 @@
 #include "solver/spectral/spectral_method.hpp"
 
+#include "solver/interface/friction/regularization_law.hpp"
 #include "solver/interface/ill_posedness.hpp"
 #include "solver/interface/nucleation.hpp"
 #include "solver/mesh_size.hpp"
@@ -54,8 +55,10 @@ double SpectralMethod::estimated_memory_bytes(const SimulationParams& p) {
     table += 6.0 * 8.0 * kernel_span(p, *side) / HalfSpaceKernels::table_step;
   }
   const double memory = 7.0 * 8.0 * lags; // 4 history + 3 weight doubles a lag
-  const double fields = 40.0 * 8.0 * nx * double(solids(p).size()); // nodal and modal vectors
-  const double records = 4.0 * 8.0 * double(steps);                 // probe records
+  // Nodal and modal vectors of each solid, and the interface's per-node parameters and
+  // friction state.
+  const double fields = 40.0 * 8.0 * nx * double(solids(p).size()) + 12.0 * 8.0 * nx;
+  const double records = 4.0 * 8.0 * double(steps);   // probe records
   const double sample_buffer = 64.0 * 6.0 * 8.0 * nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                     // code, libraries, HDF5 caches
   return memory + fields + table + records + sample_buffer + baseline;
@@ -99,7 +102,8 @@ HalfSpaceGrid grid_of(const SimulationParams& p, const Material& side, int threa
 SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
     : params_(params), nx_(mesh_size(params).nx), dx_(mesh_size(params).dx), dt_(time_step(params)),
       team_(threads), upper_(params.material, grid_of(params, params.material, team_.size())) {
-  node_ = {upper_.eta1() * dx_ * dt_, upper_.eta2() * dx_ * dt_, dt_, dx_, params.friction};
+  node_ = {upper_.eta1() * dx_ * dt_, upper_.eta2() * dx_ * dt_, dt_, dx_,
+           StrengthLaw(params.friction)};
   if (params.lower.elastic()) {
     const Material& below = params.lower.material;
     lower_ = std::make_unique<HalfSpace>(below, grid_of(params, below, team_.size()));
@@ -107,7 +111,9 @@ SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
   for (auto* v : {&load1_, &load2_, &slip_speed_})
     v->assign(nx_, 0.0);
   solved_.resize(nx_);
-  iface_ = resting_interface(params, nx_, dx_);
+  parameters_ = interface_parameters(params, nx_, dx_);
+  friction_ = resting_friction(parameters_, node_.law);
+  iface_ = resting_interface(parameters_, node_.law);
 }
 
 MeshInfo SpectralMethod::mesh_info() const {
@@ -118,12 +124,13 @@ MeshInfo SpectralMethod::mesh_info() const {
 
 std::vector<std::string> SpectralMethod::end_warnings(double /*simulated_time*/) const {
   std::vector<std::string> warnings;
-  if (params_.friction.law != FrictionLaw::coulomb) return warnings;
   if (std::string ill_posed = bimaterial_coulomb_warning(params_); !ill_posed.empty())
     warnings.push_back(std::move(ill_posed));
   // Measured (tests/solver/interface_growth_test.cpp): 0.021 c_s/dx at beta = 0.4, 0.025-0.030
   // at 0.5; none at 0.3 and 0.25 on every n_d tried.
-  if (params_.spectral.time_step_factor >= 0.35) {
+  const bool plain_coulomb = params_.friction.law == FrictionLaw::coulomb &&
+                             effective_regularization(params_.friction) == Regularization::none;
+  if (plain_coulomb && params_.spectral.time_step_factor >= 0.35) {
     char msg[300];
     std::snprintf(msg, sizeof msg,
                   "plain Coulomb friction with spectral_bi.time_step_factor = %.3g: the scheme "
@@ -148,10 +155,10 @@ double SpectralMethod::new_slip_rate(int i) const {
 
 void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
   const double t_half = (double(step_) + 0.5) * dt_;
-  const double sigma1 = params_.loading.shear_stress, sigma2 = params_.loading.normal_stress;
   HalfSpace::Motion& up = upper_.motion();
   for (int i = 0; i < nx_; ++i) {
     const double x1 = iface_.x1[i];
+    const double sigma1 = parameters_.shear_stress[i], sigma2 = parameters_.normal_stress[i];
     InterfaceTraction load;
     if (params_.extra_load) load = params_.extra_load(x1, t_half);
     load.t2 += nucleation_traction(params_.nucleation, sigma2, x1, t_half);
@@ -174,8 +181,9 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
                -(sigma2 + below.f2()[i] + load.t2) / below.eta2()};
       gap += below.motion().d2[i]; // u2(upper) - u2(lower) = D_2 + D'_2
     }
-    const SplitNodeStep pair = resolve_split_node(node_, gap, upper, lower, !lower_, slip_speed[i],
-                                                  iface_.strength[i], iface_.pressure[i]);
+    const SplitNodeStep pair =
+        resolve_split_node(node_, parameters_.friction[i], gap, upper, lower, !lower_,
+                           slip_speed[i], friction_[i], iface_.pressure[i]);
     solved_[i] = pair.relative;
     up.v1_new[i] = pair.upper.v1;
     up.v2_new[i] = pair.upper.v2;
@@ -220,8 +228,9 @@ void SpectralMethod::record_interface() {
   // The interface after step n (relative motion: upper minus lower), and the energy over the
   // step (V constant over it).
   const HalfSpace::Motion& up = upper_.motion();
-  const double c0_1 = -params_.loading.shear_stress * dx_;
-  const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
+  // The initial reaction C0_i = dx (-tau0_i, |sigma0_i|) of node i.
+  auto c0_1 = [&](int i) { return -parameters_.shear_stress[i] * dx_; };
+  auto c0_2 = [&](int i) { return std::abs(parameters_.normal_stress[i]) * dx_; };
   const std::vector<double>&f1 = upper_.f1(), &f2 = upper_.f2();
   const double eta1 = upper_.eta1(), eta2 = upper_.eta2();
   double work = 0, dissipated = 0, delivered = 0;
@@ -236,8 +245,9 @@ void SpectralMethod::record_interface() {
     iface_.pressure[i] = r.pressure;
     iface_.strength[i] = r.strength;
     iface_.state[i] = std::int8_t(r.state);
+    friction_[i] = r.friction;
     // Work of the load changes: the interface loads and the release of the initial reaction.
-    work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
+    work += dt_ * ((load1_[i] * dx_ - c0_1(i)) * v1 + (load2_[i] * dx_ - c0_2(i)) * v2);
     dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);
     // Energy into the half-space: -(sigma - sigma0) . V = (eta V - f) . V per unit length.
     delivered += dt_ * dx_ * ((eta1 * v1 - f1[i]) * v1 + (eta2 * v2 - f2[i]) * v2);
@@ -257,7 +267,7 @@ void SpectralMethod::record_interface() {
       iface_.opening[i] = up.d2[i] + lo.d2[i];
       // The loads act as +L on the upper side and -L on the lower, the interface force as +C
       // and -C, the initial reaction as +C0 and -C0: each does its work on the relative motion.
-      work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
+      work += dt_ * ((load1_[i] * dx_ - c0_1(i)) * v1 + (load2_[i] * dx_ - c0_2(i)) * v2);
       dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);
       // In the mirrored frame (where lo and g live) the lower side is an upper half-space.
       const double w1 = lo.v1_new[i], w2 = lo.v2_new[i];

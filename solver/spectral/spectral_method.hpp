@@ -5,7 +5,8 @@
 //
 // At every interface node the traction on the solid's boundary is (perturbation form)
 //     sigma_2j = sigma0_j + f_j - eta_j V_j,   eta_1 = rho c_s, eta_2 = rho c_p,
-// with f_j the elastodynamic memory, computed mode by mode in Fourier space from the slip and
+// with sigma0 = (tau0_i, sigma0_i) the node's initial stresses (interface_parameters.hpp) and
+// f_j the elastodynamic memory, computed mode by mode in Fourier space from the slip and
 // opening histories (half_space_kernels.hpp, mode_memory.hpp). The plane's contact and
 // friction force C_j and the interface loads L_j balance it: -sigma_2j dx = C_j + L_j, so
 //     V_j = V_free_j + C_j / (eta_j dx),   V_free_j = (sigma0_j + f_j + L_j / dx) / eta_j,
@@ -20,6 +21,7 @@
 
 #include "solver/interface/interface_fields.hpp"
 #include "solver/interface/interface_law.hpp"
+#include "solver/interface/interface_parameters.hpp"
 #include "solver/interface/split_node.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
@@ -83,6 +85,8 @@ private:
   HalfSpace upper_;                  // the solid x2 > 0
   std::unique_ptr<HalfSpace> lower_; // the solid x2 < 0 in its mirrored frame (none: rigid)
   InterfaceNodeConstants node_;
+  InterfaceParameters parameters_;      // tau0, sigma0 and friction values per node
+  std::vector<FrictionState> friction_; // the friction state of each node after the last step
 
   std::vector<double> load1_, load2_; // interface loads at t_{n+1/2} [Pa]
   std::vector<double> slip_speed_;    // |V| entering the strength update (scratch)

@@ -133,7 +133,9 @@ TEST(JobValidation, UnknownFieldsAtEveryLevel) {
 TEST(JobValidation, UnknownFieldReasonListsTheKnownOnes) {
   const ParseResult result = parse_job({{"friction", {{"l", 1e-5}}}});
   ASSERT_EQ(result.errors.size(), 1u);
-  EXPECT_NE(result.errors[0].reason.find("L, law, mu, strength_update, v_star"), std::string::npos)
+  EXPECT_NE(result.errors[0].reason.find(
+                "D_c, L, law, mu, mu_d, mu_s, regularization, strength_update, t_star, v_star"),
+            std::string::npos)
       << result.errors[0].reason;
 }
 
@@ -156,8 +158,9 @@ TEST(JobValidation, WrongTypesNameTheExpectedTypeAndTheValueGot) {
 }
 
 TEST(JobValidation, EnumerationsListTheirSpellings) {
-  expect_single_error({{"friction", {{"law", "rate_and_state"}}}}, "/friction/law",
-                      R"(must be one of "prakash_clifton", "coulomb", got "rate_and_state")");
+  expect_single_error(
+      {{"friction", {{"law", "rate_and_state"}}}}, "/friction/law",
+      R"(must be one of "prakash_clifton", "coulomb", "slip_weakening", got "rate_and_state")");
   expect_single_error({{"friction", {{"strength_update", "rk4"}}}}, "/friction/strength_update",
                       R"("exponential_ramp", "exponential", "explicit_euler")");
   expect_single_error({{"geometry", {{"top_boundary", "free"}}}}, "/geometry/top_boundary",

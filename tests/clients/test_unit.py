@@ -86,6 +86,20 @@ class JobSpecTest(unittest.TestCase):
             jobspec.load_job("/no/such/job.json")
 
 
+class ResultSpecTest(unittest.TestCase):
+    def test_wave_speeds_of_either_material_form(self):
+        from slipfront_client.results import Result
+        empty = [None] * 7
+        moduli = Result("a.h5", *empty, spec={"material": {"density": 1.0, "young_modulus": 2.5,
+                                                            "poisson_ratio": 0.25}})
+        c_s, c_p = moduli.wave_speeds()
+        self.assertAlmostEqual(c_s, 1.0, places=12)
+        self.assertAlmostEqual(c_p, math.sqrt(3.0), places=12)
+        speeds = Result("b.h5", *empty, spec={"material": {"density": 2670.0, "p_wave_speed": 6000.0,
+                                                            "s_wave_speed": 3464.0}})
+        self.assertEqual(speeds.wave_speeds(), (3464.0, 6000.0))
+
+
 class ApiTest(unittest.TestCase):
     def api(self, responses):
         sleeps = []

@@ -5,8 +5,8 @@
 // docs/verification.md.
 #include "scene_support.hpp"
 
+#include "solver/interface/friction/strength_update.hpp"
 #include "solver/interface/interface_fields.hpp"
-#include "solver/interface/prakash_clifton.hpp"
 
 #include <gtest/gtest.h>
 

@@ -15,8 +15,8 @@
 // pressure linear over the step: exact for a linear input, second order for this one.
 #include "verification_support.hpp"
 
-#include "solver/interface/friction.hpp"
-#include "solver/interface/prakash_clifton.hpp"
+#include "solver/interface/friction/strength_law.hpp"
+#include "solver/interface/friction/strength_update.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -32,13 +32,27 @@ namespace {
 using verification::measure;
 constexpr double kPi = std::numbers::pi;
 
+// The strength after one step of the law `f` (a constant coefficient: strength = c*).
+double advance_strength(const Friction& f, double strength, double pressure_start,
+                        double pressure_end, double slip_speed, double dt) {
+  return StrengthLaw(f)
+      .advance(f, FrictionState{strength, 0.0}, pressure_start, pressure_end, slip_speed, dt)
+      .strength;
+}
+
 struct Response {
   double amplitude_ratio, phase;
 };
 
+// The rate |C| of the regularisation ODE: 1/t* (time scale) or (|V| + V*)/L (slip scale).
+double filter_rate(const Friction& f, double V) {
+  if (effective_regularization(f) == Regularization::time_scale) return 1.0 / f.t_star;
+  return (std::abs(V) + f.v_star) / f.L;
+}
+
 // Drives advance_strength with mu p(t) = x0 + A0 sin(omega t_n) and fits the steady output.
 Response drive(const Friction& f, double V, double frequency, double dt) {
-  const double r = (std::abs(V) + f.v_star) / f.L;
+  const double r = filter_rate(f, V);
   const double omega = 2 * kPi * frequency;
   const double x0 = 0.01125, A0 = 0.3 * x0; // A0 < x0: the pressure stays compressive
   const double t_settle = 40.0 / r;         // transient exp(-r t) below 1e-17
@@ -238,6 +252,62 @@ TEST(FrictionFilter, RampUpdateIsSecondOrderInDt) {
     }
     measure("ramp update, %d steps per period: response error %.4e%s", N, e,
             previous > 0 ? "" : " (then falls by 4 with each halving of dt)");
+    previous = e;
+  }
+}
+
+// The time-scale regularisation, d c*/dt = -(c* - mu max(0, p)) / t* (docs/physics.md): the
+// same exact updates with k = 1/t*, whatever the slip speed.
+Friction time_scale(double t_star, StrengthUpdate update) {
+  Friction f;
+  f.law = FrictionLaw::coulomb;
+  f.regularization = Regularization::time_scale;
+  f.t_star = t_star;
+  f.update = update;
+  return f;
+}
+
+TEST(FrictionFilter, TimeScaleStepResponseIsTheExactExponential) {
+  // The pressure steps from p0 to p1 at t = 0 and stays: c*(t) = mu p1 + mu (p0 - p1) e^(-t/t*).
+  // The exponential update holds c at the step's end value: exact at every step, any dt.
+  const double p0 = 0.015, p1 = 0.006, t_star = 0.05;
+  double worst = 0;
+  for (double dt_over_t : {0.01, 1.0, 10.0}) {
+    const Friction f = time_scale(t_star, StrengthUpdate::exponential);
+    const double dt = dt_over_t * t_star;
+    double y = f.mu * p0;
+    for (int n = 1; n <= 200; ++n) {
+      y = advance_strength(f, y, n == 1 ? p0 : p1, p1, 0.3, dt);
+      const double exact = f.mu * p1 + f.mu * (p0 - p1) * std::exp(-n * dt / t_star);
+      ASSERT_NEAR(y, exact, 1e-13 * f.mu * p0) << "dt/t* = " << dt_over_t << " step " << n;
+      worst = std::max(worst, std::abs(y - exact));
+    }
+  }
+  // The slip speed does not enter (it does in the slip scale).
+  for (StrengthUpdate u : {StrengthUpdate::exponential, StrengthUpdate::exponential_ramp}) {
+    const Friction f = time_scale(t_star, u);
+    EXPECT_EQ(advance_strength(f, 0.01, p0, p1, 0.0, 0.01),
+              advance_strength(f, 0.01, p0, p1, 5.0, 0.01));
+  }
+  measure("time-scale step response: worst |c* - exact exponential| = %.2e Pa over 200 steps "
+          "at dt/t* = 0.01, 1, 10",
+          worst);
+}
+
+TEST(FrictionFilter, TimeScaleRampUpdateIsSecondOrderInDt) {
+  // As RampUpdateIsSecondOrderInDt with |C| = 1/t*: the response at omega = 1/t* has the
+  // amplitude 1/sqrt(2) and the phase -atan(1); the error falls by 4 per halving of dt.
+  const Friction f = time_scale(0.05, StrengthUpdate::exponential_ramp);
+  const double frequency = 1.0 / (f.t_star * 2 * kPi);
+  double previous = 0;
+  for (int N : {50, 100, 200}) {
+    const double dt = 1.0 / (frequency * N);
+    const Response m = drive(f, 1e-3, frequency, dt);
+    const double e = std::hypot(m.phase + std::atan(1.0), m.amplitude_ratio - std::sqrt(0.5));
+    if (previous > 0) {
+      EXPECT_NEAR(previous / e, 4.0, 0.1) << "N = " << N;
+    }
+    measure("time-scale ramp update, %d steps per period: response error %.4e", N, e);
     previous = e;
   }
 }

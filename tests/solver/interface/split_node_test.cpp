@@ -15,9 +15,22 @@ InterfaceNodeConstants constants() {
   InterfaceNodeConstants c;
   c.dt = 0.1;
   c.tributary_length = 0.5;
-  c.friction.law = FrictionLaw::coulomb;
-  c.friction.mu = 0.5;
+  Friction coulomb;
+  coulomb.law = FrictionLaw::coulomb;
+  c.law = StrengthLaw(coulomb);
   return c;
+}
+
+// Friction values with the coefficient mu.
+FrictionValues with_mu(double mu) {
+  FrictionValues values;
+  values.mu = mu;
+  return values;
+}
+
+// The last step's strength as the friction state (a constant coefficient: strength = c*).
+FrictionState strength_state(double strength) {
+  return {strength, 0.0};
 }
 
 const InterfaceSide upper_side{2.0, 5.0, 0.03, -0.02};
@@ -36,10 +49,10 @@ TEST(SplitNode, RigidLowerSideIsTheSingleNodeLawBitForBit) {
   c.mass1 = upper_side.mass1;
   c.mass2 = upper_side.mass2;
   for (double gap : {0.0, 1e-4, 5e-3}) {
-    const InterfaceNodeStep single =
-        resolve_interface_node(c, gap, upper_side.v1, upper_side.v2, 0.01, 0.3, 0.6);
-    const SplitNodeStep pair =
-        resolve_split_node(constants(), gap, upper_side, lower_side, true, 0.01, 0.3, 0.6);
+    const InterfaceNodeStep single = resolve_interface_node(
+        c, with_mu(0.5), gap, upper_side.v1, upper_side.v2, 0.01, strength_state(0.3), 0.6);
+    const SplitNodeStep pair = resolve_split_node(constants(), with_mu(0.5), gap, upper_side,
+                                                  lower_side, true, 0.01, strength_state(0.3), 0.6);
     EXPECT_EQ(pair.relative.contact_force1, single.contact_force1);
     EXPECT_EQ(pair.relative.contact_force2, single.contact_force2);
     EXPECT_EQ(pair.relative.pressure, single.pressure);
@@ -55,12 +68,12 @@ TEST(SplitNode, RigidLowerSideIsTheSingleNodeLawBitForBit) {
 TEST(SplitNode, MomentumIsKeptAndTheForceActsOnBothSides) {
   // Closing (gap 0, sides approaching), stuck or slipping by the strength, and opening.
   for (double mu : {0.05, 0.5, 50.0}) {
-    InterfaceNodeConstants c = constants();
-    c.friction.mu = mu;
+    const InterfaceNodeConstants c = constants();
     for (double v2_lower : {0.015, -0.05}) {
       InterfaceSide lower = lower_side;
       lower.v2 = v2_lower;
-      const SplitNodeStep r = resolve_split_node(c, 0.0, upper_side, lower, false, 0.0, 0.0, 0.0);
+      const SplitNodeStep r = resolve_split_node(c, with_mu(mu), 0.0, upper_side, lower, false, 0.0,
+                                                 strength_state(0.0), 0.0);
       EXPECT_NEAR(momentum1(r.upper, r.lower), momentum1(upper_side, lower), 1e-15);
       EXPECT_NEAR(momentum2(r.upper, r.lower), momentum2(upper_side, lower), 1e-15);
       // The upper side's change is dt C / m+ (C the force the law reports).
@@ -74,9 +87,9 @@ TEST(SplitNode, MomentumIsKeptAndTheForceActsOnBothSides) {
 
 TEST(SplitNode, AStuckPairMovesWithOneVelocityAndAClosedPairClosesItsGap) {
   InterfaceNodeConstants c = constants();
-  c.friction.mu = 50.0; // holds anything
   const double gap = 2e-4;
-  const SplitNodeStep r = resolve_split_node(c, gap, upper_side, lower_side, false, 0.0, 0.0, 0.0);
+  const SplitNodeStep r = resolve_split_node(c, with_mu(50.0), gap, upper_side, lower_side, false,
+                                             0.0, strength_state(0.0), 0.0); // mu 50 holds all
   ASSERT_EQ(r.relative.state, NodeState::stick);
   EXPECT_EQ(r.upper.v1, r.lower.v1); // exactly
   EXPECT_DOUBLE_EQ(r.upper.v1, (2.0 * 0.03 + 3.0 * -0.01) / 5.0);
@@ -89,8 +102,8 @@ TEST(SplitNode, AStuckPairMovesWithOneVelocityAndAClosedPairClosesItsGap) {
 
 TEST(SplitNode, ASlippingPairCarriesTheStrengthAgainstTheRelativeSlip) {
   InterfaceNodeConstants c = constants();
-  c.friction.mu = 0.05;
-  const SplitNodeStep r = resolve_split_node(c, 0.0, upper_side, lower_side, false, 0.0, 0.0, 0.0);
+  const SplitNodeStep r = resolve_split_node(c, with_mu(0.05), 0.0, upper_side, lower_side, false,
+                                             0.0, strength_state(0.0), 0.0);
   ASSERT_EQ(r.relative.state, NodeState::slip);
   const double limit = r.relative.strength * c.tributary_length;
   EXPECT_DOUBLE_EQ(r.relative.contact_force1, -limit); // the upper side moves faster (+x1)
@@ -99,8 +112,8 @@ TEST(SplitNode, ASlippingPairCarriesTheStrengthAgainstTheRelativeSlip) {
 }
 
 TEST(SplitNode, AnOpeningPairFeelsNoForce) {
-  const SplitNodeStep r =
-      resolve_split_node(constants(), 1e-2, upper_side, lower_side, false, 0.0, 0.3, 0.6);
+  const SplitNodeStep r = resolve_split_node(constants(), with_mu(0.5), 1e-2, upper_side,
+                                             lower_side, false, 0.0, strength_state(0.3), 0.6);
   ASSERT_EQ(r.relative.state, NodeState::open);
   EXPECT_EQ(r.upper.v1, upper_side.v1);
   EXPECT_EQ(r.upper.v2, upper_side.v2);
@@ -115,8 +128,8 @@ TEST(SplitNode, AnInternalPairForceIsSeenByTheLawAndLeavesAHeldPairAtRest) {
   InterfaceNodeConstants c = constants();
   const PairForce c0{-0.2, 1.0}; // shear below mu * pressure: stuck
   const InterfaceSide up_rest{2.0, 5.0, 0.0, 0.0}, low_rest{3.0, 4.0, 0.0, 0.0};
-  const SplitNodeStep held =
-      resolve_split_node(c, 0.0, up_rest, low_rest, false, 0.0, 0.0, 0.0, c0);
+  const SplitNodeStep held = resolve_split_node(c, with_mu(0.5), 0.0, up_rest, low_rest, false, 0.0,
+                                                strength_state(0.0), 0.0, c0);
   ASSERT_EQ(held.relative.state, NodeState::stick);
   EXPECT_EQ(held.upper.v1, 0.0);
   EXPECT_EQ(held.upper.v2, 0.0);
@@ -126,16 +139,16 @@ TEST(SplitNode, AnInternalPairForceIsSeenByTheLawAndLeavesAHeldPairAtRest) {
   EXPECT_NEAR(held.relative.pressure * c.tributary_length, c0.f2, 1e-15);
 
   for (double mu : {0.05, 0.5}) { // slipping and stuck, and opening (gap 1e-2)
-    c.friction.mu = mu;
     for (double gap : {0.0, 1e-2}) {
       InterfaceSide up_with = upper_side, low_with = lower_side;
       up_with.v1 -= c.dt * c0.f1 / up_with.mass1;
       up_with.v2 -= c.dt * c0.f2 / up_with.mass2;
       low_with.v1 += c.dt * c0.f1 / low_with.mass1;
       low_with.v2 += c.dt * c0.f2 / low_with.mass2;
-      const SplitNodeStep a =
-          resolve_split_node(c, gap, upper_side, lower_side, false, 0.0, 0.3, 0.6, c0);
-      const SplitNodeStep b = resolve_split_node(c, gap, up_with, low_with, false, 0.0, 0.3, 0.6);
+      const SplitNodeStep a = resolve_split_node(c, with_mu(mu), gap, upper_side, lower_side, false,
+                                                 0.0, strength_state(0.3), 0.6, c0);
+      const SplitNodeStep b = resolve_split_node(c, with_mu(mu), gap, up_with, low_with, false, 0.0,
+                                                 strength_state(0.3), 0.6);
       EXPECT_EQ(a.relative.state, b.relative.state);
       EXPECT_NEAR(a.relative.contact_force1, b.relative.contact_force1, 1e-14);
       EXPECT_NEAR(a.relative.contact_force2, b.relative.contact_force2, 1e-14);
@@ -148,13 +161,13 @@ TEST(SplitNode, AnInternalPairForceIsSeenByTheLawAndLeavesAHeldPairAtRest) {
 }
 
 TEST(SplitNode, AHeavierAndHeavierLowerSideAtRestTendsToTheRigidPlane) {
-  const SplitNodeStep rigid =
-      resolve_split_node(constants(), 1e-4, upper_side, lower_side, true, 0.0, 0.0, 0.0);
+  const SplitNodeStep rigid = resolve_split_node(constants(), with_mu(0.5), 1e-4, upper_side,
+                                                 lower_side, true, 0.0, strength_state(0.0), 0.0);
   double last_error = INFINITY;
   for (double scale : {1e2, 1e4, 1e6, 1e8}) {
     const InterfaceSide heavy{lower_side.mass1 * scale, lower_side.mass2 * scale, 0.0, 0.0};
-    const SplitNodeStep r =
-        resolve_split_node(constants(), 1e-4, upper_side, heavy, false, 0.0, 0.0, 0.0);
+    const SplitNodeStep r = resolve_split_node(constants(), with_mu(0.5), 1e-4, upper_side, heavy,
+                                               false, 0.0, strength_state(0.0), 0.0);
     const double error = std::abs(r.relative.contact_force2 - rigid.relative.contact_force2) +
                          std::abs(r.relative.contact_force1 - rigid.relative.contact_force1) +
                          std::abs(r.upper.v1 - rigid.upper.v1);

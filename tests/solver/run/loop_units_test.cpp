@@ -97,7 +97,7 @@ TEST(EnergyRecorder, DueEveryFiftyMillisecondsAndStampedAtTheHalfStep) {
 
 TEST(DivergenceCheck, SpeedLimitIsAThousandTimesTheLoadVelocity) {
   SimulationParams p;
-  DivergenceCheck check(p);
+  DivergenceCheck check(p, {0.0, 1.0, 2.0, 3.0});
   const double load = std::abs(p.loading.normal_stress) + std::abs(p.loading.shear_stress);
   EXPECT_DOUBLE_EQ(check.speed_limit(),
                    1000.0 * load / (p.material.density * p.material.s_wave_speed()));
@@ -119,11 +119,11 @@ TEST(DivergenceCheck, SpeedLimitIsAThousandTimesTheLoadVelocity) {
 TEST(DivergenceCheck, NaNAndNonFiniteEnergyDiverge) {
   SimulationParams p;
   InterfaceFields f = resting_interface(3, 1.0, std::abs(p.loading.normal_stress), p.friction.mu);
-  DivergenceCheck a(p);
+  DivergenceCheck a(p, f.x1);
   f.velocity[0] = std::numeric_limits<double>::quiet_NaN();
   a.check(f);
   EXPECT_TRUE(a.diverged());
-  DivergenceCheck b(p);
+  DivergenceCheck b(p, f.x1);
   b.check_energy({1.0, 2.0, 0.0, 0.0});
   EXPECT_FALSE(b.diverged());
   b.check_energy({std::numeric_limits<double>::infinity(), 2.0, 0.0, 0.0});
@@ -133,10 +133,10 @@ TEST(DivergenceCheck, NaNAndNonFiniteEnergyDiverge) {
 TEST(DivergenceCheck, NegativeEnergyInTheSolidIsAnInstability) {
   // EnergyBalance {kinetic, strain, external_work, dissipated}.
   SimulationParams p;
-  DivergenceCheck ok(p);
+  DivergenceCheck ok(p, {0.0});
   ok.check_energy({0.0, -1e-20, 1e-4, 0.5e-4}); // round-off below zero is not a divergence
   EXPECT_FALSE(ok.diverged());
-  DivergenceCheck bad(p);
+  DivergenceCheck bad(p, {0.0});
   bad.check_energy({0.0, -1e-8, 1e-4, 0.5e-4});
   EXPECT_TRUE(bad.diverged());
   EXPECT_NE(bad.message(1.0, 10).find("energy in the solid became negative"), std::string::npos)
@@ -148,16 +148,16 @@ TEST(DivergenceCheck, EachOfTwoSolidsMustHoldANonNegativeEnergy) {
   // returned energy that the upper one holds; their sum is positive.
   SimulationParams p;
   p.lower.side = LowerSide::elastic;
-  DivergenceCheck ok(p);
+  DivergenceCheck ok(p, {0.0});
   ok.check_energy({0.0, 5e-5, 1e-4, 0.5e-4, 2e-5});
   EXPECT_FALSE(ok.diverged());
-  DivergenceCheck lower(p);
+  DivergenceCheck lower(p, {0.0});
   lower.check_energy({0.0, 5e-5, 1e-4, 0.5e-4, -1e-8});
   EXPECT_TRUE(lower.diverged());
   EXPECT_NE(lower.message(1.0, 10).find("energy in the lower solid became negative"),
             std::string::npos)
       << lower.message(1.0, 10);
-  DivergenceCheck upper(p);
+  DivergenceCheck upper(p, {0.0});
   upper.check_energy({0.0, 5e-5, 1e-4, 0.5e-4, 5e-5 + 1e-8});
   EXPECT_TRUE(upper.diverged());
   EXPECT_NE(upper.message(1.0, 10).find("energy in the upper solid became negative"),
@@ -169,7 +169,7 @@ TEST(DivergenceCheck, StrengthAboveTheLargestMuPIsUnstable) {
   SimulationParams p;
   const double p0 = std::abs(p.loading.normal_stress);
   InterfaceFields f = resting_interface(3, 0.5, p0, p.friction.mu);
-  DivergenceCheck check(p);
+  DivergenceCheck check(p, f.x1);
   f.pressure[1] = 2 * p0; // raises the range to 2 mu p0
   f.strength[1] = 1.5 * p.friction.mu * p0;
   check.check(f);

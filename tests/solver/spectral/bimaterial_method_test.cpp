@@ -144,6 +144,17 @@ TEST(SpectralTwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
   p.lower.material = softer_and_lighter();
   p.friction.law = FrictionLaw::prakash_clifton;
   EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
+  // Any law without regularisation is flagged (slip weakening slides at mu_d once weakened);
+  // a time-scale regularisation is not.
+  p.friction.law = FrictionLaw::slip_weakening;
+  const auto weakening = spectral::SpectralMethod(p).end_warnings(1.0);
+  ASSERT_EQ(weakening.size(), 1u);
+  EXPECT_NE(weakening[0].find("without regularisation (law slip_weakening)"), std::string::npos)
+      << weakening[0];
+  p.friction.regularization = Regularization::time_scale;
+  EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
+  p.friction.law = FrictionLaw::coulomb;
+  EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
 }
 
 // A sliding rupture without any normal load: an extra shear traction on |x1| <= 1.5 m lifts

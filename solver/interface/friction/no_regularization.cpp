@@ -1,0 +1,26 @@
+// No regularisation: the strength follows the contact pressure at every instant,
+// c* = mu_0 max(0, p) (plain Coulomb friction for a constant mu).
+#include "solver/interface/friction/regularization_law.hpp"
+
+namespace slipfront {
+
+namespace {
+
+class NoRegularization final : public RegularizationLaw {
+public:
+  FrictionParameters parameters() const override { return {}; }
+  double advance(const FrictionValues& /*values*/, StrengthUpdate /*update*/, double /*filtered*/,
+                 double /*c_start*/, double c_end, double /*slip_speed*/,
+                 double /*dt*/) const override {
+    return c_end;
+  }
+};
+
+} // namespace
+
+const RegularizationLaw& no_regularization() {
+  static const NoRegularization law;
+  return law;
+}
+
+} // namespace slipfront
