@@ -41,8 +41,15 @@ def integrity(data_dir):
 def refused_start(test, data_dir, message):
     """A server on `data_dir` must exit 1 at start with `message` in its log."""
     server = Server(BINARY, data_dir=data_dir)
-    with test.assertRaises(RuntimeError) as caught:
+    try:
         server.start()
+    except RuntimeError as e:
+        caught = e
+    else:
+        server.kill()  # it started: stop it before failing, never leave it running
+        server.cleanup()
+        test.fail(f"a server started on {data_dir}")
+    caught = type("Caught", (), {"exception": caught})
     test.assertIn(message, str(caught.exception))
     test.assertEqual(server.proc.returncode, 1)
     server.cleanup()
@@ -80,6 +87,30 @@ class SecondServerOnTheSameDir(unittest.TestCase):
             self.assertEqual(third.get("/healthz").status_code, 200)
             self.assertEqual(third.terminate(), 0)
             third.cleanup()
+        finally:
+            first.own_dir = True
+            first.cleanup()
+
+    def test_deleting_the_lock_file_does_not_free_the_dir(self):
+        """Issue 22 item 3: the lock was the file's; after `rm slipfront.lock` a second server
+        locked a new file of that name, re-queued the first one's running job and deleted its
+        temporary file (the job ended failed, attempts 2)."""
+        first = Server(BINARY, args=["--workers", "1"]).start()
+        try:
+            job = first.submit(long_job("owned-unlocked")).json()
+            first.wait_status(job["id"], {"running"}, timeout=30)
+            os.remove(os.path.join(first.data_dir, "slipfront.lock"))
+            refused_start(self, first.data_dir, "in use by another slipfront server")
+            now = first.get(f"{JOBS}/{job['id']}").json()
+            self.assertEqual(now["status"], "running")
+            self.assertEqual(now["attempts"], 1)
+            self.assertEqual(first.post(f"{JOBS}/{job['id']}/cancel").status_code, 202)
+            first.wait_status(job["id"], TERMINAL, timeout=10)
+            self.assertEqual(first.terminate(), 0)
+            second = Server(BINARY, data_dir=first.data_dir).start()
+            self.assertEqual(second.get("/healthz").status_code, 200)
+            self.assertEqual(second.terminate(), 0)
+            second.cleanup()
         finally:
             first.own_dir = True
             first.cleanup()
