@@ -113,7 +113,7 @@ void ServerApp::start() {
   wo.db_progress_interval_s = config_.db_progress_interval_s;
   study_store_ = std::make_unique<StudyStore>(*store_);
   supervisor_ = std::make_unique<StudySupervisor>(*study_store_, *service_);
-  studies_ = std::make_unique<StudyService>(*study_store_, *service_, *queue_, *supervisor_);
+  studies_ = std::make_unique<StudyService>(*study_store_, *service_, *supervisor_);
   wo.on_finished = [this](const std::string& id) { supervisor_->job_finished(id); };
   service_->set_on_cancelled([this](const std::string& id) { supervisor_->job_finished(id); });
   if (slurm)

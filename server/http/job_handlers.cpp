@@ -3,6 +3,7 @@
 #include "server/core/priority.hpp"
 #include "server/core/run_query.hpp"
 #include "server/http/handlers.hpp"
+#include "server/http/idempotency_key.hpp"
 #include "server/http/job_filter_query.hpp"
 #include "server/http/job_json.hpp"
 #include "server/http/query_string.hpp"
@@ -44,12 +45,9 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
     options.priority = number ? priority_of(*number) : std::nullopt;
     if (!options.priority) errors.push_back({"/query/priority", priority_rule()});
   }
-  std::string key(req["Idempotency-Key"]);
-  if (req.count("Idempotency-Key") && (key.empty() || key.size() > 200))
-    errors.push_back({"/headers/Idempotency-Key", "must be 1 to 200 characters"});
+  options.idempotency_key = idempotency_key(req, errors);
   if (!errors.empty())
     return problem_response(req, http::status::bad_request, "invalid query parameters", errors);
-  options.idempotency_key = key;
 
   SubmitResult r = ctx.service.submit(req.body(), options);
   using Kind = SubmitResult::Kind;

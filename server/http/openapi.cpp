@@ -205,9 +205,13 @@ const char* document = R"json({
           "400": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/studies": {
-      "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist)", "security": [{"bearer": []}],
+      "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist); the study and its first runs are stored in one transaction", "security": [{"bearer": []}],
+        "parameters": [
+          {"name": "Idempotency-Key", "in": "header", "schema": {"type": "string", "maxLength": 200}, "description": "a retried POST with the same key and body returns the first study (200, Idempotent-Replayed: true); another body with the key is a 422"}],
         "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/StudyRequest"}}}},
         "responses": {"201": {"description": "Created; Location names the study", "headers": {"Location": {"schema": {"type": "string"}}},
+            "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
+          "200": {"description": "Replayed: the study an earlier request with the same Idempotency-Key created", "headers": {"Idempotent-Replayed": {"schema": {"type": "string"}}},
             "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
           "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
           "422": {"$ref": "#/components/responses/Problem"}, "503": {"$ref": "#/components/responses/Unavailable"}}},

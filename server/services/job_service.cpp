@@ -149,18 +149,46 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
     }
   }
 
-  if (!options.ignore_queue_limit && queue_.full()) return failure(Kind::queue_full, {});
+  if (!options.ignore_queue_limit && !queue_has_room()) return failure(Kind::queue_full, {});
   job.seq = store_.insert(job); // committed before the 201 is sent
-  // Pushes are serialised by submit_mutex_, so the queue has room; if it was closed
-  // (draining), the job stays queued in the database and the next start-up runs it.
-  if (options.ignore_queue_limit)
-    queue_.push_unbounded(job.id, job.priority);
-  else
-    queue_.push(job.id, job.priority);
+  enqueue(job.id, job.priority, options.ignore_queue_limit);
   SubmitResult r;
   r.kind = Kind::created;
   r.job = job;
   return r;
+}
+
+bool JobService::queue_has_room() const {
+  return queue_.size() + (batch_ ? batch_->size() : 0) < queue_.limit();
+}
+
+void JobService::enqueue(const std::string& id, int priority, bool ignore_queue_limit) {
+  if (batch_) {
+    batch_->push_back({id, priority});
+    return;
+  }
+  // Pushes are serialised by submit_mutex_, so the queue has room; if it was closed
+  // (draining), the job stays queued in the database and the next start-up runs it.
+  if (ignore_queue_limit)
+    queue_.push_unbounded(id, priority);
+  else
+    queue_.push(id, priority);
+}
+
+bool JobService::submit_together(const std::function<bool()>& f) {
+  std::lock_guard lock(submit_mutex_);
+  if (batch_) return f(); // already inside a batch: one transaction for both
+  batch_.emplace();
+  struct EndBatch {
+    std::optional<std::vector<Pending>>& batch;
+    ~EndBatch() { batch.reset(); }
+  } end_batch{batch_};
+  if (!store_.db().in_transaction(f)) return false;
+  // Committed: every job of the batch was admitted against the limit, so each is queued
+  // whatever happened to the queue meanwhile (a job committed as queued must be runnable).
+  for (const auto& p : *batch_)
+    queue_.push_unbounded(p.id, p.priority);
+  return true;
 }
 
 std::optional<Job> JobService::get(const std::string& id) {

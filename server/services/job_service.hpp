@@ -69,6 +69,13 @@ public:
   SubmitResult submit(const std::string& body, const SubmitOptions& options);
   // The same for a parsed document (studies submit their runs through this).
   SubmitResult submit_document(nlohmann::json doc, const SubmitOptions& options);
+  // Submits several jobs as one (a study with its first runs): f() runs holding the
+  // submission lock, inside one database transaction (StoreDb::in_transaction). The jobs it
+  // submits join the run queue only once that transaction commits; when f returns false or
+  // throws, none of them stays, nor anything else f wrote. Within f the queue limit counts
+  // the jobs f has submitted so far, so batches and single jobs together never pass it.
+  // Returns whether f committed.
+  bool submit_together(const std::function<bool()>& f);
   // Validates a job document as submit() would, without submitting it.
   api::ParseResult validate(nlohmann::json doc) const;
   std::optional<Job> get(const std::string& id); // with live progress if running
@@ -92,12 +99,24 @@ public:
 
 private:
   bool result_file_exists(const Job& job) const;
+  // A job inserted into the store goes to the run queue: at once, or at the commit of the
+  // batch of submit_together(). The caller holds submit_mutex_.
+  void enqueue(const std::string& id, int priority, bool ignore_queue_limit);
+  bool queue_has_room() const; // counts the batch's jobs not queued yet
+
+  struct Pending {
+    std::string id;
+    int priority = 0;
+  };
 
   ServiceOptions options_;
   JobStore& store_;
   JobQueue& queue_;
   RunningJobs& running_;
-  std::mutex submit_mutex_; // queue-limit check, insert and push are one step
+  // Queue-limit check, insert and push are one step. Recursive: submit_together() holds it
+  // while f() submits.
+  std::recursive_mutex submit_mutex_;
+  std::optional<std::vector<Pending>> batch_; // inside submit_together(): queued at its commit
   std::function<void(const std::string& id)> on_cancelled_;
 };
 

@@ -87,7 +87,8 @@ void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
 
 } // namespace
 
-StudyCreateResult StudyService::create(const std::string& body, const std::string& user) {
+StudyCreateResult StudyService::create(const std::string& body, const std::string& user,
+                                       const std::string& idempotency_key) {
   StudyCreateResult out;
   auto body_json = api::parse_bounded_json(body);
   if (!body_json.ok()) {
@@ -113,10 +114,6 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   std::size_t now_count = 0;
   for (const auto& p : planned)
     now_count += p.submit_now ? 1 : 0;
-  if (queue_.size() + now_count > queue_.limit()) {
-    out.kind = Kind::queue_full;
-    return out;
-  }
 
   StudyRecord study;
   study.id = new_job_id();
@@ -126,6 +123,7 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   study.base = request.base;
   study.request = request.body;
   study.submitted_by = user;
+  study.idempotency_key = idempotency_key;
   study.priority = request.priority.value_or(0);
   study.fresh = request.fresh.value_or(false);
   study.created_at = now_iso8601();
@@ -133,18 +131,37 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   auto base = jobs_.validate(run_document(request, study.id, json::object(), "", 5e-5, 10));
   study.scene_hash = base.spec ? api::scene_hash(base.spec->canonical) : "";
 
+  // Under the step lock and the submission lock, in one transaction: the key is looked up
+  // where the study would be inserted, and the queue limit counts the runs as they go in.
   supervisor_.exclusive([&] {
-    studies_.insert(study);
-    for (const auto& p : planned) {
-      if (!p.submit_now) continue;
-      auto r = submit_study_run(jobs_, studies_, study, request, p.overrides, p.regime, p.L, p.n_d,
-                                true);
-      if (!r.job)
-        log_error("study " + study.id + ": a run was refused after validation: " +
-                  (r.errors.empty() ? "" : r.errors[0].pointer + " " + r.errors[0].reason));
-    }
-    supervisor_.step_locked(study.id);
+    jobs_.submit_together([&] {
+      if (!idempotency_key.empty())
+        if (auto earlier = studies_.find_by_idempotency_key(user, idempotency_key)) {
+          out.id = earlier->id;
+          out.kind = earlier->request == request.body ? Kind::replayed : Kind::key_conflict;
+          return false;
+        }
+      studies_.insert(study);
+      for (const auto& p : planned) {
+        if (!p.submit_now) continue;
+        auto r = submit_study_run(jobs_, studies_, study, request, p.overrides, p.regime, p.L,
+                                  p.n_d, false);
+        if (r.kind == SubmitResult::Kind::queue_full) {
+          out.kind = Kind::queue_full;
+          return false; // nothing of the study stays
+        }
+        if (!r.job)
+          log_error("study " + study.id + ": a run was refused after validation: " +
+                    (r.errors.empty() ? "" : r.errors[0].pointer + " " + r.errors[0].reason));
+      }
+      supervisor_.step_locked(study.id);
+      return true;
+    });
   });
+  if (out.kind == Kind::key_conflict)
+    out.errors.push_back({"", "Idempotency-Key " + idempotency_key +
+                                  " was used for a different study (" + *out.id + ")"});
+  if (out.kind != Kind::created) return out;
   log_info("study " + study.id + " created (" + study.kind + ", " + std::to_string(now_count) +
            " run(s) submitted) by " + user);
   out.id = study.id;
