@@ -164,7 +164,7 @@ const char* document = R"json({
           "206": {"description": "One byte range", "content": {"application/x-hdf5": {}}},
           "304": {"description": "Not modified"},
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
-          "410": {"description": "The job succeeded but its result file was deleted from the data dir (an identical new job runs again)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+          "410": {"description": "The job succeeded but its result file was deleted from the data dir, is damaged (another size or SHA-256 than stored) or is not a regular file; an identical new job runs again", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
           "416": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/result.xdmf": {

@@ -14,7 +14,8 @@ namespace slipfront::server {
 
 JobService::JobService(ServiceOptions options, JobStore& store, JobQueue& queue,
                        RunningJobs& running)
-    : options_(std::move(options)), store_(store), queue_(queue), running_(running) {}
+    : options_(std::move(options)), store_(store), queue_(queue), running_(running),
+      result_files_(options_.data_dir) {}
 
 ServiceLoad JobService::load() const {
   return {running_.size(), queue_.size(), queue_.limit()};
@@ -54,13 +55,6 @@ std::vector<api::FieldError> take_server_fields(nlohmann::json& doc, SubmitOptio
 }
 
 } // namespace
-
-bool JobService::result_file_exists(const Job& job) const {
-  std::error_code ec;
-  const auto path =
-      std::filesystem::path(options_.data_dir.empty() ? "." : options_.data_dir) / job.result.path;
-  return std::filesystem::is_regular_file(path, ec);
-}
 
 api::ParseResult JobService::validate(nlohmann::json doc) const {
   // One solver thread per job unless the spec asks: N workers use N cores.
@@ -125,11 +119,15 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
     // sampling, so another sampling is another file (docs/server.md, "Result cache").
     auto earlier = store_.find_reusable(spec.sha256, options_.code_version,
                                         spec.canonical.value("output", nlohmann::json()));
-    if (earlier && !result_file_exists(*earlier)) {
-      // Deleted by hand (or lost): never point a new job at it; run the job again.
-      log_error("job " + earlier->id + ": result file " + earlier->result.path +
-                " is missing; identical jobs are run again instead of reusing it");
-      earlier.reset();
+    if (earlier) {
+      // Deleted by hand, lost or damaged: never point a new job at it; run the job again.
+      auto file = result_files_.open(earlier->result);
+      if (file.state != OpenedResult::State::intact) {
+        log_error("job " + earlier->id + ": result file " + earlier->result.path + " is " +
+                  (file.state == OpenedResult::State::missing ? "missing" : file.reason) +
+                  "; identical jobs are run again instead of reusing it");
+        earlier.reset();
+      }
     }
     if (earlier) {
       job.status = JobStatus::succeeded;

@@ -6,6 +6,7 @@
 #include "server/db/job_store.hpp"
 #include "server/run/job_queue.hpp"
 #include "server/run/running_jobs.hpp"
+#include "server/services/result_files.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -51,7 +52,7 @@ struct ServiceOptions {
   std::string code_version;
   bool auth_enabled = false;
   // Result paths are relative to it; "" = the working directory. A cached result whose file
-  // is gone is not reused.
+  // is gone or damaged (ResultFiles) is not reused.
   std::string data_dir;
 };
 
@@ -96,9 +97,11 @@ public:
     on_cancelled_ = std::move(f);
   }
   const ServiceOptions& options() const { return options_; }
+  // The result files, verified before they are served (they may be hashed: off the I/O
+  // threads).
+  ResultFiles& result_files() { return result_files_; }
 
 private:
-  bool result_file_exists(const Job& job) const;
   // A job inserted into the store goes to the run queue: at once, or at the commit of the
   // batch of submit_together(). The caller holds submit_mutex_.
   void enqueue(const std::string& id, int priority, bool ignore_queue_limit);
@@ -118,6 +121,7 @@ private:
   std::recursive_mutex submit_mutex_;
   std::optional<std::vector<Pending>> batch_; // inside submit_together(): queued at its commit
   std::function<void(const std::string& id)> on_cancelled_;
+  ResultFiles result_files_;
 };
 
 } // namespace slipfront::server
