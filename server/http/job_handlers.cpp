@@ -158,6 +158,11 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
     return problem_response(rc.request, http::status::conflict,
                             "job " + id + " has already finished (" + to_string(r.job->status) +
                                 ")");
+  case Kind::finishing:
+    return problem_response(rc.request, http::status::conflict,
+                            "job " + id +
+                                " is finishing: its run has ended and its result is being "
+                                "stored; it will not be cancelled");
   case Kind::cancelled: {
     auto body = job_to_json(*r.job);
     body["cancel_requested"] = true;

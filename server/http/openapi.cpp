@@ -148,7 +148,7 @@ const char* document = R"json({
         "responses": {"200": {"$ref": "#/components/responses/Job"}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/cancel": {
-      "post": {"summary": "Cancel a job (queued: at once; running: within about a second)", "security": [{"bearer": []}],
+      "post": {"summary": "Cancel a job (queued: 200 at once; running: 202, it ends cancelled within about a second; finishing or finished: 409)", "security": [{"bearer": []}],
         "parameters": [{"$ref": "#/components/parameters/id"}],
         "responses": {"200": {"$ref": "#/components/responses/Job"}, "202": {"$ref": "#/components/responses/Job"},
           "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},

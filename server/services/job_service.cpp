@@ -215,7 +215,14 @@ CancelResult JobService::cancel(const std::string& id, const std::string& user) 
     if (on_cancelled_) on_cancelled_(id);
     return {CancelResult::Kind::cancelled, store_.get(id)};
   }
-  if (running_.request_cancel(id, user)) return {CancelResult::Kind::cancel_requested, get(id)};
+  switch (running_.request_cancel(id, user)) {
+  case RunningJobs::CancelRequest::requested:
+    return {CancelResult::Kind::cancel_requested, get(id)};
+  case RunningJobs::CancelRequest::finishing:
+    return {CancelResult::Kind::finishing, get(id)};
+  case RunningJobs::CancelRequest::not_running:
+    break;
+  }
   job = store_.get(id); // it finished in between
   return {CancelResult::Kind::already_final, job};
 }

@@ -42,7 +42,14 @@ struct SubmitResult {
 };
 
 struct CancelResult {
-  enum class Kind { cancelled, cancel_requested, not_found, forbidden, already_final } kind;
+  enum class Kind {
+    cancelled,        // it was queued: cancelled now
+    cancel_requested, // running: it stops at its next step and ends cancelled
+    finishing,        // its run has ended, its result is being stored: not cancelled
+    not_found,
+    forbidden,
+    already_final,
+  } kind;
   std::optional<Job> job;
 };
 
