@@ -34,11 +34,13 @@ std::string method_description(const SimulationParams& params) {
   std::string method;
   if (params.method == Method::spectral_bi) {
     char text[200];
+    const bool two = params.lower.elastic(); // docs/spectral-bi.md "Two half-spaces"
     std::snprintf(text, sizeof text,
-                  "spectral boundary integral, elastic half-space (velocity-form memory "
-                  "truncated after %g mode periods), dt = %g dx / c_s, %d corrector pass%s",
+                  "spectral boundary integral, %s (velocity-form memory "
+                  "truncated after %g mode periods), dt = %g dx / %s, %d corrector pass%s",
+                  two ? "two elastic half-spaces" : "elastic half-space",
                   params.spectral.memory_periods, params.spectral.time_step_factor,
-                  params.spectral.corrector_passes,
+                  two ? "max c_s" : "c_s", params.spectral.corrector_passes,
                   params.spectral.corrector_passes == 1 ? "" : "es");
     method = text;
   } else {

@@ -52,6 +52,9 @@ struct EnergyBalance {
   double strain = 0;        // 1/2 u^n K u^{n+1}  (the quadratic form that leapfrog conserves)
   double external_work = 0; // work of the load changes: pre-stress release, nucleation, extra
   double dissipated = 0;    // friction and contact impacts, absorbing top
+  // Of kinetic + strain, the part held by the lower solid (0 on the rigid plane); each
+  // solid's part is checked for passivity on its own (solver/run/divergence_check.hpp).
+  double lower_solid = 0;
 };
 
 } // namespace slipfront

@@ -7,7 +7,7 @@
 namespace slipfront {
 
 DivergenceCheck::DivergenceCheck(const SimulationParams& params)
-    : mu_(params.friction.mu),
+    : mu_(params.friction.mu), two_solids_(params.lower.elastic()),
       max_coulomb_strength_(params.friction.mu * std::abs(params.loading.normal_stress)) {
   const Material& mat = params.material;
   const double load_scale =
@@ -44,17 +44,21 @@ void DivergenceCheck::check(const InterfaceFields& f) {
 
 void DivergenceCheck::check_energy(const EnergyBalance& e) {
   if (!std::isfinite(e.kinetic) || !std::isfinite(e.strain)) diverged_ = true;
-  // Passivity: the solid (the FE block's kinetic + strain energy, or the energy that crossed
+  // Passivity: a solid (the FE block's kinetic + strain energy, or the energy that crossed
   // into the BI half-space) cannot hold less than nothing. A negative value beyond round-off
-  // means the discrete scheme gave back more energy than it received: it is unstable.
-  const double stored = e.kinetic + e.strain;
+  // means the discrete scheme gave back more energy than it received: it is unstable. With
+  // two solids each is checked on its own.
   const double scale = std::max({std::abs(e.external_work), std::abs(e.dissipated), 1e-300});
+  const double upper = e.kinetic + e.strain - e.lower_solid;
+  const char* name = two_solids_ ? "the upper solid" : "the solid";
+  double stored = upper;
+  if (two_solids_ && e.lower_solid < upper) stored = e.lower_solid, name = "the lower solid";
   if (stored < -1e-9 * scale && energy_message_.empty()) {
     char msg[240];
     std::snprintf(msg, sizeof msg,
-                  "the energy in the solid became negative (%.4g J/m against %.4g J/m of load "
+                  "the energy in %s became negative (%.4g J/m against %.4g J/m of load "
                   "work): the scheme returns more energy than it received",
-                  stored, e.external_work);
+                  name, stored, e.external_work);
     energy_message_ = msg;
     diverged_ = true;
   }

@@ -2,7 +2,8 @@
 // particle velocity that the whole remote load would cause, |tau| / (rho c_s)), a
 // non-finite value anywhere (NaN fails the speed test; the energy sums on the steps they
 // are evaluated), a strength outside its physical range (an unstable strength update), or a
-// negative energy in the solid (a scheme that returns more energy than it received).
+// negative energy in a solid (a scheme that returns more energy than it received; each of
+// two solids on its own).
 // Also keeps the largest |V| seen (the max_slip_velocity metric).
 #pragma once
 
@@ -28,6 +29,7 @@ public:
 
 private:
   double mu_;
+  bool two_solids_; // a lower elastic solid: passivity is checked per solid
   double speed_limit_;
   double max_coulomb_strength_; // the largest mu p seen, mu p0 included
   double max_slip_velocity_ = 0.0;

@@ -16,27 +16,21 @@ namespace {
 
 constexpr double two_pi = 2.0 * std::numbers::pi;
 
-// Contiguous mode ranges [split[m], split[m + 1]) of about equal convolution work.
-std::vector<int> split_modes(const ModeMemory& memory, long steps, int parts) {
-  std::vector<double> cumulative(memory.modes() + 1, 0.0);
-  for (int n = 0; n < memory.modes(); ++n)
-    cumulative[n + 1] = cumulative[n] + double(std::min(memory.length(n), steps)) + 1.0;
-  std::vector<int> split(parts + 1, memory.modes());
-  split[0] = 0;
-  for (int m = 1; m < parts; ++m) {
-    const double target = cumulative.back() * m / parts;
-    split[m] =
-        int(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
-    split[m] = std::clamp(split[m], split[m - 1], memory.modes());
-  }
-  return split;
-}
-
 } // namespace
+
+double SpectralMethod::reference_shear_speed(const SimulationParams& p) {
+  const double upper = p.material.s_wave_speed();
+  return p.lower.elastic() ? std::max(upper, p.lower.material.s_wave_speed()) : upper;
+}
 
 double SpectralMethod::time_step(const SimulationParams& p) {
   const double dx = 1.0 / p.geometry.nodes_per_meter; // as mesh_size(p).dx, without the mesh
-  return p.spectral.time_step_factor * dx / p.material.s_wave_speed();
+  return p.spectral.time_step_factor * dx / reference_shear_speed(p);
+}
+
+double SpectralMethod::side_step_factor(const SimulationParams& p, const Material& side) {
+  // c_s dt / dx of this side: beta for the side that sets dt (exactly: the ratio is 1.0).
+  return p.spectral.time_step_factor * (side.s_wave_speed() / reference_shear_speed(p));
 }
 
 double SpectralMethod::step_bound(const SimulationParams& p) {
@@ -50,55 +44,68 @@ long SpectralMethod::max_steps(const SimulationParams& p) {
 double SpectralMethod::estimated_memory_bytes(const SimulationParams& p) {
   const int nx = mesh_size(p).nx, modes = nx / 2 + 1;
   const long steps = max_steps(p);
-  double lags = 0;
-  for (int n = 1; n < modes; ++n)
-    lags += double(ModeMemory::memory_length(n, p.geometry.width, time_step(p),
-                                             p.material.s_wave_speed(), p.spectral.memory_periods,
-                                             steps));
+  double lags = 0, table = 0; // table: the kernel tables
+  for (const Material* side : solids(p)) {
+    for (int n = 1; n < modes; ++n)
+      lags +=
+          double(ModeMemory::memory_length(n, p.geometry.width, time_step(p), side->s_wave_speed(),
+                                           p.spectral.memory_periods, steps));
+    table += 6.0 * 8.0 * kernel_span(p, *side) / HalfSpaceKernels::table_step;
+  }
   const double memory = 7.0 * 8.0 * lags; // 4 history + 3 weight doubles a lag
-  const double fields = 40.0 * 8.0 * nx;  // nodal and modal vectors
-  const double table = 6.0 * 8.0 * kernel_span(p) / HalfSpaceKernels::table_step;
-  const double records = 4.0 * 8.0 * double(steps);   // probe records
+  const double fields = 40.0 * 8.0 * nx * double(solids(p).size()); // nodal and modal vectors
+  const double records = 4.0 * 8.0 * double(steps);                 // probe records
   const double sample_buffer = 64.0 * 6.0 * 8.0 * nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                     // code, libraries, HDF5 caches
   return memory + fields + table + records + sample_buffer + baseline;
 }
 
+std::vector<const Material*> SpectralMethod::solids(const SimulationParams& p) {
+  if (p.lower.elastic()) return {&p.material, &p.lower.material};
+  return {&p.material};
+}
+
 double SpectralMethod::kernel_span(const SimulationParams& p) {
+  return kernel_span(p, p.material);
+}
+
+double SpectralMethod::kernel_span(const SimulationParams& p, const Material& side) {
   // The last weight of mode n ends at (M_n + 1/2) |k_n| c_s dt <= 2 pi q + 3/2 pi beta, and
-  // never beyond the run: (max_steps + 1/2) |k_max| c_s dt with |k_max| = pi / dx.
-  const double beta = p.spectral.time_step_factor;
+  // never beyond the run: (max_steps + 1/2) |k_max| c_s dt with |k_max| = pi / dx (beta the
+  // side's c_s dt / dx).
+  const double beta = side_step_factor(p, side);
   const double window = two_pi * p.spectral.memory_periods + 1.5 * std::numbers::pi * beta;
   const double run = (step_bound(p) + 1.5) * std::numbers::pi * beta;
   return std::min(window, run) + 0.5;
 }
 
-SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
-    : params_(params), nx_(mesh_size(params).nx), modes_(nx_ / 2 + 1), dx_(mesh_size(params).dx),
-      dt_(time_step(params)), eta1_(params.material.density * params.material.s_wave_speed()),
-      eta2_(params.material.density * params.material.p_wave_speed()),
-      kernels_(params.material.s_wave_speed() / params.material.p_wave_speed(),
-               kernel_span(params)),
-      fft_(nx_), team_(threads) {
-  const Material& mat = params.material;
-  memory_ =
-      std::make_unique<ModeMemory>(modes_, params.geometry.width, dt_, mat.s_wave_speed(), eta1_,
-                                   params.spectral.memory_periods, max_steps(params), kernels_);
-  node_ = {eta1_ * dx_ * dt_, eta2_ * dx_ * dt_, dt_, dx_, params.friction};
+namespace {
 
-  mu_k_.resize(modes_);
-  for (int n = 0; n < modes_; ++n)
-    mu_k_[n] = mat.shear_modulus() * two_pi * n / params.geometry.width;
-  for (auto* v : {&d1_hat_, &d2_hat_, &v1_hat_, &v2_hat_, &v1_hat_new_, &v2_hat_new_, &f1_known_,
-                  &f2_known_, &f1_hat_, &f2_hat_})
-    v->assign(modes_, complex(0.0, 0.0));
-  sums_.resize(modes_);
-  for (auto* v :
-       {&f1_, &f2_, &d1_, &d2_, &v1_, &v2_, &v1_new_, &v2_new_, &load1_, &load2_, &slip_speed_})
+HalfSpaceGrid grid_of(const SimulationParams& p, const Material& side, int threads) {
+  HalfSpaceGrid g;
+  g.nx = mesh_size(p).nx;
+  g.width = p.geometry.width;
+  g.dt = SpectralMethod::time_step(p);
+  g.memory_periods = p.spectral.memory_periods;
+  g.max_steps = SpectralMethod::max_steps(p);
+  g.kernel_span = SpectralMethod::kernel_span(p, side);
+  g.parts = threads;
+  return g;
+}
+
+} // namespace
+
+SpectralMethod::SpectralMethod(const SimulationParams& params, int threads)
+    : params_(params), nx_(mesh_size(params).nx), dx_(mesh_size(params).dx), dt_(time_step(params)),
+      team_(threads), upper_(params.material, grid_of(params, params.material, team_.size())) {
+  node_ = {upper_.eta1() * dx_ * dt_, upper_.eta2() * dx_ * dt_, dt_, dx_, params.friction};
+  if (params.lower.elastic()) {
+    const Material& below = params.lower.material;
+    lower_ = std::make_unique<HalfSpace>(below, grid_of(params, below, team_.size()));
+  }
+  for (auto* v : {&load1_, &load2_, &slip_speed_})
     v->assign(nx_, 0.0);
   solved_.resize(nx_);
-  team_split_ = split_modes(*memory_, max_steps(params), team_.size());
-
   iface_ = resting_interface(params, nx_, dx_);
 }
 
@@ -109,61 +116,47 @@ MeshInfo SpectralMethod::mesh_info() const {
 }
 
 std::vector<std::string> SpectralMethod::end_warnings(double /*simulated_time*/) const {
+  std::vector<std::string> warnings;
+  if (params_.friction.law != FrictionLaw::coulomb) return warnings;
+  const Material &upper = params_.material, &lower = params_.lower.material;
+  const bool dissimilar = params_.lower.elastic() && (upper.density != lower.density ||
+                                                      upper.young_modulus != lower.young_modulus ||
+                                                      upper.poisson_ratio != lower.poisson_ratio);
+  if (dissimilar) // tests/solver/interface_growth_test.cpp: rate dx / c_s 0.074-0.079
+    warnings.push_back("plain Coulomb friction between two different elastic solids is ill-posed: "
+                       "steady sliding is unstable at every wavelength, the finest mode of the "
+                       "mesh growing fastest, at a rate proportional to 1/dx (Adams 1995; Ranjith "
+                       "& Rice 2001), so the results do not converge under refinement; "
+                       "prakash_clifton friction regularises it (docs/verification.md)");
   // Measured (tests/solver/interface_growth_test.cpp): 0.021 c_s/dx at beta = 0.4, 0.025-0.030
   // at 0.5; none at 0.3 and 0.25 on every n_d tried.
-  if (params_.friction.law != FrictionLaw::coulomb || params_.spectral.time_step_factor < 0.35)
-    return {};
-  char msg[300];
-  std::snprintf(msg, sizeof msg,
-                "plain Coulomb friction with spectral_bi.time_step_factor = %.3g: the scheme grows "
-                "a mesh-scale mode of steady sliding (about 0.03 c_s/dx) that the continuum does "
-                "not have; a time_step_factor of 0.25 removes it (docs/verification.md)",
-                params_.spectral.time_step_factor);
-  return {msg};
+  if (params_.spectral.time_step_factor >= 0.35) {
+    char msg[300];
+    std::snprintf(msg, sizeof msg,
+                  "plain Coulomb friction with spectral_bi.time_step_factor = %.3g: the scheme "
+                  "grows a mesh-scale mode of steady sliding (about 0.03 c_s/dx) that the "
+                  "continuum does not have; a time_step_factor of 0.25 removes it "
+                  "(docs/verification.md)",
+                  params_.spectral.time_step_factor);
+    warnings.push_back(msg);
+  }
+  return warnings;
 }
 
-void SpectralMethod::known_memory_term() {
-  // f_hat_1 = mu|k| K11(0) D1 - sum W11 V1 + i (mu|k| K12(0) D2 - sum W12 V2)
-  // f_hat_2 = mu|k| K22(0) D2 - sum W22 V2 - i (mu|k| K12(0) D1 - sum W12 V1)
-  // (the weights carry mu |k|). The Nyquist mode of a real field has no coupling.
-  team_.run([&](int member, int) {
-    const int first = team_split_[member], last = team_split_[member + 1];
-    if (first < last) memory_->history_sums(first, last, sums_.data() + first);
-  });
-  const complex i(0.0, 1.0);
-  const double k11 = kernels_.static11(), k22 = kernels_.static22(), k12 = kernels_.static12();
-  f1_known_[0] = f2_known_[0] = 0.0; // a uniform motion radiates plane waves: no memory
-  for (int n = 1; n < modes_; ++n) {
-    const ModeHistorySums& s = sums_[n];
-    const bool coupled = 2 * n != nx_;
-    const complex c1 = coupled ? i * (mu_k_[n] * k12 * d2_hat_[n] - s.w12_v2) : 0.0;
-    const complex c2 = coupled ? i * (mu_k_[n] * k12 * d1_hat_[n] - s.w12_v1) : 0.0;
-    f1_known_[n] = mu_k_[n] * k11 * d1_hat_[n] - s.w11_v1 + c1;
-    f2_known_[n] = mu_k_[n] * k22 * d2_hat_[n] - s.w22_v2 - c2;
-  }
+double SpectralMethod::slip_rate(int i) const {
+  const double upper = upper_.motion().v1[i];
+  return lower_ ? upper - lower_->motion().v1[i] : upper;
 }
 
-void SpectralMethod::add_current_interval(const std::vector<complex>& v1,
-                                          const std::vector<complex>& v2) {
-  // D^{n+1/2} = D^n + dt/2 V and the lag-0 weight, both acting on this interval's V.
-  const complex i(0.0, 1.0);
-  const double half = 0.5 * dt_;
-  f1_hat_[0] = f2_hat_[0] = 0.0;
-  for (int n = 1; n < modes_; ++n) {
-    const KernelValues& w0 = memory_->current_weights(n);
-    const double a11 = mu_k_[n] * kernels_.static11() * half - w0.g11;
-    const double a22 = mu_k_[n] * kernels_.static22() * half - w0.g22;
-    const double a12 = 2 * n != nx_ ? mu_k_[n] * kernels_.static12() * half - w0.g12 : 0.0;
-    f1_hat_[n] = f1_known_[n] + a11 * v1[n] + i * a12 * v2[n];
-    f2_hat_[n] = f2_known_[n] + a22 * v2[n] - i * a12 * v1[n];
-  }
-  fft_.inverse(f1_hat_.data(), f1_.data());
-  fft_.inverse(f2_hat_.data(), f2_.data());
+double SpectralMethod::new_slip_rate(int i) const {
+  const double upper = upper_.motion().v1_new[i];
+  return lower_ ? upper - lower_->motion().v1_new[i] : upper;
 }
 
 void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
   const double t_half = (double(step_) + 0.5) * dt_;
   const double sigma1 = params_.loading.shear_stress, sigma2 = params_.loading.normal_stress;
+  HalfSpace::Motion& up = upper_.motion();
   for (int i = 0; i < nx_; ++i) {
     const double x1 = iface_.x1[i];
     InterfaceTraction load;
@@ -171,50 +164,81 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
     load.t2 += nucleation_traction(params_.nucleation, sigma2, x1, t_half);
     load1_[i] = load.t1;
     load2_[i] = load.t2;
-    // The velocity without the plane's force: -sigma_2j = L_j  =>  V = (sigma0 + f + L)/eta.
-    const double v1_free = (sigma1 + f1_[i] + load.t1) / eta1_;
-    const double v2_free = (sigma2 + f2_[i] + load.t2) / eta2_;
-    solved_[i] = resolve_interface_node(node_, d2_[i], v1_free, v2_free, slip_speed[i],
-                                        iface_.strength[i], iface_.pressure[i]);
-    v1_new_[i] = solved_[i].v1;
-    v2_new_[i] = solved_[i].v2;
+    // The upper solid without the interface force: -sigma_2j dx = L_j with
+    // sigma_2j = sigma0_j + f_j - eta_j V_j  =>  V = (sigma0 + f + L/dx) / eta (loads in Pa).
+    const InterfaceSide upper{node_.mass1, node_.mass2,
+                              (sigma1 + upper_.f1()[i] + load.t1) / upper_.eta1(),
+                              (sigma2 + upper_.f2()[i] + load.t2) / upper_.eta2()};
+    InterfaceSide lower;
+    double gap = up.d2[i];
+    if (lower_) {
+      // The lower solid in the true frame (its memory f' from its mirrored frame):
+      // sigma_12 = sigma0_1 - f'_1 + eta_1 V_1, sigma_22 = sigma0_2 + f'_2 + eta_2 V_2, and
+      // sigma_2j dx = -L_j without the interface force (docs/spectral-bi.md "Two half-spaces").
+      const HalfSpace& below = *lower_;
+      lower = {below.eta1() * dx_ * dt_, below.eta2() * dx_ * dt_,
+               -(sigma1 - below.f1()[i] + load.t1) / below.eta1(),
+               -(sigma2 + below.f2()[i] + load.t2) / below.eta2()};
+      gap += below.motion().d2[i]; // u2(upper) - u2(lower) = D_2 + D'_2
+    }
+    const SplitNodeStep pair = resolve_split_node(node_, gap, upper, lower, !lower_, slip_speed[i],
+                                                  iface_.strength[i], iface_.pressure[i]);
+    solved_[i] = pair.relative;
+    up.v1_new[i] = pair.upper.v1;
+    up.v2_new[i] = pair.upper.v2;
+    if (lower_) { // back to the mirrored frame
+      lower_->motion().v1_new[i] = pair.lower.v1;
+      lower_->motion().v2_new[i] = -pair.lower.v2;
+    }
   }
 }
 
 void SpectralMethod::step(bool /*compute_energy*/) {
-  known_memory_term();
+  team_.run([&](int member, int) {
+    upper_.sum_history(member);
+    if (lower_) lower_->sum_history(member);
+  });
+  upper_.known_memory_term();
+  if (lower_) lower_->known_memory_term();
 
   // Predictor: this interval's memory term with V^{n-1/2}; the strength update with the
   // slip speed of the last interval. Corrector: with the solved V^{n+1/2}, and the mean slip
-  // speed over [t_{n-1/2}, t_{n+1/2}].
+  // speed over [t_{n-1/2}, t_{n+1/2}]. Slip speeds are those of the relative motion.
   std::vector<double>& slip_speed = slip_speed_;
-  std::vector<complex>&v1_hat = v1_hat_new_, &v2_hat = v2_hat_new_;
   for (int i = 0; i < nx_; ++i)
-    slip_speed[i] = std::abs(v1_[i]);
-  add_current_interval(v1_hat_, v2_hat_);
+    slip_speed[i] = std::abs(slip_rate(i));
+  upper_.predict();
+  if (lower_) lower_->predict();
   solve_nodes(slip_speed);
   for (int pass = 1; pass <= params_.spectral.corrector_passes; ++pass) {
-    fft_.forward(v1_new_.data(), v1_hat.data());
-    fft_.forward(v2_new_.data(), v2_hat.data());
     for (int i = 0; i < nx_; ++i)
-      slip_speed[i] = std::abs(0.5 * (v1_[i] + v1_new_[i]));
-    add_current_interval(v1_hat, v2_hat);
+      slip_speed[i] = std::abs(0.5 * (slip_rate(i) + new_slip_rate(i)));
+    upper_.correct();
+    if (lower_) lower_->correct();
     solve_nodes(slip_speed);
   }
-  fft_.forward(v1_new_.data(), v1_hat.data());
-  fft_.forward(v2_new_.data(), v2_hat.data());
+  record_interface();
+  upper_.finish_step();
+  if (lower_) lower_->finish_step();
+  ++step_;
+}
 
-  // The interface after step n, and the energy over the step (V constant over it).
+void SpectralMethod::record_interface() {
+  // The interface after step n (relative motion: upper minus lower), and the energy over the
+  // step (V constant over it).
+  const HalfSpace::Motion& up = upper_.motion();
   const double c0_1 = -params_.loading.shear_stress * dx_;
   const double c0_2 = std::abs(params_.loading.normal_stress) * dx_;
+  const std::vector<double>&f1 = upper_.f1(), &f2 = upper_.f2();
+  const double eta1 = upper_.eta1(), eta2 = upper_.eta2();
   double work = 0, dissipated = 0, delivered = 0;
   for (int i = 0; i < nx_; ++i) {
     const InterfaceNodeStep& r = solved_[i];
-    const double v1 = v1_new_[i], v2 = v2_new_[i];
-    iface_.velocity[i] = 0.5 * (v1_[i] + v1);
+    const double v1 = up.v1_new[i], v2 = up.v2_new[i];
+    iface_.velocity[i] = 0.5 * (up.v1[i] + v1);
     iface_.half_velocity[i] = v1;
-    iface_.slip[i] = d1_[i];
-    iface_.opening[i] = d2_[i];
+    iface_.slip[i] = up.d1[i];
+    iface_.opening[i] = up.d2[i];
     iface_.shear_traction[i] = -r.contact_force1 / dx_;
     iface_.pressure[i] = r.pressure;
     iface_.strength[i] = r.strength;
@@ -223,27 +247,36 @@ void SpectralMethod::step(bool /*compute_energy*/) {
     work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
     dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);
     // Energy into the half-space: -(sigma - sigma0) . V = (eta V - f) . V per unit length.
-    delivered += dt_ * dx_ * ((eta1_ * v1 - f1_[i]) * v1 + (eta2_ * v2 - f2_[i]) * v2);
+    delivered += dt_ * dx_ * ((eta1 * v1 - f1[i]) * v1 + (eta2 * v2 - f2[i]) * v2);
+  }
+  if (lower_) { // the lower side's part, and the relative motion replaces the upper's
+    const HalfSpace::Motion& lo = lower_->motion();
+    const std::vector<double>&g1 = lower_->f1(), &g2 = lower_->f2();
+    const double e1 = lower_->eta1(), e2 = lower_->eta2();
+    work = dissipated = 0;
+    double into_lower = 0;
+    for (int i = 0; i < nx_; ++i) {
+      const InterfaceNodeStep& r = solved_[i];
+      const double v1 = up.v1_new[i] - lo.v1_new[i], v2 = up.v2_new[i] + lo.v2_new[i];
+      iface_.velocity[i] = 0.5 * (slip_rate(i) + v1);
+      iface_.half_velocity[i] = v1;
+      iface_.slip[i] = up.d1[i] - lo.d1[i];
+      iface_.opening[i] = up.d2[i] + lo.d2[i];
+      // The loads act as +L on the upper side and -L on the lower, the interface force as +C
+      // and -C, the initial reaction as +C0 and -C0: each does its work on the relative motion.
+      work += dt_ * ((load1_[i] * dx_ - c0_1) * v1 + (load2_[i] * dx_ - c0_2) * v2);
+      dissipated -= dt_ * (r.contact_force1 * v1 + r.contact_force2 * v2);
+      // In the mirrored frame (where lo and g live) the lower side is an upper half-space.
+      const double w1 = lo.v1_new[i], w2 = lo.v2_new[i];
+      into_lower += dt_ * dx_ * ((e1 * w1 - g1[i]) * w1 + (e2 * w2 - g2[i]) * w2);
+    }
+    delivered += into_lower;
+    energy_.lower_solid += into_lower;
   }
   energy_.external_work += work;
   energy_.dissipated += dissipated;
   energy_.kinetic = 0.0;
   energy_.strain += delivered;
-
-  memory_->push(v1_hat.data(), v2_hat.data());
-  for (int n = 0; n < modes_; ++n) {
-    d1_hat_[n] += dt_ * v1_hat[n];
-    d2_hat_[n] += dt_ * v2_hat[n];
-  }
-  v1_hat_.swap(v1_hat);
-  v2_hat_.swap(v2_hat);
-  for (int i = 0; i < nx_; ++i) {
-    d1_[i] += dt_ * v1_new_[i];
-    d2_[i] += dt_ * v2_new_[i];
-  }
-  v1_.swap(v1_new_);
-  v2_.swap(v2_new_);
-  ++step_;
 }
 
 } // namespace slipfront::spectral

@@ -20,14 +20,12 @@
 
 #include "solver/interface/interface_fields.hpp"
 #include "solver/interface/interface_law.hpp"
+#include "solver/interface/split_node.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
-#include "solver/spectral/half_space_kernels.hpp"
-#include "solver/spectral/mode_memory.hpp"
-#include "solver/spectral/real_fft.hpp"
+#include "solver/spectral/half_space.hpp"
 #include "solver/thread_team.hpp"
 
-#include <complex>
 #include <memory>
 #include <vector>
 
@@ -42,19 +40,28 @@ public:
   const InterfaceFields& interface() const override { return iface_; }
   const EnergyBalance& energy() const override { return energy_; }
   MeshInfo mesh_info() const override;
-  // Plain Coulomb friction at time_step_factor >= 0.4 grows a mesh-scale mode that the
-  // continuum does not have (docs/verification.md, BI findings): said at the end of the run.
+  // Said at the end of the run: plain Coulomb friction at time_step_factor >= 0.4 grows a
+  // mesh-scale mode that the continuum does not have (docs/verification.md, BI findings);
+  // between two different solids it is ill-posed (the continuum's growth rate ~ 1/dx).
   std::vector<std::string> end_warnings(double simulated_time) const override;
 
   int nx() const { return nx_; }
   double dx() const { return dx_; }
   double time() const { return step_ * dt_; }
-  const ModeMemory& memory() const { return *memory_; }
+  const ModeMemory& memory() const { return upper_.memory(); }
 
-  // Time step of the method: beta dx / c_s.
+  // Time step of the method: beta dx / c_s, with the larger c_s of two elastic solids (each
+  // side's own c_s dt / dx then is at most beta: docs/spectral-bi.md "Two half-spaces").
   static double time_step(const SimulationParams& params);
-  // Kernel table length needed for these parameters (scaled time).
+  static double reference_shear_speed(const SimulationParams& params); // the c_s of dt
+  // c_s dt / dx of a half-space of material `side`.
+  static double side_step_factor(const SimulationParams& params, const Material& side);
+  // The elastic solids of the run: the upper one, and the lower one if it is elastic.
+  static std::vector<const Material*> solids(const SimulationParams& params);
+  // Kernel table length needed for these parameters (scaled time), of the upper solid or
+  // of the solid `side`.
   static double kernel_span(const SimulationParams& params);
+  static double kernel_span(const SimulationParams& params, const Material& side);
   // Steps of a run that goes to `duration`, in double (may be inf for an impossible job).
   static double step_bound(const SimulationParams& params);
   // The same as an integer; throws std::invalid_argument above max_run_steps
@@ -64,36 +71,22 @@ public:
   static double estimated_memory_bytes(const SimulationParams& params);
 
 private:
-  using complex = std::complex<double>;
-  void known_memory_term();
-  void add_current_interval(const std::vector<complex>& v1, const std::vector<complex>& v2);
   void solve_nodes(const std::vector<double>& slip_speed);
+  void record_interface();
+  double slip_rate(int i) const;     // V^{n-1/2}, upper minus lower, at node i
+  double new_slip_rate(int i) const; // V^{n+1/2}
 
   SimulationParams params_;
-  int nx_, modes_;
+  int nx_;
   double dx_, dt_;
-  double eta1_, eta2_; // radiation damping rho c_s, rho c_p
-  HalfSpaceKernels kernels_;
-  std::unique_ptr<ModeMemory> memory_;
-  RealFft fft_;
   ThreadTeam team_;
+  HalfSpace upper_;                  // the solid x2 > 0
+  std::unique_ptr<HalfSpace> lower_; // the solid x2 < 0 in its mirrored frame (none: rigid)
   InterfaceNodeConstants node_;
 
-  std::vector<double> mu_k_;                     // mu |k_n|
-  std::vector<complex> d1_hat_, d2_hat_;         // D^n in Fourier space
-  std::vector<complex> v1_hat_, v2_hat_;         // V^{n-1/2} in Fourier space
-  std::vector<complex> v1_hat_new_, v2_hat_new_; // V^{n+1/2} in Fourier space (scratch)
-  std::vector<complex> f1_known_, f2_known_;     // known part of f_hat at t_{n+1/2}
-  std::vector<complex> f1_hat_, f2_hat_;         // scratch
-  std::vector<ModeHistorySums> sums_;
-  std::vector<double> f1_, f2_;         // f at the nodes
-  std::vector<double> d1_, d2_;         // D^n at the nodes (slip, opening)
-  std::vector<double> v1_, v2_;         // V^{n-1/2} at the nodes
-  std::vector<double> v1_new_, v2_new_; // V^{n+1/2} being solved
-  std::vector<double> load1_, load2_;   // interface loads at t_{n+1/2} [Pa]
-  std::vector<double> slip_speed_;      // |V| entering the strength update (scratch)
+  std::vector<double> load1_, load2_; // interface loads at t_{n+1/2} [Pa]
+  std::vector<double> slip_speed_;    // |V| entering the strength update (scratch)
   std::vector<InterfaceNodeStep> solved_;
-  std::vector<int> team_split_; // mode ranges per team member
 
   InterfaceFields iface_;
   EnergyBalance energy_;

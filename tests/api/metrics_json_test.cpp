@@ -146,6 +146,10 @@ TEST(MetricsJson, MethodNamesDiscretisationBoundaryAndFriction) {
   EXPECT_EQ(method_description(params),
             "spectral boundary integral, elastic half-space (velocity-form memory truncated "
             "after 8 mode periods), dt = 0.5 dx / c_s, 1 corrector pass; friction: coulomb");
+  params.lower.side = slipfront::LowerSide::elastic;
+  EXPECT_EQ(method_description(params),
+            "spectral boundary integral, two elastic half-spaces (velocity-form memory truncated "
+            "after 8 mode periods), dt = 0.5 dx / max c_s, 1 corrector pass; friction: coulomb");
 }
 
 TEST(FrontJson, ArraysWithNullWhereUndefined) {

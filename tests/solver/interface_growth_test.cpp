@@ -125,6 +125,18 @@ void print(const char* scheme, double n_d, const Growth& g) {
           scheme, n_d, g.rate, g.scaled, g.a_start, g.a_end, g.fit_begin, g.fit_end, g.mean_v);
 }
 
+// Below the strip, a second elastic half-space with the contrast of the bimaterial presets of
+// issue 21 (the same nu = 0.25, density x 1.00546, c_s x 1.18): the upper solid is the more
+// compliant one.
+SimulationParams on_lower_solid(SimulationParams p) {
+  const double density = 2745.739 / 2730.834, shear_speed = 3091.6 / 2620.0;
+  p.lower.side = LowerSide::elastic;
+  p.lower.material = p.material;
+  p.lower.material.density *= density;
+  p.lower.material.young_modulus *= density * shear_speed * shear_speed;
+  return p;
+}
+
 SimulationParams coulomb(double n_d) {
   SimulationParams p = strip(Method::finite_element, n_d);
   p.friction.law = FrictionLaw::coulomb;
@@ -233,9 +245,47 @@ TEST(InterfaceGrowth, SpectralBiPrakashCliftonDoesNotGrowCoulombOnlyAtLongSteps)
   }
 }
 
+// Two different elastic solids (BI, the contrast of the bimaterial presets; beta = 0.25, where
+// the BI lattice itself grows nothing). Plain Coulomb friction is ill-posed there (Adams 1995;
+// Ranjith & Rice 2001): steady sliding is unstable at every wavelength, with a growth rate
+// Re(p) |k| c_s, so the finest mode the mesh holds grows fastest and the rate scales as 1/dx.
+// The continuum's root for mu = 0.75 is p = 0.0322 - 0.9815 i (F = Kc11 + mu Kc21 = 0 with the
+// interface relation of solver/spectral/bimaterial_relations.hpp;
+// tests/solver/reference/bimaterial_coulomb_stability.py), i.e. rate dx / c_s =
+// 0.0322 pi = 0.101 at k = pi / dx; measured 0.074, 0.079, 0.078 at n_d = 20, 40, 80 (the
+// mesh's finest modes are not the continuum's). Prakash-Clifton (L = 5e-5 m) bounds it as
+// dx -> 0: 2.16, 2.74, 3.08 /s at n_d = 40, 80, 160 (ratios 1.27, 1.12 per halving of dx,
+// against 2 for Coulomb). Bounds: Coulomb rate dx / c_s within 25 % of 0.078 and below the
+// continuum's 0.101; Prakash-Clifton below 4 /s with a ratio below 1.25 at the last halving.
+TEST(InterfaceGrowth, SpectralBiBimaterialCoulombIsIllPosedPrakashCliftonBoundsIt) {
+  for (double n_d : {20.0, 40.0, 80.0}) {
+    SimulationParams c = on_lower_solid(strip(Method::spectral_bi, n_d));
+    c.friction.law = FrictionLaw::coulomb;
+    c.spectral.time_step_factor = 0.25;
+    const Growth g = growth_rate(c);
+    print("BI bimaterial coulomb, time_step_factor 0.25", n_d, g);
+    ASSERT_TRUE(g.finite);
+    EXPECT_GT(g.scaled, 0.058) << "n_d = " << n_d;
+    EXPECT_LT(g.scaled, 0.098) << "n_d = " << n_d;
+    EXPECT_GT(g.a_end, 100 * g.a_start) << "the perturbation grew by orders of magnitude";
+  }
+  std::vector<double> rates;
+  for (double n_d : {40.0, 80.0, 160.0}) {
+    SimulationParams p = on_lower_solid(prakash_clifton(Method::spectral_bi, n_d, 5e-5));
+    p.spectral.time_step_factor = 0.25;
+    const Growth g = growth_rate(p);
+    print("BI bimaterial prakash_clifton L = 5e-5, time_step_factor 0.25", n_d, g);
+    ASSERT_TRUE(g.finite);
+    EXPECT_LT(g.rate, 4.0) << "n_d = " << n_d;
+    rates.push_back(g.rate);
+  }
+  EXPECT_LT(rates[2] / rates[1], 1.25) << "Prakash-Clifton's rate levels off as dx -> 0";
+}
+
 // Not a check: one measurement chosen by environment variables (GROWTH_METHOD fe|bi,
 // GROWTH_LAW pc|coulomb, GROWTH_L, GROWTH_ND, GROWTH_ZETA, GROWTH_BETA (BI time-step factor),
-// GROWTH_Q (BI memory periods), GROWTH_T), for the studies of docs/small-l-study.md. Run with
+// GROWTH_Q (BI memory periods), GROWTH_T, GROWTH_LOWER rigid|bimaterial), for the studies of
+// docs/small-l-study.md. Run with
 // --gtest_also_run_disabled_tests.
 TEST(InterfaceGrowth, DISABLED_Measure) {
   auto env = [](const char* name, const char* fallback) {
@@ -250,10 +300,11 @@ TEST(InterfaceGrowth, DISABLED_Measure) {
   p.fe.mesh_damping = std::stod(env("GROWTH_ZETA", "0"));
   p.spectral.time_step_factor = std::stod(env("GROWTH_BETA", "0.5"));
   p.spectral.memory_periods = std::stod(env("GROWTH_Q", "8"));
+  if (env("GROWTH_LOWER", "rigid") == "bimaterial") p = on_lower_solid(p);
   const Growth g = growth_rate(p, std::stod(env("GROWTH_T", "6")));
   const std::string name = env("GROWTH_METHOD", "fe") + " " + env("GROWTH_LAW", "pc") + " L " +
                            env("GROWTH_L", "5e-6") + " zeta " + env("GROWTH_ZETA", "0") + " beta " +
-                           env("GROWTH_BETA", "0.5");
+                           env("GROWTH_BETA", "0.5") + " lower " + env("GROWTH_LOWER", "rigid");
   print(name.c_str(), n_d, g);
 }
 

@@ -143,6 +143,28 @@ TEST(DivergenceCheck, NegativeEnergyInTheSolidIsAnInstability) {
       << bad.message(1.0, 10);
 }
 
+TEST(DivergenceCheck, EachOfTwoSolidsMustHoldANonNegativeEnergy) {
+  // EnergyBalance {kinetic, strain, external_work, dissipated, lower_solid}: the lower solid
+  // returned energy that the upper one holds; their sum is positive.
+  SimulationParams p;
+  p.lower.side = LowerSide::elastic;
+  DivergenceCheck ok(p);
+  ok.check_energy({0.0, 5e-5, 1e-4, 0.5e-4, 2e-5});
+  EXPECT_FALSE(ok.diverged());
+  DivergenceCheck lower(p);
+  lower.check_energy({0.0, 5e-5, 1e-4, 0.5e-4, -1e-8});
+  EXPECT_TRUE(lower.diverged());
+  EXPECT_NE(lower.message(1.0, 10).find("energy in the lower solid became negative"),
+            std::string::npos)
+      << lower.message(1.0, 10);
+  DivergenceCheck upper(p);
+  upper.check_energy({0.0, 5e-5, 1e-4, 0.5e-4, 5e-5 + 1e-8});
+  EXPECT_TRUE(upper.diverged());
+  EXPECT_NE(upper.message(1.0, 10).find("energy in the upper solid became negative"),
+            std::string::npos)
+      << upper.message(1.0, 10);
+}
+
 TEST(DivergenceCheck, StrengthAboveTheLargestMuPIsUnstable) {
   SimulationParams p;
   const double p0 = std::abs(p.loading.normal_stress);
