@@ -1,7 +1,8 @@
-// The `slipfront` executable: run, validate, serve (docs/api-job-spec.md "The CLI", docs/server.md;
-// usage in app/usage.cpp).
+// The `slipfront` executable: run, validate, serve, check (docs/api-job-spec.md "The CLI",
+// docs/server.md; usage in app/usage.cpp).
 #include "app/commands.hpp"
 
+#include "server/check.hpp"
 #include "server/serve.hpp"
 #include "solver/simulation.hpp"
 
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   if (command == "run") return run_command(args);
   if (command == "validate") return validate_command(args);
   if (command == "schema") return schema_command(args);
+  if (command == "check") return slipfront::server::check_main(args);
   if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
   if (command == "--version" || command == "version") {
     std::cout << "slipfront " << slipfront::code_version() << '\n';

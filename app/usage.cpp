@@ -71,6 +71,9 @@ usage:
       tables of docs/api-job-spec.md.
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [--max-memory SIZE] [...]
       Run the HTTP job server (docs/server.md).
+  slipfront check DATA_DIR
+      List what a server could not read in DATA_DIR/slipfront.db (rows whose stored JSON
+      does not parse, PRAGMA quick_check); exit 0 and "ok" if nothing.
   slipfront run|validate|serve --help   the options of one command
   slipfront --version
   slipfront help | --help

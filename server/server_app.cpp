@@ -83,6 +83,12 @@ void ServerApp::start() {
   if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
 
   store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db", config_.integrity_check);
+  if (auto malformed = store_->malformed_rows(); !malformed.empty()) {
+    log_error("start-up check: " + std::to_string(malformed.size()) +
+              " row(s) of the database hold JSON that does not parse; listings leave them out "
+              "(`slipfront check " +
+              config_.data_dir + "` lists them), the first: " + describe(malformed.front()));
+  }
   queue_ = std::make_unique<JobQueue>(config_.queue_limit);
   const bool slurm = config_.executor == "slurm";
   int recovered = store_->requeue_all_running(slurm);

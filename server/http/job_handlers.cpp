@@ -125,6 +125,10 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
                                     : text_response(rc.request, http::status::ok, runs_ndjson(rows),
                                                     "application/x-ndjson");
     if (next) response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
+    if (!page.skipped.empty())
+      response.set("Skipped-Rows", std::to_string(page.skipped.size()) +
+                                       " unreadable row(s) left out, the first: " +
+                                       page.skipped.front().substr(0, 200));
     return response;
   }
   nlohmann::json body;
@@ -132,6 +136,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   for (const auto& job : page.jobs)
     body["jobs"].push_back(job_to_json(job, fields));
   body["count"] = page.jobs.size();
+  if (!page.skipped.empty()) body["skipped"] = page.skipped; // unreadable rows left out
   if (next_cursor) {
     body["next_cursor"] = *next_cursor;
     body["next"] = *next;
