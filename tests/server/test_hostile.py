@@ -298,11 +298,11 @@ class HostileInput(unittest.TestCase):
 
     # --- issue 22, item 8: search expressions too long for SQLite --------------------------
     def test_long_search_expressions_are_400_naming_the_limit(self):
-        where = ";".join(f"friction.L>{i}e-9" for i in range(1100))
+        where = ";".join(f"L>{i}" for i in range(1100))  # 1,100 terms in 12 kB
         b = self.assertRejected(self.server.get(JOBS, params={"where": where}), 400,
                                 "/query/where")
         self.assertIn("at most 64 conditions", json.dumps(b))
-        sort = ",".join(["friction.L", "-n_d"] * 1050)
+        sort = ",".join(["n_d", "-L"] * 1050)  # 2,100 keys in 12 kB (the header limit: 16)
         b = self.assertRejected(self.server.get(JOBS, params={"sort": sort}), 400, "/query/sort")
         self.assertIn("at most 16 keys", json.dumps(b))
         # At the limits the search still answers.
@@ -315,8 +315,8 @@ class HostileInput(unittest.TestCase):
 
     # --- issue 22, item 10: an error body never amplifies its request -------------------
     def test_error_bodies_list_at_most_100_errors(self):
-        body = {f"unknown_{i}": 0 for i in range(90000)}
-        text = json.dumps(body)
+        body = {f"u{i}": 0 for i in range(90000)}
+        text = json.dumps(body, separators=(",", ":"))
         self.assertLess(len(text), 1 << 20)
         r = self.post_raw(JOBS, text)
         b = self.assertRejected(r, 422)
