@@ -77,7 +77,9 @@ Response Router::dispatch(const Request& request) const {
 Response Router::answer(const Request& request) const {
   auto target = parse_target(request.target());
   if (!target)
-    return problem_response(request, http::status::bad_request, "malformed request target");
+    return problem_response(request, http::status::bad_request,
+                            "malformed request target: give a path (/api/v1/...) or an absolute "
+                            "http:// or https:// URL");
   auto segments = split_path(target->path);
   std::string allow;
   // HEAD is answered by the GET route, without the body (RFC 9110 §9.3.2).

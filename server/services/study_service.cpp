@@ -12,6 +12,7 @@
 #include "api/study/failure_regimes.hpp"
 #include "api/study_analysis.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -66,6 +67,21 @@ std::string value_pointer(const StudyRequest& r, const char* axis, double value)
   return "/preset";
 }
 
+// A run's tags are /base/tags, then the study's /tags, then study:<id> (run_document): the
+// pointer of the one the client sent, or nullopt when `pointer` is not at a run's tag.
+std::optional<std::string> run_tag_pointer(const StudyRequest& r, const std::string& pointer) {
+  const std::string prefix = "/tags/";
+  if (pointer.rfind(prefix, 0) != 0) return std::nullopt;
+  std::size_t index = 0;
+  const auto digits = pointer.substr(prefix.size());
+  auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+  if (ec != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
+  const std::size_t base_tags = base_tag_count(r);
+  if (index < base_tags) return "/base/tags/" + std::to_string(index);
+  if (index < base_tags + r.tags.size()) return "/tags/" + std::to_string(index - base_tags);
+  return std::nullopt;
+}
+
 // The job validator's errors for one run, with pointers into the study body.
 void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
                std::vector<api::FieldError>& errors, std::set<std::string>& seen) {
@@ -78,7 +94,7 @@ void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
     else if (e.pointer == "/geometry/nodes_per_meter")
       pointer = value_pointer(r, "n_d", p.n_d);
     else
-      pointer = "/base" + e.pointer;
+      pointer = run_tag_pointer(r, e.pointer).value_or("/base" + e.pointer);
     std::string reason = e.reason;
     if (!p.regime.empty()) reason += " (preset regime " + p.regime + ")";
     if (seen.insert(pointer + "\n" + reason).second) errors.push_back({pointer, reason});
