@@ -10,24 +10,6 @@
 
 namespace slipfront::server {
 
-FileDescriptor& FileDescriptor::operator=(FileDescriptor&& other) noexcept {
-  if (this != &other) {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = other.release();
-  }
-  return *this;
-}
-
-FileDescriptor::~FileDescriptor() {
-  if (fd_ >= 0) ::close(fd_);
-}
-
-int FileDescriptor::release() {
-  const int fd = fd_;
-  fd_ = -1;
-  return fd;
-}
-
 std::string ResultFiles::absolute_path(const api::ResultFile& stored) const {
   return (data_dir_.empty() ? std::string(".") : data_dir_) + "/" + stored.path;
 }

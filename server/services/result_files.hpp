@@ -5,6 +5,7 @@
 #pragma once
 
 #include "api/run_record.hpp" // api::ResultFile
+#include "server/core/file_descriptor.hpp"
 
 #include <sys/stat.h>
 
@@ -14,23 +15,6 @@
 #include <unordered_map>
 
 namespace slipfront::server {
-
-// An open descriptor, closed with its owner.
-class FileDescriptor {
-public:
-  FileDescriptor() = default;
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  FileDescriptor(FileDescriptor&& other) noexcept : fd_(other.release()) {}
-  FileDescriptor& operator=(FileDescriptor&& other) noexcept;
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  ~FileDescriptor();
-  int get() const { return fd_; }
-  int release(); // the caller closes it now
-
-private:
-  int fd_ = -1;
-};
 
 struct OpenedResult {
   enum class State {

@@ -635,6 +635,39 @@ class TokenReload(unittest.TestCase):
             server.cleanup()
             os.remove(tokens.name)
 
+    def test_a_fifo_as_token_file_never_blocks_sigterm(self):
+        """Issue 22 item 14: with the token file replaced by a FIFO, SIGHUP blocked the signal
+        thread and a later SIGTERM was not handled."""
+        directory = tempfile.mkdtemp(prefix="slipfront-fifo-tokens-")
+        path = os.path.join(directory, "tokens")
+        with open(path, "w") as f:
+            f.write("alice:alice-token-1\n")
+        server = Server(BINARY, args=["--workers", "1", "--token-file", path]).start()
+        try:
+            os.remove(path)
+            os.mkfifo(path)
+            server.proc.send_signal(signal.SIGHUP)
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline and "not a regular file" not in server.read_log():
+                time.sleep(0.05)
+            self.assertIn("tokens not reloaded", server.read_log())
+            self.assertIn("not a regular file", server.read_log())
+            r = server.get("/healthz")
+            self.assertEqual(r.status_code, 200)
+            t0 = time.monotonic()
+            self.assertEqual(server.terminate(timeout=10), 0)
+            self.assertLess(time.monotonic() - t0, 10)
+        finally:
+            # Unblock a reader still waiting on the FIFO (before the fix), then clean up.
+            try:
+                fd = os.open(path, os.O_WRONLY | os.O_NONBLOCK)
+                os.close(fd)
+            except OSError:
+                pass
+            server.kill()
+            server.cleanup()
+            shutil.rmtree(directory, ignore_errors=True)
+
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
