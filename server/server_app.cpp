@@ -160,6 +160,8 @@ void ServerApp::start() {
   limits.max_connections = connection_cap(config_.max_connections);
   offload_pool_ = std::make_unique<net::thread_pool>(2);
   limits.offload_pool = offload_pool_.get();
+  // Answers built in memory and not yet read by their clients, over all connections.
+  limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);
