@@ -132,24 +132,47 @@ Handle create_group(hid_t parent, const std::string& name) {
                          "creating group " + name));
 }
 
-void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
-                  const std::string& units) {
-  const hsize_t size = values.size();
-  Handle space(check_id(H5Screate_simple(1, &size, nullptr), "dataspace of " + name));
+namespace {
+
+// A float64 dataset of `rank` (1 or 2) dimensions `dims`, written whole from `values` (row-major),
+// chunked by whole rows of about vector_chunk values and compressed when not empty.
+void write_array(hid_t parent, const std::string& name, const double* values, int rank,
+                 const hsize_t* dims, const std::string& units) {
+  const hsize_t columns = rank == 2 ? dims[1] : 1;
+  const hsize_t size = dims[0] * columns;
+  Handle space(check_id(H5Screate_simple(rank, dims, nullptr), "dataspace of " + name));
   Handle properties; // contiguous when empty: a chunk may not be empty
   if (size > 0) {
-    const hsize_t chunk = std::min(size, vector_chunk);
-    properties = compressed_layout(1, &chunk);
+    const hsize_t chunk[2] = {std::clamp<hsize_t>(vector_chunk / columns, 1, dims[0]), columns};
+    properties = compressed_layout(rank, chunk);
   }
   Handle dataset(
       check_id(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
                           properties.valid() ? properties.get() : H5P_DEFAULT, H5P_DEFAULT),
                "creating dataset " + name));
   if (size > 0) {
-    check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+    check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values),
           "writing dataset " + name);
   }
   write_attribute(dataset.get(), "units", units);
+}
+
+} // namespace
+
+void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  const std::string& units) {
+  const hsize_t size = values.size();
+  write_array(parent, name, values.data(), 1, &size, units);
+}
+
+void write_matrix(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  hsize_t rows, hsize_t columns, const std::string& units) {
+  if (values.size() != rows * columns)
+    throw std::invalid_argument("dataset " + name + ": " + std::to_string(values.size()) +
+                                " values for " + std::to_string(rows) + " x " +
+                                std::to_string(columns));
+  const hsize_t dims[2] = {rows, columns};
+  write_array(parent, name, values.data(), 2, dims, units);
 }
 
 Handle open_dataset(hid_t parent, const std::string& name) {
@@ -182,6 +205,32 @@ void write_attribute(hid_t object, const std::string& name, double value) {
       H5Acreate2(object, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
       "creating attribute " + name));
   check(H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, &value), "writing attribute " + name);
+}
+
+std::vector<double> read_array(hid_t parent, const std::string& name, int rank,
+                               std::vector<hsize_t>& dims) {
+  Handle dataset = open_dataset(parent, name);
+  Handle space(check_id(H5Dget_space(dataset.get()), "dataspace of " + name));
+  if (H5Sget_simple_extent_ndims(space.get()) != rank)
+    throw Error("dataset " + name + " is not " + std::to_string(rank) + "-D", 0);
+  dims.assign(std::size_t(rank), 0);
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  hsize_t size = 1;
+  for (hsize_t d : dims)
+    size *= d;
+  std::vector<double> values(size);
+  if (size > 0)
+    check(H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+          "reading dataset " + name);
+  return values;
+}
+
+double read_number_attribute(hid_t object, const std::string& name) {
+  Handle attribute(
+      check_id(H5Aopen(object, name.c_str(), H5P_DEFAULT), "opening attribute " + name));
+  double value = 0.0;
+  check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), "reading attribute " + name);
+  return value;
 }
 
 RowAppender::RowAppender(hid_t parent, const std::string& name, hid_t type,

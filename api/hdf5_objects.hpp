@@ -1,4 +1,4 @@
-// Small RAII layer over the HDF5 C API for the result file: owned handles, 1-D datasets,
+// Small RAII layer over the HDF5 C API for the result file: owned handles, 1-D and 2-D datasets,
 // attributes, and 2-D datasets that grow along their first (time) axis.
 #pragma once
 
@@ -73,6 +73,10 @@ Handle create_group(hid_t parent, const std::string& name);
 void write_vector(hid_t parent, const std::string& name, const std::vector<double>& values,
                   const std::string& units);
 
+// A 2-D float64 dataset [rows, columns] of row-major `values`, chunked and compressed as above.
+void write_matrix(hid_t parent, const std::string& name, const std::vector<double>& values,
+                  hsize_t rows, hsize_t columns, const std::string& units);
+
 Handle open_dataset(hid_t parent, const std::string& name);
 
 // Dimension scales (HDF5 high-level library, H5DS): `scale` becomes a coordinate named
@@ -82,6 +86,13 @@ void attach_scale(hid_t dataset, hid_t scale, unsigned dim, const std::string& w
 
 void write_attribute(hid_t object, const std::string& name, const std::string& value); // UTF-8
 void write_attribute(hid_t object, const std::string& name, double value);
+
+// The float64 dataset `name` of `parent`, whole (row-major), and its dimensions; throws Error
+// when it is missing or its rank is not `rank`.
+std::vector<double> read_array(hid_t parent, const std::string& name, int rank,
+                               std::vector<hsize_t>& dims);
+// The numeric attribute `name` of `object` as a double; throws Error when it is missing.
+double read_number_attribute(hid_t object, const std::string& name);
 
 // A dataset that grows by rows: 2-D [rows, columns], or 1-D [rows] without `columns`.
 // Chunked [chunk_rows, columns], shuffle + deflate level 1. `type` is the native type of the

@@ -51,6 +51,34 @@ void check_whole_elements(const char* pointer, const char* what, double length,
   }
 }
 
+// The height of an FE block (section "geometry" or "lower"): whole elements, or for "auto"
+// (h = c_p * duration / 2, growing with the duration) not too many of them.
+void check_block_height(const JobSpec& job, const std::string& section, double height,
+                        bool auto_height, const Material& material,
+                        std::vector<FieldError>& errors) {
+  const std::string pointer = "/" + section + "/height";
+  const SimulationParams& p = job.params;
+  if (!auto_height) {
+    if (!has_error(errors, pointer))
+      check_whole_elements(pointer.c_str(), "height", height, p.geometry.nodes_per_meter, 1.0,
+                           errors);
+    return;
+  }
+  const double c_p = material.p_wave_speed(); // not finite: api/run_bounds.cpp tells
+  const std::string m = section == "lower" ? "/lower" : "/material";
+  if (!std::isfinite(c_p) || has_error(errors, "/time/duration") ||
+      any_error(errors, {(m + "/density").c_str(), (m + "/young_modulus").c_str(),
+                         (m + "/poisson_ratio").c_str()}))
+    return;
+  const double elements = 0.5 * c_p * p.time.duration * p.geometry.nodes_per_meter;
+  if (!(elements <= max_elements_per_axis)) {
+    errors.push_back(
+        {pointer, "\"auto\" gives c_p * duration / 2 * nodes_per_meter = " + text(elements) +
+                      " elements, more than the " + text(max_elements_per_axis) +
+                      " allowed along one axis: give a height or a shorter duration"});
+  }
+}
+
 void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
   const Geometry& g = job.params.geometry;
   if (any_error(errors, {"/geometry/nodes_per_meter"})) return;
@@ -58,23 +86,12 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
     check_whole_elements("/geometry/width", "width", g.width, g.nodes_per_meter,
                          min_elements_along_x1, errors);
   }
-  const bool has_height = job.params.method == Method::finite_element; // BI: a half-space
-  if (has_height && !g.auto_height && !has_error(errors, "/geometry/height")) {
-    check_whole_elements("/geometry/height", "height", g.height, g.nodes_per_meter, 1.0, errors);
-  }
   const SimulationParams& p = job.params;
-  const double c_p = p.material.p_wave_speed(); // not finite: api/run_bounds.cpp tells
-  if (has_height && g.auto_height && std::isfinite(c_p) &&
-      !any_error(errors, {"/time/duration", "/material/density", "/material/young_modulus",
-                          "/material/poisson_ratio"})) {
-    // "auto" height grows with the duration: h = c_p * duration / 2.
-    const double elements = 0.5 * c_p * p.time.duration * g.nodes_per_meter;
-    if (!(elements <= max_elements_per_axis)) {
-      errors.push_back({"/geometry/height",
-                        "\"auto\" gives c_p * duration / 2 * nodes_per_meter = " + text(elements) +
-                            " elements, more than the " + text(max_elements_per_axis) +
-                            " allowed along one axis: give a height or a shorter duration"});
-    }
+  if (p.method == Method::finite_element) { // BI: half-spaces, no height
+    check_block_height(job, "geometry", g.height, g.auto_height, p.material, errors);
+    if (p.lower.elastic())
+      check_block_height(job, "lower", p.lower.height, p.lower.auto_height, p.lower.material,
+                         errors);
   }
   const double interface_nodes = std::round(g.width * g.nodes_per_meter);
   if (!any_error(errors, {"/geometry/width", "/output/space_stride"}) &&
@@ -85,7 +102,7 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
   }
 }
 
-void check_probe(const JobSpec& job, const char* pointer, double x1,
+void check_probe(const JobSpec& job, const std::string& pointer, double x1,
                  std::vector<FieldError>& errors) {
   const Geometry& g = job.params.geometry;
   if (any_error(errors, {"/geometry/width", "/geometry/x_min"}) || has_error(errors, pointer)) {
@@ -94,6 +111,20 @@ void check_probe(const JobSpec& job, const char* pointer, double x1,
   if (x1 < g.x_min || x1 >= g.x_min + g.width) {
     errors.push_back({pointer, "must lie in the domain [x_min, x_min + width) = [" + text(g.x_min) +
                                    ", " + text(g.x_min + g.width) + "), got " + text(x1)});
+  }
+}
+
+// Every station lies in the domain, and no two at the same x1 (the CSV export keys its rows
+// by station_x1).
+void check_stations(const JobSpec& job, std::vector<FieldError>& errors) {
+  const std::vector<double>& x1 = job.params.stations.x1;
+  for (std::size_t i = 0; i < x1.size(); ++i) {
+    const std::string pointer = "/stations/x1/" + std::to_string(i);
+    check_probe(job, pointer, x1[i], errors);
+    const auto first = std::find(x1.begin(), x1.begin() + long(i), x1[i]);
+    if (first != x1.begin() + long(i))
+      errors.push_back({pointer, "repeats station " + std::to_string(first - x1.begin()) +
+                                     " (x1 = " + text(x1[i]) + "): each station once"});
   }
 }
 
@@ -118,6 +149,7 @@ void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) 
   check_mesh(job, errors);
   check_probe(job, "/probe/arrival_x1", job.params.probes.arrival_x1, errors);
   check_probe(job, "/probe/spectrum_x1", job.params.probes.spectrum_x1, errors);
+  check_stations(job, errors);
   check_initial_stick(job, errors);
 }
 

@@ -8,6 +8,7 @@ constexpr int max_threads = 256;
 constexpr std::size_t max_name_length = 256;
 constexpr std::size_t max_tags = 32;
 constexpr std::size_t max_tag_length = 64;
+constexpr std::size_t max_stations = 64;
 
 void read_material(ObjectReader& in, Material& material) {
   in.number("density", material.density, positive());
@@ -15,20 +16,20 @@ void read_material(ObjectReader& in, Material& material) {
   in.number("poisson_ratio", material.poisson_ratio, open_interval(0.0, 0.5));
 }
 
-// "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp).
-void read_height(ObjectReader& in, Geometry& geometry) {
+// "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp),
+// for the upper block (geometry) and the lower one (lower).
+void read_height(ObjectReader& in, double& height, bool& auto_height) {
   if (const nlohmann::json* member = in.raw("height")) {
     if (*member == "auto") {
-      geometry.auto_height = true;
+      auto_height = true;
     } else if (member->is_number() && positive().contains(member->get<double>())) {
-      geometry.height = member->get<double>();
-      geometry.auto_height = false;
+      height = member->get<double>();
+      auto_height = false;
     } else {
       in.error("height", "must be a finite number > 0 or \"auto\", got " + describe_value(*member));
     }
   }
-  in.set_canonical("height",
-                   geometry.auto_height ? nlohmann::json("auto") : nlohmann::json(geometry.height));
+  in.set_canonical("height", auto_height ? nlohmann::json("auto") : nlohmann::json(height));
   in.describe("height", {{"oneOf",
                           {{{"type", "number"}, {"exclusiveMinimum", 0}},
                            {{"type", "string"}, {"const", "auto"}}}}});
@@ -43,7 +44,7 @@ void reject_for_method(ObjectReader& in, const std::string& key, const char* why
 void read_geometry(ObjectReader& in, SimulationParams& params) {
   in.number("width", params.geometry.width, positive());
   if (params.method == Method::finite_element) {
-    read_height(in, params.geometry);
+    read_height(in, params.geometry.height, params.geometry.auto_height);
   } else {
     reject_for_method(in, "height", "the half-space has no height; remove the field");
   }
@@ -55,6 +56,39 @@ void read_geometry(ObjectReader& in, SimulationParams& params) {
   } else {
     reject_for_method(in, "top_boundary", "the half-space has no top; remove the field");
   }
+}
+
+// The fields of an elastic lower solid: its material and, for the FE block, its height and
+// far (bottom) boundary.
+void read_elastic_lower(ObjectReader& in, LowerSolid& lower, Method method) {
+  read_material(in, lower.material);
+  if (method == Method::finite_element) {
+    read_height(in, lower.height, lower.auto_height);
+    in.choice("bottom_boundary", lower.bottom,
+              {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
+  } else {
+    reject_for_method(in, "height", "the lower half-space has no height; remove the field");
+    reject_for_method(in, "bottom_boundary",
+                      "the lower half-space has no far boundary; remove the field");
+  }
+}
+
+// What lies below the interface (docs/physics.md "Two solids"): the rigid plane (the default,
+// which has no other field) or a second elastic solid.
+void read_lower(ObjectReader& in, SimulationParams& params) {
+  LowerSolid& lower = params.lower;
+  in.choice("solid", lower.side, {{"rigid", LowerSide::rigid}, {"elastic", LowerSide::elastic}});
+  if (lower.elastic()) {
+    read_elastic_lower(in, lower, params.method);
+    return;
+  }
+  const auto elastic_fields = [&](ObjectReader& r) {
+    LowerSolid ignored;
+    read_elastic_lower(r, ignored, params.method);
+  };
+  for (const std::string& key : in.present_fields_of(elastic_fields))
+    in.error(key, "is used only with \"solid\": \"elastic\" (below the interface is the rigid "
+                  "plane, which has no material, height or boundary)");
 }
 
 void read_loading(ObjectReader& in, Loading& loading) {
@@ -119,6 +153,13 @@ void read_probes(ObjectReader& in, Probes& probes) {
   in.number("front_threshold", probes.front_threshold, positive());
 }
 
+// On-fault stations (docs/hdf5-layout.md "/stations"); api/job_checks.cpp checks that each
+// lies in the domain.
+void read_stations(ObjectReader& in, Stations& stations) {
+  in.number_list("x1", stations.x1, max_stations, any_finite());
+  in.number("rupture_threshold", stations.rupture_threshold, positive());
+}
+
 } // namespace
 
 void read_job_fields(ObjectReader& in, JobSpec& job) {
@@ -138,12 +179,17 @@ void read_job_fields(ObjectReader& in, JobSpec& job) {
   }
   in.object("material", [&](ObjectReader& m) { read_material(m, params.material); });
   in.object("geometry", [&](ObjectReader& g) { read_geometry(g, params); });
+  in.object("lower", [&](ObjectReader& l) { read_lower(l, params); });
   in.object("loading", [&](ObjectReader& l) { read_loading(l, params.loading); });
   in.object("friction", [&](ObjectReader& f) { read_friction(f, params.friction); });
   in.object("nucleation", [&](ObjectReader& n) { read_nucleation(n, params.nucleation); });
   in.object("time", [&](ObjectReader& t) { read_time(t, params.time, params.method); });
   in.object("output", [&](ObjectReader& o) { read_output(o, params.output); });
   in.object("probe", [&](ObjectReader& p) { read_probes(p, params.probes); });
+  in.object("stations", [&](ObjectReader& s) { read_stations(s, params.stations); });
+  // Without stations the section changes nothing: it stays out of the canonical form, so the
+  // specs written before it existed keep their hashes.
+  if (params.stations.x1.empty()) in.omit_canonical("stations");
   in.integer("threads", params.threads, 0, max_threads);
   in.string("name", job.name, max_name_length);
   in.string_list("tags", job.tags, max_tags, max_tag_length);

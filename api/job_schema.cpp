@@ -1,6 +1,7 @@
 #include "api/job_schema.hpp"
 
 #include "api/job_reader.hpp"
+#include "api/presets.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -53,6 +54,20 @@ const std::map<std::string, Words>& field_words() {
                "height · n_d) must be whole numbers of elements, 3 to 1e7 along x1"}},
       {"/geometry/top_boundary",
        {"", "the top keeps the remote traction, or absorbs waves (Lysmer–Kuhlemeyer dashpots)"}},
+      {"/lower/solid",
+       {"", "what lies below the interface (docs/physics.md \"Two solids\"): the rigid plane of "
+            "the paper, or a second elastic solid (FE: a block below the interface; "
+            "spectral_bi: a half-space). Every other field of `lower` is used only with "
+            "`\"elastic\"`"}},
+      {"/lower/density", {"kg/m^3", "rho of the lower solid"}},
+      {"/lower/young_modulus", {"Pa", "E of the lower solid"}},
+      {"/lower/poisson_ratio", {"", "nu of the lower solid"}},
+      {"/lower/height",
+       {"m", "the lower block's height below the interface; `\"auto\"` as geometry.height, with "
+             "the lower solid's c_p"}},
+      {"/lower/bottom_boundary",
+       {"", "the lower block's far boundary x2 = -height keeps the remote traction, or absorbs "
+            "waves (Lysmer–Kuhlemeyer dashpots)"}},
       {"/loading/normal_stress",
        {"Pa", "tau2_0; negative = compressive (the solid must be pressed on the plane)"}},
       {"/loading/shear_stress",
@@ -91,6 +106,14 @@ const std::map<std::string, Words>& field_words() {
       {"/probe/spectrum_x1",
        {"m", "where tau_s(t) is recorded for the spectral L_c estimate; inside the domain"}},
       {"/probe/front_threshold", {"m/s", "slip velocity that defines the slip front"}},
+      {"/stations/x1",
+       {"m", "on-fault stations: each inside [x_min, x_min + width), each once; the interface is "
+             "recorded there every step, linearly between the two nodes around it (exact on a "
+             "node), into /stations of the result file, with the rupture time in the metrics "
+             "(docs/hdf5-layout.md). Empty: no stations"}},
+      {"/stations/rupture_threshold",
+       {"m/s", "a station's rupture time is the first time its \\|V\\| exceeds this "
+               "(interpolated linearly between steps)"}},
       {"/threads", {"", "worker threads of the run; 0 = all hardware threads"}},
       {"/name", {"", "free text"}},
       {"/tags", {"", "free text, for filtering"}},
@@ -127,7 +150,7 @@ std::string format_number(double value) {
 std::string type_text(const nlohmann::json& schema) {
   if (schema.contains("oneOf")) return "number or `\"auto\"`";
   const std::string type = schema.at("type");
-  if (type == "array") return "array of strings";
+  if (type == "array") return "array of " + schema["items"]["type"].get<std::string>() + "s";
   return type;
 }
 
@@ -153,6 +176,11 @@ std::string allowed_text(const nlohmann::json& schema) {
   if (type == "string")
     return "at most " + std::to_string(schema["maxLength"].get<long>()) +
            " characters, no control characters";
+  if (type == "array" && schema["items"]["type"] == "number") {
+    const std::string each = allowed_text(schema["items"]);
+    return "at most " + std::to_string(schema["maxItems"].get<long>()) + " numbers" +
+           (each == "any" ? "" : ", each " + each);
+  }
   if (type == "array")
     return "at most " + std::to_string(schema["maxItems"].get<long>()) +
            " non-empty strings of at most " +
@@ -177,20 +205,24 @@ std::string allowed_text(const nlohmann::json& schema) {
 
 std::vector<JobField> job_fields() {
   // FE is the default method: its record gives the defaults of the fields both methods read.
-  const SchemaRecorder fe = record_fields(nlohmann::json::object());
-  const SchemaRecorder bi = record_fields({{"method", "spectral_bi"}});
+  // The fields of an elastic lower solid are read only when it is chosen: two more records.
+  const nlohmann::json elastic_lower = {{"solid", "elastic"}};
+  const std::pair<SchemaRecorder, bool> records[] = {
+      {record_fields(nlohmann::json::object()), false},
+      {record_fields({{"method", "spectral_bi"}}), true},
+      {record_fields({{"lower", elastic_lower}}), false},
+      {record_fields({{"method", "spectral_bi"}, {"lower", elastic_lower}}), true},
+  };
   std::vector<JobField> fields;
   std::map<std::string, std::size_t> index;
-  for (const auto& r : fe) {
-    index[r.pointer] = fields.size();
-    fields.push_back({r.pointer, r.schema, true, false, "", ""});
-  }
-  for (const auto& r : bi) {
-    if (auto found = index.find(r.pointer); found != index.end()) {
-      fields[found->second].spectral_bi = true;
-    } else {
-      index[r.pointer] = fields.size();
-      fields.push_back({r.pointer, r.schema, false, true, "", ""});
+  for (const auto& [record, spectral_bi] : records) {
+    for (const auto& r : record) {
+      auto found = index.find(r.pointer);
+      if (found == index.end()) {
+        found = index.emplace(r.pointer, fields.size()).first;
+        fields.push_back({r.pointer, r.schema, false, false, "", ""});
+      }
+      (spectral_bi ? fields[found->second].spectral_bi : fields[found->second].fe) = true;
     }
   }
   fields[index.at("/method")].schema["default"] = "fe";
@@ -243,14 +275,26 @@ nlohmann::json job_json_schema() {
     schema["x-methods"] = methods;
     (*parent)["properties"][name] = schema;
   }
+  // Not a field of the job but a shorthand for one (api/presets.hpp): expanded before the
+  // fields are read, so it has no default and never appears in a stored spec.
+  nlohmann::json names = nlohmann::json::array();
+  for (const Preset& preset : presets())
+    names.push_back(preset.name);
+  root["properties"]["preset"] = {
+      {"type", "string"},
+      {"enum", names},
+      {"description", "start from this preset (GET /api/v1/presets): the job is the preset's "
+                      "spec with the other members merged over it (JSON merge patch, RFC 7396; "
+                      "docs/presets.md)"},
+      {"x-methods", {"fe", "spectral_bi"}}};
   return root;
 }
 
 std::string job_fields_markdown() {
   // The docs' order of sections; a section not listed here comes last.
-  const std::vector<std::string> order = {"top level", "spectral_bi", "fe",       "material",
-                                          "geometry",  "loading",     "friction", "nucleation",
-                                          "time",      "output",      "probe"};
+  const std::vector<std::string> order = {
+      "top level", "spectral_bi", "fe",   "material", "geometry", "lower",   "loading",
+      "friction",  "nucleation",  "time", "output",   "probe",    "stations"};
   std::map<std::string, std::string> rows;
   std::vector<std::string> titles = order;
   for (const JobField& field : job_fields()) {

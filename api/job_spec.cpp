@@ -4,18 +4,22 @@
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
+#include "api/presets.hpp"
 #include "api/result_estimate.hpp"
 #include "api/run_bounds.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
 
-ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits) {
+ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limits) {
   ParseResult result;
-  if (!document.is_object()) {
-    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(document)});
+  if (!given.is_object()) {
+    result.errors.push_back({"", "the job must be a JSON object, got " + describe_value(given)});
     return result;
   }
+  // {"preset": NAME, ...}: the preset's spec with the job's members merged over it.
+  const nlohmann::json document = expand_preset(given, result.errors);
+  if (!result.errors.empty()) return result;
 
   JobSpec job;
   ObjectReader reader(&document, "", result.errors);
@@ -65,6 +69,10 @@ nlohmann::json physics_canonical(const nlohmann::json& canonical) {
   if (const auto fe = physics.find("fe"); fe != physics.end() && fe->is_object() &&
                                           fe->size() == 1 && fe->value("mesh_damping", -1.0) == 0.0)
     physics.erase("fe");
+  // "lower": {"solid": "rigid"} is the rigid plane of every record before the section existed.
+  if (const auto lower = physics.find("lower");
+      lower != physics.end() && *lower == nlohmann::json{{"solid", "rigid"}})
+    physics.erase("lower");
   return physics;
 }
 
@@ -73,9 +81,11 @@ std::string spec_hash(const nlohmann::json& canonical) {
 }
 
 // The scene of a study (docs/metrics.md "Critical length"): everything but L and n_d (and what
-// never changes the metrics, as in spec_hash).
+// never changes the metrics, as in spec_hash), and but the stations: where a run is watched
+// does not change the scene.
 std::string scene_hash(const nlohmann::json& canonical) {
   nlohmann::json scene = physics_canonical(canonical); // so the method separates scenes
+  scene.erase("stations");
   if (scene.contains("friction") && scene["friction"].is_object()) scene["friction"].erase("L");
   if (scene.contains("geometry") && scene["geometry"].is_object())
     scene["geometry"].erase("nodes_per_meter");
@@ -93,6 +103,10 @@ std::string counterpart_scene_hash(const nlohmann::json& canonical) {
     if (other.contains("geometry") && other["geometry"].is_object()) {
       other["geometry"].erase("height");
       other["geometry"].erase("top_boundary");
+    }
+    if (other.contains("lower") && other["lower"].is_object()) {
+      other["lower"].erase("height");
+      other["lower"].erase("bottom_boundary");
     }
     if (other.contains("time") && other["time"].is_object()) other["time"].erase("safety_factor");
   }

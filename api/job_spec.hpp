@@ -43,7 +43,8 @@ struct ParseResult {
   bool ok() const { return errors.empty(); }
 };
 
-// Validate a parsed JSON document and build the job.
+// Validate a parsed JSON document and build the job. A "preset" member is expanded first
+// (api/presets.hpp): the job is the preset's spec with the other members merged over it.
 ParseResult parse_job(const nlohmann::json& document, const ValidationLimits& limits = {});
 
 // Parse text first (a syntax error is one FieldError with pointer "" and the parser's
@@ -54,20 +55,24 @@ ParseResult parse_job_text(const std::string& text, const ValidationLimits& limi
 std::string canonical_text(const nlohmann::json& canonical);
 
 // The canonical spec without what does not change the metrics (`name`, `tags`, `threads`,
-// `output`) and without `"method": "fe"` (the default, left out so that FE hashes are those
-// of the records made before the method field existed).
+// `output`; `stations` is in it when the job has stations, since they add their rupture times
+// to the metrics, and left out of the canonical form when it has none) and without the
+// defaults that older records did not have (`"method": "fe"`, the undamped `"fe"` section,
+// `"lower": {"solid": "rigid"}`), so that their hashes stay those of the records made before
+// these fields existed.
 nlohmann::json physics_canonical(const nlohmann::json& canonical);
 
 // SHA-256 (lower-case hex) of the canonical text of physics_canonical(canonical).
 std::string spec_hash(const nlohmann::json& canonical);
 
-// SHA-256 of the canonical spec without friction.L, geometry.nodes_per_meter, output, name,
-// tags and threads: runs with the same scene hash belong to one convergence map.
+// SHA-256 of the canonical spec without friction.L, geometry.nodes_per_meter, stations, output,
+// name, tags and threads: runs with the same scene hash belong to one convergence map.
 std::string scene_hash(const nlohmann::json& canonical);
 
 // The scene of the same physics by the other method: the spec with "method" swapped and the
 // fields only one method has dropped (FE: geometry.height, geometry.top_boundary,
-// time.safety_factor and the "fe" section; BI: the "spectral_bi" section). Empty if the
+// lower.height, lower.bottom_boundary, time.safety_factor and the "fe" section; BI: the
+// "spectral_bi" section). Empty if the
 // swapped spec is not valid.
 std::string counterpart_scene_hash(const nlohmann::json& canonical);
 

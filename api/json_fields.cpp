@@ -236,6 +236,33 @@ void ObjectReader::string_list(const std::string& key, std::vector<std::string>&
                  {"pattern", free_text_pattern}}}});
 }
 
+void ObjectReader::number_list(const std::string& key, std::vector<double>& target,
+                               std::size_t max_items, const Interval& allowed) {
+  const std::string range = allowed.describe();
+  const std::string each = "finite number" + (range.empty() ? "" : " " + range);
+  if (const nlohmann::json* member = raw(key)) {
+    if (!member->is_array() || member->size() > max_items) {
+      const std::string got =
+          member->is_array() ? std::to_string(member->size()) + " items" : describe_value(*member);
+      error(key,
+            "must be an array of at most " + std::to_string(max_items) + " numbers, got " + got);
+    } else {
+      std::vector<double> items;
+      for (std::size_t i = 0; i < member->size(); ++i) {
+        const nlohmann::json& item = (*member)[i];
+        if (item.is_number() && allowed.contains(item.get<double>()))
+          items.push_back(item.get<double>());
+        else
+          errors_.push_back({pointer(key) + "/" + std::to_string(i),
+                             "must be a " + each + ", got " + describe_value(item)});
+      }
+      if (items.size() == member->size()) target = std::move(items);
+    }
+  }
+  set_canonical(key, target);
+  record(key, {{"type", "array"}, {"maxItems", max_items}, {"items", number_schema(allowed)}});
+}
+
 void ObjectReader::object(const std::string& key, const std::function<void(ObjectReader&)>& read) {
   const nlohmann::json* member = raw(key);
   if (member != nullptr && !member->is_object()) {
@@ -246,6 +273,17 @@ void ObjectReader::object(const std::string& key, const std::function<void(Objec
   read(child);
   child.finish();
   set_canonical(key, child.canonical());
+}
+
+std::vector<std::string>
+ObjectReader::present_fields_of(const std::function<void(ObjectReader&)>& read) {
+  std::vector<FieldError> dropped;
+  ObjectReader probe(object_, pointer_, dropped);
+  read(probe);
+  std::vector<std::string> present;
+  for (const std::string& key : probe.known_)
+    if (raw(key) != nullptr) present.push_back(key);
+  return present;
 }
 
 void ObjectReader::finish() {

@@ -68,6 +68,9 @@ public:
   void string(const std::string& key, std::string& target, std::size_t max_length);
   void string_list(const std::string& key, std::vector<std::string>& target, std::size_t max_items,
                    std::size_t max_length);
+  // An array of at most `max_items` numbers, each in `allowed` (errors name /key/i).
+  void number_list(const std::string& key, std::vector<double>& target, std::size_t max_items,
+                   const Interval& allowed);
 
   template <class Enum>
   void choice(const std::string& key, Enum& target,
@@ -79,10 +82,18 @@ public:
   // For fields with a shape of their own: the raw member (null if absent), marked as known.
   const nlohmann::json* raw(const std::string& key);
   void set_canonical(const std::string& key, nlohmann::json value);
+  // Leaves `key` out of the canonical form (a section at its defaults that must not change
+  // the canonical text, and so the hashes, of the specs written before it existed).
+  void omit_canonical(const std::string& key) { canonical_.erase(key); }
   void error(const std::string& key, std::string reason);
   // For a field read through raw(): its schema, when a recorder listens.
   void describe(const std::string& key, nlohmann::json schema);
   std::string pointer(const std::string& key) const { return child_pointer(pointer_, key); }
+
+  // The members of this object that `read` would read, marked as known; their values and
+  // errors are dropped. For fields that another field's choice rules out: the caller then
+  // names each one given in an error of its own.
+  std::vector<std::string> present_fields_of(const std::function<void(ObjectReader&)>& read);
 
   // Records every member that was never asked for as an unknown field.
   void finish();

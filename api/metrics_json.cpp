@@ -24,6 +24,15 @@ const char* top_name(TopBoundary top) {
   return top == TopBoundary::absorbing ? "absorbing" : "traction";
 }
 
+// The rupture time at each station (docs/metrics.md "Stations"), null where it never ruptured.
+nlohmann::json stations_json(const StationRecords& stations) {
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t s = 0; s < stations.x1.size(); ++s)
+    list.push_back({{"x1", json_number(stations.x1[s])},
+                    {"rupture_time", json_number(stations.rupture_time[s])}});
+  return list;
+}
+
 } // namespace
 
 const char* method_name(Method method) {
@@ -45,6 +54,10 @@ std::string method_description(const SimulationParams& params) {
     method = text;
   } else {
     method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
+    if (params.lower.elastic())
+      method += std::string("; lower solid: elastic block (split-node interface), bottom "
+                            "boundary: ") +
+                top_name(params.lower.bottom);
     if (params.fe.mesh_damping > 0) {
       char text[200];
       std::snprintf(text, sizeof text,
@@ -87,6 +100,11 @@ nlohmann::json metrics_json(const RunResult& result) {
                {"dx", json_number(result.mesh.dx)},
                {"height", json_number(result.mesh.height)},
                {"threads", result.mesh.threads}};
+  if (result.mesh.lower_ny > 0) { // FE with an elastic lower solid: its block
+    j["mesh"]["lower_ny"] = result.mesh.lower_ny;
+    j["mesh"]["lower_height"] = json_number(result.mesh.lower_height);
+  }
+  if (!result.stations.empty()) j["stations"] = stations_json(result.stations);
   j["code_version"] = code_version();
   j["method"] = "fe";
   j["method_description"] = discretisation;

@@ -1,6 +1,7 @@
 #include "api/result_estimate.hpp"
 
 #include "solver/mesh_size.hpp"
+#include "solver/run/station_recorder.hpp"
 #include "solver/simulation.hpp"
 
 #include <algorithm>
@@ -17,9 +18,10 @@ double estimated_result_bytes(const SimulationParams& params) {
   // Five float64 fields and one int8 per stored node, and the sample's time.
   const double interface = samples * (stored_nodes * (5.0 * 8.0 + 1.0) + 8.0);
   const double probes = steps * 4.0 * 8.0;
+  const double stations = StationRecorder::record_bytes(params.stations, steps); // every step
   const double front = 3.0 * 8.0 * m.nx;
   const double overhead = 1.0e6; // metadata, energy series, chunk indices
-  return interface + probes + front + overhead;
+  return interface + probes + stations + front + overhead;
 }
 
 void check_result_size(const JobSpec& job, const ValidationLimits& limits,

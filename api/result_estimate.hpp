@@ -10,7 +10,8 @@ namespace slipfront::api {
 
 // An upper bound, uncompressed (deflate usually makes the file several times smaller):
 // every sampled interface field (docs/hdf5-layout.md) at one sample per `output.interval`
-// (at most one per step) for the whole duration, the per-step probe records and the front.
+// (at most one per step) for the whole duration, the per-step probe and station records and
+// the front.
 double estimated_result_bytes(const SimulationParams& params);
 
 // Appends an error at "/output/interval" if the estimate exceeds limits.max_result_bytes.

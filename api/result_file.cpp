@@ -3,6 +3,7 @@
 #include "api/hdf5_objects.hpp"
 #include "api/job_spec.hpp"
 #include "api/result_layout.hpp"
+#include "api/result_stations_writer.hpp"
 #include "solver/simulation.hpp"
 
 #include <fcntl.h>
@@ -157,6 +158,7 @@ void ResultFileWriter::Impl::write_records(const RunResult& result) {
     hdf5::write_vector(energy.get(), layout::energy_external_work, e.external_work, "J/m");
     hdf5::write_vector(energy.get(), layout::energy_dissipated, e.dissipated, "J/m");
   }
+  write_stations(root, result.stations); // only when the job has stations
 }
 
 // /interface/time and /interface/x1 become the coordinates of every interface field

@@ -12,7 +12,7 @@
 namespace slipfront::api {
 
 // Streams interface samples into chunked, compressed, extendible datasets of a temporary
-// file; finish() adds the front, probes, energy, spec, metrics and code version, closes
+// file; finish() adds the front, probes, energy, stations, spec, metrics and code version, closes
 // the file and renames it to the final path (atomic on one file system). If the writer is
 // destroyed without finish(), the temporary file is removed.
 class ResultFileWriter : public SampleSink {

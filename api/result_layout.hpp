@@ -14,6 +14,7 @@ inline constexpr const char* interface_group = "interface";
 inline constexpr const char* front_group = "front";
 inline constexpr const char* probes_group = "probes";
 inline constexpr const char* energy_group = "energy";
+inline constexpr const char* stations_group = "stations"; // only when the job has stations
 
 // Datasets of /interface: the coordinates, then the 2-D [n_samples, n_nodes] fields.
 inline constexpr const char* x1 = "x1";
@@ -51,6 +52,23 @@ inline constexpr const char* probe_slip_velocity_spectrum = "slip_velocity_spect
 inline constexpr const char* probe_strength_spectrum = "strength_spectrum";
 inline constexpr const char* probe_arrival_x1 = "arrival_x1";   // attribute
 inline constexpr const char* probe_spectrum_x1 = "spectrum_x1"; // attribute
+
+// Datasets and attributes of /stations (besides x1 [n] and time [m]): the 2-D [m, n] series in
+// the order of StationRecords' members, then the per-station data.
+struct StationField {
+  const char* name;
+  const char* units;
+};
+inline constexpr std::array<StationField, 4> station_fields = {{
+    {"slip_rate", "m/s"},
+    {"slip", "m"},
+    {"shear_traction", "Pa"},
+    {"normal_traction", "Pa"},
+}};
+inline constexpr const char* station_node_x1 = "node_x1";                     // [n, 2]
+inline constexpr const char* station_node_weight = "node_weight";             // [n, 2]
+inline constexpr const char* station_rupture_time = "rupture_time";           // [n]
+inline constexpr const char* station_rupture_threshold = "rupture_threshold"; // attribute
 
 // Datasets of /energy.
 inline constexpr const char* energy_kinetic = "kinetic";

@@ -1,6 +1,7 @@
 #include "api/run_bounds.hpp"
 
 #include "api/number_text.hpp"
+#include "solver/run/station_recorder.hpp"
 #include "solver/simulation.hpp"
 #include "solver/step_count.hpp"
 
@@ -31,6 +32,16 @@ const Input inputs[] = {
     {"/time/duration", [](auto& p, const auto& job) { p.time.duration = job.time.duration; }},
     {"/time/safety_factor",
      [](auto& p, const auto& job) { p.time.safety_factor = job.time.safety_factor; }},
+    {"/lower/density",
+     [](auto& p, const auto& job) { p.lower.material.density = job.lower.material.density; }},
+    {"/lower/young_modulus",
+     [](auto& p, const auto& job) {
+       p.lower.material.young_modulus = job.lower.material.young_modulus;
+     }},
+    {"/lower/poisson_ratio",
+     [](auto& p, const auto& job) {
+       p.lower.material.poisson_ratio = job.lower.material.poisson_ratio;
+     }},
     {"/fe/mesh_damping", [](auto& p, const auto& job) { p.fe.mesh_damping = job.fe.mesh_damping; }},
     {"/spectral_bi/time_step_factor",
      [](auto& p, const auto& job) { p.spectral.time_step_factor = job.spectral.time_step_factor; }},
@@ -44,6 +55,7 @@ enum class Direction { too_large, too_small };
 const char* culprit(const SimulationParams& job, Quantity quantity, Direction direction) {
   SimulationParams scene;
   scene.method = job.method;
+  scene.lower.side = job.lower.side; // a rigid plane's fields are never named
   const double base = std::log(quantity(scene));
   const char* named = inputs[0].pointer;
   double furthest = -std::numeric_limits<double>::infinity();
@@ -65,16 +77,24 @@ std::string text(double value) {
   return number_text(value, 3);
 }
 
-double s_wave_speed(const SimulationParams& p) {
-  return p.material.s_wave_speed();
-}
-double p_wave_speed(const SimulationParams& p) {
-  return p.material.p_wave_speed();
-}
-// rho c_p: the dashpot of the absorbing top and of the half-space's radiation damping.
-double p_impedance(const SimulationParams& p) {
-  return p.material.density * p.material.p_wave_speed();
-}
+// A solid whose wave speeds are bounded: the upper (`material`) or the lower (`lower`).
+struct Solid {
+  const char* pointer; // of its poisson_ratio
+  Quantity s_wave_speed, p_wave_speed;
+  Quantity p_impedance; // rho c_p: the dashpot of an absorbing boundary, the radiation damping
+};
+const Solid upper_solid = {
+    "/material/poisson_ratio", [](const SimulationParams& p) { return p.material.s_wave_speed(); },
+    [](const SimulationParams& p) { return p.material.p_wave_speed(); },
+    [](const SimulationParams& p) { return p.material.density * p.material.p_wave_speed(); }};
+const Solid lower_solid = {
+    "/lower/poisson_ratio",
+    [](const SimulationParams& p) { return p.lower.material.s_wave_speed(); },
+    [](const SimulationParams& p) { return p.lower.material.p_wave_speed(); },
+    [](const SimulationParams& p) {
+      return p.lower.material.density * p.lower.material.p_wave_speed();
+    }};
+
 double shortest_step(const SimulationParams& p) {
   return time_step_bounds(p).shortest;
 }
@@ -87,13 +107,14 @@ bool finite_positive(double value) {
   return std::isfinite(value) && value > 0.0;
 }
 
-// c_s = sqrt(mu / rho) and c_p = sqrt((lambda + 2 mu) / rho) (docs/physics.md), finite and
-// > 0, and so is rho c_p. False if not (the error is appended).
-bool check_wave_speeds(const SimulationParams& p, std::vector<FieldError>& errors) {
-  const double c_s = p.material.s_wave_speed(), c_p = p.material.p_wave_speed();
+// c_s = sqrt(mu / rho) and c_p = sqrt((lambda + 2 mu) / rho) of a solid (docs/physics.md),
+// finite and > 0, and so is rho c_p. False if not (the error is appended).
+bool check_wave_speeds(const SimulationParams& p, const Solid& solid,
+                       std::vector<FieldError>& errors) {
+  const double c_s = solid.s_wave_speed(p), c_p = solid.p_wave_speed(p);
   const std::string speeds = "c_s = " + text(c_s) + " m/s, c_p = " + text(c_p) + " m/s";
   if (!finite_positive(c_s) || !finite_positive(c_p)) {
-    const Quantity speed = finite_positive(c_s) ? p_wave_speed : s_wave_speed;
+    const Quantity speed = finite_positive(c_s) ? solid.p_wave_speed : solid.s_wave_speed;
     const bool overflow = !std::isfinite(speed(p));
     errors.push_back({culprit(p, speed, overflow ? Direction::too_large : Direction::too_small),
                       "the wave speeds (" + speeds +
@@ -101,16 +122,16 @@ bool check_wave_speeds(const SimulationParams& p, std::vector<FieldError>& error
                           (overflow ? "too large" : "too small") + " for a double"});
     return false;
   }
-  if (!std::isfinite(p_impedance(p))) {
-    errors.push_back({culprit(p, p_impedance, Direction::too_large),
+  if (!std::isfinite(solid.p_impedance(p))) {
+    errors.push_back({culprit(p, solid.p_impedance, Direction::too_large),
                       "the impedance density * c_p is not a finite number (" + speeds + ")"});
     return false;
   }
   if (p.method == Method::spectral_bi && c_p / c_s > max_bi_wave_speed_ratio) {
-    errors.push_back({"/material/poisson_ratio",
-                      "c_p / c_s = " + text(c_p / c_s) + " is more than the " +
-                          text(max_bi_wave_speed_ratio) +
-                          " the spectral_bi kernel allows (poisson_ratio at most 0.49995)"});
+    errors.push_back(
+        {solid.pointer, "c_p / c_s = " + text(c_p / c_s) + " is more than the " +
+                            text(max_bi_wave_speed_ratio) +
+                            " the spectral_bi kernel allows (poisson_ratio at most 0.49995)"});
     return false;
   }
   return true;
@@ -144,10 +165,27 @@ void check_time_steps(const SimulationParams& p, std::vector<FieldError>& errors
   }
 }
 
+// The stations record every step: stations x steps within max_station_record_bytes. Call
+// it after check_time_steps (the step count is then finite).
+void check_station_record(const SimulationParams& p, std::vector<FieldError>& errors) {
+  const double bytes = StationRecorder::record_bytes(p.stations, step_count_bound(p));
+  if (bytes <= max_station_record_bytes) return;
+  errors.push_back({"/stations/x1",
+                    "the " + std::to_string(p.stations.x1.size()) + " stations would record " +
+                        text(bytes / 1e9) + " GB over up to " + text(step_count_bound(p)) +
+                        " time steps, more than the limit " + text(max_station_record_bytes / 1e9) +
+                        " GB: use fewer stations or a shorter duration"});
+}
+
 } // namespace
 
 void check_run_bounds(const JobSpec& job, std::vector<FieldError>& errors) {
-  if (check_wave_speeds(job.params, errors)) check_time_steps(job.params, errors);
+  const SimulationParams& p = job.params;
+  if (!check_wave_speeds(p, upper_solid, errors)) return;
+  if (p.lower.elastic() && !check_wave_speeds(p, lower_solid, errors)) return;
+  const std::size_t before = errors.size();
+  check_time_steps(p, errors);
+  if (errors.size() == before) check_station_record(p, errors);
 }
 
 } // namespace slipfront::api

@@ -1,9 +1,9 @@
 // The quantities a job implies, bounded at validation before anything is estimated or run
 // (docs/api-job-spec.md, "Limits of a run"): the wave speeds, the time step, the number of
-// steps and, for spectral_bi, the kernel's wave-speed ratio. Each field may be in range while
-// together they make an impossible run (a step of 1e-302 s, 1e302 steps, an infinite wave
-// speed); the error names the field that alone moves the quantity furthest from the paper's
-// scene.
+// steps, the stations' record and, for spectral_bi, the kernel's wave-speed ratio. Each field may
+// be in range while together they make an impossible run (a step of 1e-302 s, 1e302 steps, an
+// infinite wave speed); the error names the field that alone moves the quantity furthest from the
+// paper's scene.
 #pragma once
 
 #include "api/job_spec.hpp"
@@ -18,6 +18,8 @@ constexpr double min_time_step = 1e-100;
 // The largest c_p / c_s of a spectral_bi job (poisson_ratio up to 0.49995): the kernel's
 // quadrature grows with it (solver/spectral/half_space_kernels.cpp).
 constexpr double max_bi_wave_speed_ratio = 100.0;
+// The most bytes the stations' series may hold (every step, in memory until the run ends).
+constexpr double max_station_record_bytes = 2.5e8;
 
 // Appends an error for each bound a job breaks. Call it only for a job without other errors
 // (every field in its range, the mesh consistent).

@@ -1,5 +1,5 @@
-// The `slipfront` executable: run, validate, serve, check (docs/api-job-spec.md "The CLI",
-// docs/server.md; usage in app/usage.cpp).
+// The `slipfront` executable: run, validate, schema, stations, serve, check
+// (docs/api-job-spec.md "The CLI", docs/server.md; usage in app/usage.cpp).
 #include "app/commands.hpp"
 
 #include "server/check.hpp"
@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   if (command == "run") return run_command(args);
   if (command == "validate") return validate_command(args);
   if (command == "schema") return schema_command(args);
+  if (command == "presets") return presets_command(args);
+  if (command == "stations") return stations_command(args);
   if (command == "check") return slipfront::server::check_main(args);
   if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
   if (command == "--version" || command == "version") {

@@ -51,6 +51,22 @@ exit codes: 0 valid, 2 invalid job or command line. The job JSON: docs/api-job-s
 )";
 }
 
+void print_stations_usage(std::ostream& out) {
+  out << R"(usage: slipfront stations RESULT.h5 [--csv FILE]
+
+The on-fault stations of a result file (the job's "stations"; docs/hdf5-layout.md): each
+station's x1, the nodes it is read from and its rupture time; or, with --csv, every recorded
+step as CSV in the long format (station_x1,time,slip,slip_rate,shear_traction,
+normal_traction; units in the header comments). FILE may be "-" for standard output.
+
+options:
+  --csv FILE   write the CSV to FILE ("-": standard output)
+  -h, --help   this help
+
+exit codes: 0 success, 1 the file cannot be read or has no stations, 2 invalid command line.
+)";
+}
+
 void print_usage(std::ostream& out) {
   out << R"(slipfront: frictional interface rupture simulations (Kammer et al. 2014)
 
@@ -69,12 +85,17 @@ usage:
   slipfront schema [--markdown]
       The job schema: JSON Schema (also served at /api/v1/schema/job.json), or the field
       tables of docs/api-job-spec.md.
+  slipfront presets [NAME] [--json]
+      The presets a job may start from (the field's standard scenes and the examples);
+      with NAME its job as JSON. A job may name one: {"preset": NAME, ...} (docs/presets.md).
+  slipfront stations RESULT.h5 [--csv FILE]
+      The on-fault stations of a result file: rupture times, or every step as CSV.
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [--max-memory SIZE] [...]
       Run the HTTP job server (docs/server.md).
   slipfront check DATA_DIR
       List what a server could not read in DATA_DIR/slipfront.db (rows whose stored JSON
       does not parse, PRAGMA quick_check); exit 0 and "ok" if nothing.
-  slipfront run|validate|serve --help   the options of one command
+  slipfront run|validate|presets|stations|serve|check --help   the options of one command
   slipfront --version
   slipfront help | --help
 

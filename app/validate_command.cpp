@@ -2,6 +2,7 @@
 #include "app/commands.hpp"
 #include "app/job_input.hpp"
 
+#include "solver/mesh_size.hpp"
 #include "solver/simulation.hpp"
 
 #include <cmath>
@@ -56,6 +57,14 @@ int validate_command(const std::vector<std::string>& args) {
             << "memory_estimate_bytes: " << std::llround(job->memory_estimate_bytes) << " ("
             << job->memory_estimate_bytes / 1e6 << " MB)\n"
             << "mesh: " << mesh << '\n';
+  const LowerSolid& lower = job->params.lower;
+  if (lower.elastic() && job->params.method == Method::finite_element) {
+    const MeshSize m = lower_mesh_size(job->params);
+    std::cout << "lower block: " << m.nx << " x " << m.ny << " nodes, height = " << m.height << " m"
+              << (lower.auto_height ? " (auto)" : "") << '\n';
+  } else if (lower.elastic()) {
+    std::cout << "lower solid: elastic half-space\n";
+  }
   return exit_code::success;
 }
 

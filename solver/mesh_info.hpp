@@ -15,6 +15,9 @@ struct MeshInfo {
   double dt = 0.0;
   int threads = 1;
   Method method = Method::finite_element; // spectral_bi: ny = 1 (the interface), no height
+  // FE with an elastic lower solid: its block's rows and height (after "auto"); else 0.
+  int lower_ny = 0;
+  double lower_height = 0.0;
 };
 
 } // namespace slipfront

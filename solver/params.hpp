@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace slipfront {
 
@@ -96,6 +97,13 @@ struct Probes {
   double front_threshold = 1e-6; // slip velocity that defines the front [m/s]
 };
 
+// On-fault stations (docs/hdf5-layout.md "/stations"): the interface recorded every step at
+// each x1, linearly between the two nodes around it, and its rupture time.
+struct Stations {
+  std::vector<double> x1;          // inside [x_min, x_min + width); empty: no stations
+  double rupture_threshold = 1e-3; // |V| [m/s] whose first crossing is the rupture time
+};
+
 // An extra traction applied at the interface (for verification scenes, e.g. a uniform
 // tensile step). Returns (t1, t2) [Pa] acting on the solid at (x1, t); t2 > 0 pulls the
 // solid away from the rigid plane.
@@ -154,6 +162,7 @@ struct SimulationParams {
   TimeControl time;
   OutputSampling output;
   Probes probes;
+  Stations stations;
   int threads = 0;               // 0 = all hardware threads
   ExtraInterfaceLoad extra_load; // empty for every job; used by verification tests
 };

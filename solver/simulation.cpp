@@ -5,6 +5,7 @@
 #include "solver/fe/finite_element_method.hpp"
 #include "solver/make_rupture_method.hpp"
 #include "solver/mesh_size.hpp"
+#include "solver/run/station_recorder.hpp"
 #include "solver/run/time_loop.hpp"
 #include "solver/spectral/spectral_method.hpp"
 #include "solver/thread_team.hpp"
@@ -19,9 +20,11 @@ double resolved_height(const SimulationParams& params) {
 }
 
 double estimated_memory_bytes(const SimulationParams& params) {
+  // The station records are the time loop's, the same for every method.
+  const double stations = StationRecorder::record_bytes(params.stations, step_count_bound(params));
   if (params.method == Method::spectral_bi)
-    return spectral::SpectralMethod::estimated_memory_bytes(params);
-  return fe::FiniteElementMethod::estimated_memory_bytes(params);
+    return spectral::SpectralMethod::estimated_memory_bytes(params) + stations;
+  return fe::FiniteElementMethod::estimated_memory_bytes(params) + stations;
 }
 
 TimeStepBounds time_step_bounds(const SimulationParams& params) {

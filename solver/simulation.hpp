@@ -24,8 +24,8 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks =
 // the run ends (2 h / c_p >= duration), rounded up to whole elements, plus one element.
 double resolved_height(const SimulationParams& params);
 
-// Bytes the run will hold in memory (fields, interface state, records); used by the job
-// validation to refuse jobs above a limit before they start.
+// Bytes the run will hold in memory (fields, interface state, records, the stations' series);
+// used by the job validation to refuse jobs above a limit before they start.
 double estimated_memory_bytes(const SimulationParams& params);
 
 // The time step of a run before it starts. BI's is exact: time_step_factor dx / c_s. FE's is

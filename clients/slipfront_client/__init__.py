@@ -18,6 +18,8 @@ _PUBLIC = {
     "load_result": "results", "connect": "workflow", "download": "workflow",
     "list_runs": "workflow", "load_job_result": "workflow", "run_study": "workflow",
     "runs_dataframe": "workflow", "submit": "workflow", "wait_job": "workflow",
+    "Stations": "stations", "job_stations": "stations", "load_stations": "stations",
+    "parse_stations_csv": "stations",
 }
 
 __all__ = sorted(_PUBLIC) + ["__version__"]

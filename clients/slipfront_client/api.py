@@ -164,6 +164,13 @@ class Api:
                                 headers=headers, ok=(200, 201), idempotent=True)
         return response.json()
 
+    def presets(self):
+        """GET /presets: [{name, origin, title, description, reference, spec}]."""
+        return self.get_json(f"{API}/presets")["presets"]
+
+    def preset(self, name):
+        return self.get_json(f"{API}/presets/{name}")
+
     def job(self, job_id, fields=None):
         params = {"fields": ",".join(fields)} if fields else None
         return self.get_json(f"{API}/jobs/{job_id}", params=params)
@@ -242,6 +249,10 @@ class Api:
 
     def front(self, job_id):
         return self.get_json(f"{API}/jobs/{job_id}/front")
+
+    def stations_csv(self, job_id):
+        """The job's stations, every step, as CSV text (docs/hdf5-layout.md "Stations as CSV")."""
+        return self.request("GET", f"{API}/jobs/{job_id}/stations.csv").text
 
     def create_study(self, study):
         response = self.request("POST", f"{API}/studies", json_body=study, ok=(200, 201, 202),

@@ -59,7 +59,7 @@ def build_parser():
     parser.add_argument("--version", action="version",
                         version=f"slipfront-client {__version__}")
     sub = parser.add_subparsers(dest="command", required=True,
-                                metavar="submit|status|list|cancel|download|study|plot")
+                                metavar="submit|status|list|cancel|download|stations|study|plot")
     commands_jobs.add_parsers(sub, common)
     commands_study.add_parsers(sub, common)
     commands_plot.add_parsers(sub, common)

@@ -1,4 +1,4 @@
-"""The job subcommands: submit, status, list, cancel, download."""
+"""The job subcommands: submit, status, list, cancel, download, presets, stations."""
 
 import argparse
 import os
@@ -16,6 +16,8 @@ def add_parsers(sub, common):
                        description="Submit a job file (or '-' for stdin; none = the paper's scene) "
                                    "with inline overrides. Prints the job id.")
     p.add_argument("job", nargs="?", help="job JSON file, or - for stdin")
+    p.add_argument("--preset", metavar="NAME",
+                   help="start from a preset (`presets` lists them); the file and --set change it")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE",
                    help="override a field, e.g. --set friction.L=1e-5 (value is JSON or text)")
     p.add_argument("--name", help="job name")
@@ -27,6 +29,14 @@ def add_parsers(sub, common):
     p.add_argument("--download", metavar="FILE", help="after --wait, download the result here")
     p.add_argument("--dry-run", action="store_true", help="print the job JSON and do not submit")
     p.set_defaults(func=cmd_submit)
+
+    p = sub.add_parser("presets", parents=[common], help="list the presets, or show one",
+                       description="The presets a job may start from: the field's standard "
+                                   "scenes and the example jobs (docs/presets.md). With NAME, "
+                                   "its job as JSON (save it, edit it, submit it), or submit "
+                                   "--preset NAME directly.")
+    p.add_argument("name", nargs="?")
+    p.set_defaults(func=cmd_presets)
 
     p = sub.add_parser("status", parents=[common], help="show a job")
     p.add_argument("id")
@@ -80,13 +90,22 @@ def add_parsers(sub, common):
                    help="also write the XDMF sidecar (ParaView, VisIt) beside it, as FILE.xdmf")
     p.set_defaults(func=cmd_download)
 
+    p = sub.add_parser("stations", parents=[common], help="a job's on-fault stations",
+                       description="The rupture time at each station of a finished job, or with "
+                                   "--csv every step in the long format (station_x1,time,slip,"
+                                   "slip_rate,shear_traction,normal_traction; units in the "
+                                   "header comments).")
+    p.add_argument("id")
+    p.add_argument("--csv", metavar="FILE", help="write the CSV to FILE ('-': standard output)")
+    p.set_defaults(func=cmd_stations)
+
 
 def cmd_submit(args, ctx):
     if args.download and not args.wait:
         raise UsageError("--download needs --wait")
     if args.priority is not None and not -100 <= args.priority <= 100:
         raise UsageError("--priority must be an integer in [-100, 100]")
-    spec = jobspec.build_job(args.job, args.overrides, args.name, args.tags)
+    spec = jobspec.build_job(args.job, args.overrides, args.name, args.tags, preset=args.preset)
     if args.dry_run:
         print_json(spec)
         return 0
@@ -113,6 +132,22 @@ def cmd_submit(args, ctx):
         path, sha, _ = download_result(api, job["id"], args.download, log=log)
         if not args.quiet:
             log(f"result written to {path} (sha256 {sha})")
+    return 0
+
+
+def cmd_presets(args, ctx):
+    api = ctx.api()
+    if args.name:
+        preset = api.preset(args.name)
+        print_json(preset if args.json else preset["spec"])
+        return 0
+    presets = api.presets()
+    if args.json:
+        print_json(presets)
+    else:
+        for line in table(presets, [("name", lambda p: p["name"]), ("origin", lambda p: p["origin"]),
+                                    ("title", lambda p: p["title"])]):
+            print(line)
     return 0
 
 
@@ -204,4 +239,29 @@ def cmd_download(args, ctx):
         with open(xdmf, "w", encoding="utf-8") as f:
             f.write(text)
         print(xdmf)
+    return 0
+
+
+def cmd_stations(args, ctx):
+    from . import stations  # here: numpy only for the commands that need it
+
+    text = ctx.api().stations_csv(args.id)
+    if args.csv == "-":
+        sys.stdout.write(text)
+        return 0
+    if args.csv:
+        with open(args.csv, "w", encoding="utf-8") as f:
+            f.write(text)
+        if not args.quiet:
+            log(f"stations of job {args.id} written to {args.csv}")
+        return 0
+    st = stations.parse_stations_csv(text)
+    rows = [{"x1": float(x), "rupture_time": None if t != t else float(t)}  # NaN: never
+            for x, t in zip(st.x1, st.rupture_time)]
+    if args.json:
+        print_json({"rupture_threshold": st.rupture_threshold, "stations": rows})
+        return 0
+    print(f"rupture threshold {st.rupture_threshold:g} m/s, {st.time.size} steps")
+    print("\n".join(table(rows, [("station_x1 [m]", lambda r: r["x1"]),
+                                  ("rupture_time [s]", lambda r: r["rupture_time"])])))
     return 0

@@ -63,9 +63,14 @@ def apply_override(doc, assignment):
     return doc
 
 
-def build_job(source=None, overrides=(), name=None, tags=None, stdin=None):
-    """The job document: the file (or an empty job = the paper's scene) plus overrides."""
+def build_job(source=None, overrides=(), name=None, tags=None, stdin=None, preset=None):
+    """The job document: the file (or an empty job = the paper's scene) plus overrides.
+
+    With `preset`, the document names it ({"preset": NAME, ...}): the server expands it, the
+    preset's spec with the document's members merged over it (docs/presets.md)."""
     doc = load_job(source, stdin) if source else {}
+    if preset is not None:
+        doc["preset"] = preset
     for assignment in overrides:
         apply_override(doc, assignment)
     if name is not None:

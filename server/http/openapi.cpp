@@ -198,11 +198,28 @@ const char* document = R"json({
           "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"},
           "409": {"$ref": "#/components/responses/Problem"}, "410": {"$ref": "#/components/responses/Problem"}}}
     },
+    "/api/v1/jobs/{id}/stations.csv": {
+      "get": {"summary": "The job's on-fault stations, every recorded step, as CSV in the long format (docs/hdf5-layout.md, \"Stations as CSV\")",
+        "description": "Comment lines first (# units, the rupture threshold, each station's rupture time; nan: never), then the header station_x1,time,slip,slip_rate,shear_traction,normal_traction and one row per station and time step, station by station. Units: m, s, m, m/s, Pa, Pa; normal_traction is negative in compression. Read with pandas.read_csv(url, comment='#').",
+        "parameters": [{"$ref": "#/components/parameters/id"}],
+        "responses": {"200": {"description": "The stations as CSV", "content": {"text/csv": {"schema": {"type": "string"}}}},
+          "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
+          "410": {"$ref": "#/components/responses/Problem"}}}
+    },
     "/api/v1/job-defaults": {
       "get": {"summary": "The canonical spec of an empty job of a method: every field with its default (the web view's submit form starts from it)",
         "parameters": [{"name": "method", "in": "query", "schema": {"type": "string", "enum": ["fe", "spectral_bi"], "default": "fe"}}],
         "responses": {"200": {"description": "{method, spec, memory_estimate_bytes}", "content": {"application/json": {}}},
           "400": {"$ref": "#/components/responses/Problem"}}}
+    },
+    "/api/v1/presets": {
+      "get": {"summary": "The presets a job may start from: the field's standard scenes (presets/) and the example jobs (examples/); a job names one with \"preset\": NAME (docs/presets.md)",
+        "responses": {"200": {"description": "{presets: [{name, origin, title, description, reference, spec}]}", "content": {"application/json": {}}}}}
+    },
+    "/api/v1/presets/{name}": {
+      "get": {"summary": "One preset: {name, origin, title, description, reference, spec}",
+        "parameters": [{"name": "name", "in": "path", "required": true, "schema": {"type": "string"}}],
+        "responses": {"200": {"description": "the preset", "content": {"application/json": {}}}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/studies": {
       "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist); the study and its first runs are stored in one transaction", "security": [{"bearer": []}],

@@ -1,8 +1,10 @@
 // GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/result.xdmf (its XDMF
 // sidecar), /jobs/{id}/metrics, /jobs/{id}/front, /jobs/{id}/fields/{name} (a window of an
-// /interface field as JSON).
+// /interface field as JSON), /jobs/{id}/stations.csv (the stations' records as CSV).
 #include "api/result_reader.hpp"
+#include "api/result_stations.hpp"
 #include "api/result_xdmf.hpp"
+#include "api/station_csv.hpp"
 #include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
 #include "server/http/byte_range.hpp"
@@ -15,6 +17,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 namespace slipfront::server {
 
@@ -320,6 +323,34 @@ Response field(ServerContext& ctx, RequestContext& rc) {
   return json_response(req, http::status::ok, body);
 }
 
+// GET /jobs/{id}/stations.csv: every recorded step at the job's stations (api/station_csv.hpp);
+// 404 for a job whose spec lists no stations.
+Response stations_csv(ServerContext& ctx, RequestContext& rc) {
+  auto found = find_result(ctx, rc);
+  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
+  const Job& job = std::get<ResultOnDisk>(found).job;
+  const std::string& path = std::get<ResultOnDisk>(found).path;
+  const auto& req = rc.request;
+  std::string why;
+  const auto stations = api::read_stations(path, why);
+  if (!stations) {
+    log_error("stations of job " + job.id + ": " + why);
+    return problem_response(req, http::status::internal_server_error,
+                            "the result file of job " + job.id +
+                                " cannot be read: " + without_path(why, path, job));
+  }
+  if (stations->empty())
+    return problem_response(req, http::status::not_found,
+                            "job " + job.id +
+                                " has no stations (its spec lists none: \"stations\": "
+                                "{\"x1\": [...]})");
+  std::ostringstream out;
+  api::write_stations_csv(out, *stations);
+  auto res = text_response(req, http::status::ok, std::move(out).str(), "text/csv; charset=utf-8");
+  res.set(http::field::content_disposition, "attachment; filename=\"" + job.id + "-stations.csv\"");
+  return res;
+}
+
 } // namespace
 
 void add_result_routes(Router& router, ServerContext& ctx) {
@@ -338,6 +369,9 @@ void add_result_routes(Router& router, ServerContext& ctx) {
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/fields/{name}",
       [&ctx](RequestContext& rc) { return field(ctx, rc); }, true);
+  router.add(
+      http::verb::get, api_prefix + "/jobs/{id}/stations.csv",
+      [&ctx](RequestContext& rc) { return stations_csv(ctx, rc); }, true);
 }
 
 } // namespace slipfront::server

@@ -1,6 +1,7 @@
 #include "solver/fe/finite_element_method.hpp"
 
 #include "solver/fe/stable_time_step.hpp"
+#include "solver/interface/ill_posedness.hpp"
 #include "solver/mesh_size.hpp"
 
 #include <algorithm>
@@ -20,17 +21,30 @@ int thread_count(const SimulationParams& params) {
 
 FiniteElementMethod::FiniteElementMethod(const SimulationParams& params)
     : threads_(thread_count(params)), mesh_(params), team_(threads_),
-      p_wave_speed_(params.material.p_wave_speed()), top_(params.top) {}
+      ill_posed_warning_(bimaterial_coulomb_warning(params)) {}
 
-TimeStepBounds FiniteElementMethod::time_step_bounds(const SimulationParams& params) {
+namespace {
+
+// The bounds of one block's stable step (time_step_bounds), without the mesh.
+TimeStepBounds block_step_bounds(const Material& material, const SimulationParams& params) {
   // Undamped the stable step is dx / c_p on every mesh (the longest); the shortest takes half
   // of it. The damped step decreases with dt0 (stable_time_step.hpp), so the lower bound of
-  // dt0 gives a lower bound of the damped step too. dx as mesh_size(params).dx, without the mesh.
+  // dt0 gives a lower bound of the damped step too. dx as mesh_size(params).dx.
   const double dx = 1.0 / params.geometry.nodes_per_meter;
-  const double c_p = params.material.p_wave_speed();
-  const double damping_a = params.fe.mesh_damping * dx / params.material.s_wave_speed();
+  const double c_p = material.p_wave_speed();
+  const double damping_a = params.fe.mesh_damping * dx / material.s_wave_speed();
   const double safety = params.time.safety_factor;
   return {safety * damped_stable_time_step(0.5 * dx / c_p, damping_a), safety * dx / c_p};
+}
+
+} // namespace
+
+TimeStepBounds FiniteElementMethod::time_step_bounds(const SimulationParams& params) {
+  const TimeStepBounds upper = block_step_bounds(params.material, params);
+  if (!params.lower.elastic()) return upper;
+  // The run takes the smaller of the two blocks' stable steps (mesh_stepper.cpp).
+  const TimeStepBounds lower = block_step_bounds(params.lower.material, params);
+  return {std::min(upper.shortest, lower.shortest), std::min(upper.longest, lower.longest)};
 }
 
 double FiniteElementMethod::step_count_bound(const SimulationParams& params) {
@@ -39,7 +53,8 @@ double FiniteElementMethod::step_count_bound(const SimulationParams& params) {
 
 double FiniteElementMethod::estimated_memory_bytes(const SimulationParams& params) {
   const MeshSize m = mesh_size(params);
-  const double nodes = double(m.nx + 2) * m.ny;
+  double nodes = double(m.nx + 2) * m.ny;
+  if (params.lower.elastic()) nodes += double(m.nx + 2) * lower_mesh_size(params).ny;
   // u and v, two components each; with the mesh damping also w = u + a v.
   const double fields = (params.fe.mesh_damping > 0 ? 6.0 : 4.0) * 8.0 * nodes;
   const double interface = 24.0 * 8.0 * m.nx; // interface fields, front, buffers
@@ -51,23 +66,46 @@ double FiniteElementMethod::estimated_memory_bytes(const SimulationParams& param
 }
 
 MeshInfo FiniteElementMethod::mesh_info() const {
-  return {mesh_.nx(),        mesh_.ny(), mesh_.dx(), mesh_.height(),
-          mesh_.stable_dt(), mesh_.dt(), threads_};
+  MeshInfo info{mesh_.nx(),        mesh_.ny(), mesh_.dx(), mesh_.height(),
+                mesh_.stable_dt(), mesh_.dt(), threads_};
+  if (const ElasticBlock* lower = mesh_.lower()) {
+    info.lower_ny = lower->ny();
+    info.lower_height = lower->height();
+  }
+  return info;
 }
 
-std::vector<std::string> FiniteElementMethod::end_warnings(double simulated_time) const {
-  const double reflection_time = 2.0 * mesh_.height() / p_wave_speed_;
+namespace {
+
+// The warning of a block whose far boundary reflects a P wave back before the run ended.
+// `boundary`: "top" or "bottom"; `where`: "top" or "lower block's bottom".
+std::vector<std::string> reflection_warning(const ElasticBlock& block, const char* boundary,
+                                            const char* where, double simulated_time) {
+  const double c_p = block.material().p_wave_speed();
+  const double reflection_time = 2.0 * block.height() / c_p;
   if (!(simulated_time > reflection_time)) return {};
-  char msg[300];
+  const bool absorbing = block.far_boundary() == TopBoundary::absorbing;
+  char msg[320];
   std::snprintf(
       msg, sizeof msg,
-      "h = %.4g m is small for this run: a P wave reflected by the top reaches the interface "
-      "at t = 2h/c_p = %.4g s, before the run ended at %.4g s%s",
-      mesh_.height(), reflection_time, simulated_time,
-      top_ == TopBoundary::absorbing
-          ? " (the absorbing top weakens, but does not remove, the reflection)"
-          : "");
+      "h = %.4g m is small for this run: a P wave reflected by the %s reaches the interface "
+      "at t = 2h/c_p = %.4g s, before the run ended at %.4g s%s%s%s",
+      block.height(), where, reflection_time, simulated_time, absorbing ? " (the absorbing " : "",
+      absorbing ? boundary : "", absorbing ? " weakens, but does not remove, the reflection)" : "");
   return {msg};
+}
+
+} // namespace
+
+std::vector<std::string> FiniteElementMethod::end_warnings(double simulated_time) const {
+  std::vector<std::string> warnings =
+      reflection_warning(mesh_.upper(), "top", "top", simulated_time);
+  if (const ElasticBlock* lower = mesh_.lower())
+    for (std::string& w :
+         reflection_warning(*lower, "bottom", "lower block's bottom", simulated_time))
+      warnings.push_back(std::move(w));
+  if (!ill_posed_warning_.empty()) warnings.push_back(ill_posed_warning_);
+  return warnings;
 }
 
 } // namespace slipfront::fe

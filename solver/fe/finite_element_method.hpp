@@ -29,7 +29,8 @@ public:
   const InterfaceFields& interface() const override { return mesh_.interface(); }
   const EnergyBalance& energy() const override { return mesh_.energy(); }
   MeshInfo mesh_info() const override;
-  // A P wave reflected by the top reaches the interface at t = 2h/c_p.
+  // A P wave reflected by the top (or the lower block's bottom) reaches the interface at
+  // t = 2h/c_p; plain Coulomb friction between two different solids is ill-posed.
   std::vector<std::string> end_warnings(double simulated_time) const override;
 
   // The time step's bounds before the run (solver/simulation.hpp, time_step_bounds), an upper
@@ -43,8 +44,7 @@ private:
   int threads_;
   MeshStepper mesh_;
   ThreadTeam team_;
-  double p_wave_speed_;
-  TopBoundary top_;
+  std::string ill_posed_warning_; // plain Coulomb between two different solids, else empty
 };
 
 } // namespace slipfront::fe

@@ -1,141 +1,59 @@
 #include "solver/fe/mesh_stepper.hpp"
 
-#include "solver/fe/element_stiffness.hpp"
 #include "solver/fe/level_pipeline.hpp"
-#include "solver/fe/lumped_mass.hpp"
-#include "solver/fe/stable_time_step.hpp"
 #include "solver/mesh_size.hpp"
 
 #include <algorithm>
-#include <array>
 
 namespace slipfront::fe {
 
 namespace {
 
-// Rows j-1, j and j+1 of a field (x below, y below, x, y, x above, y above); a missing row
-// (below the interface, above the top) is the zero row.
-std::array<const double*, 6> neighbour_rows(const VectorField& f, int j, int ny, const double* z) {
-  return {j > 0 ? f.x.row(j - 1) : z,      j > 0 ? f.y.row(j - 1) : z,     f.x.row(j), f.y.row(j),
-          j < ny - 1 ? f.x.row(j + 1) : z, j < ny - 1 ? f.y.row(j + 1) : z};
+ElasticBlock upper_block(const SimulationParams& params) {
+  const MeshSize m = mesh_size(params);
+  return ElasticBlock(params.material, m.nx, m.ny, m.dx, params.top, params.fe.mesh_damping);
+}
+
+// The lower solid's block in its mirrored frame: the far row is the bottom.
+std::optional<ElasticBlock> lower_block(const SimulationParams& params) {
+  if (!params.lower.elastic()) return std::nullopt;
+  const MeshSize m = lower_mesh_size(params);
+  return ElasticBlock(params.lower.material, m.nx, m.ny, m.dx, params.lower.bottom,
+                      params.fe.mesh_damping);
 }
 
 } // namespace
 
-MeshStepper::MeshStepper(const SimulationParams& params) : params_(params) {
-  const MeshSize m = mesh_size(params);
-  nx_ = m.nx;
-  ny_ = m.ny;
-  dx_ = m.dx;
-  height_ = m.height;
-  stencils_ = build_stencils(q4_plane_strain_stiffness(params.material));
-  interior_symmetric_ = symmetric_form(stencils_.interior, interior_form_);
-  damping_a_ = params.fe.mesh_damping * dx_ / params.material.s_wave_speed();
-  stable_dt_ = damped_stable_time_step(
-      stable_time_step(stencils_, nx_, ny_, dx_, params.material.density), damping_a_);
+MeshStepper::MeshStepper(const SimulationParams& params)
+    : params_(params), upper_(upper_block(params)), lower_(lower_block(params)) {
+  // The free blocks bound every contact state (stick ties the pair, a constraint that cannot
+  // raise the largest eigenvalue): the smaller of their stable steps (docs/physics.md).
+  stable_dt_ = upper_.stable_dt();
+  if (lower_) stable_dt_ = std::min(stable_dt_, lower_->stable_dt());
   dt_ = params.time.safety_factor * stable_dt_;
-  u_ = VectorField(nx_, ny_);
-  v_ = VectorField(nx_, ny_);
-  if (damping_a_ > 0) {
-    w_ = VectorField(nx_, ny_);
-    kdx_.assign(nx_, 0.0);
-    kdy_.assign(nx_, 0.0);
-    kdx_top_.assign(nx_, 0.0);
-    kdy_top_.assign(nx_, 0.0);
-  }
-  zero_row_.assign(nx_ + 2, 0.0);
-  load1_.assign(nx_, 0.0);
-  load2_.assign(nx_, 0.0);
-  kx0_.assign(nx_, 0.0);
-  ky0_.assign(nx_, 0.0);
-  node_ = {node_mass(0), node_mass(0), dt_, dx_, params.friction};
-
-  iface_ = resting_interface(params, nx_, dx_);
-  columns_.assign(ny_, ColumnRange{});
-  next_columns_.assign(ny_, ColumnRange{});
+  upper_.set_time_step(dt_);
+  if (lower_) lower_->set_time_step(dt_);
+  const int nx = upper_.nx();
+  const double dx = upper_.dx();
+  load1_.assign(nx, 0.0);
+  load2_.assign(nx, 0.0);
+  node_ = {upper_.node_mass(0), upper_.node_mass(0), dt_, dx, params.friction};
+  iface_ = resting_interface(params, nx, dx);
 }
 
 void MeshStepper::reserve_scratch(int members) {
   if (int(energy_scratch_.size()) < members)
-    energy_scratch_.resize(members, std::vector<double>(3 * nx_));
+    energy_scratch_.resize(members, std::vector<double>(3 * upper_.nx()));
 }
 
 void MeshStepper::activate_all_rows() {
-  active_rows_ = ny_;
-  columns_.assign(ny_, ColumnRange{0, nx_});
-  if (damping_a_ > 0)
-    for (int j = 0; j < ny_; ++j)
-      update_damping_row(j);
+  upper_.activate_all_rows();
+  if (lower_) lower_->activate_all_rows();
 }
 
-void MeshStepper::update_damping_row(int j) {
-  double* __restrict wx = w_.x.row(j);
-  double* __restrict wy = w_.y.row(j);
-  const double* __restrict ux = u_.x.row(j);
-  const double* __restrict uy = u_.y.row(j);
-  const double* __restrict vx = v_.x.row(j);
-  const double* __restrict vy = v_.y.row(j);
-  for (int i = 0; i < nx_; ++i) {
-    wx[i] = ux[i] + damping_a_ * vx[i];
-    wy[i] = uy[i] + damping_a_ * vy[i];
-  }
-  w_.x.refresh_ghosts(j);
-  w_.y.refresh_ghosts(j);
-}
-
-void MeshStepper::damping_force_row(const NodeStencil& s, int j, double* dx, double* dy) const {
-  const double* z = zero_row_.data() + 1;
-  const auto w = neighbour_rows(w_, j, ny_, z);
-  const auto u = neighbour_rows(u_, j, ny_, z);
-  for_each_node_force(s, w[0], w[1], w[2], w[3], w[4], w[5], nx_, [&](int i, double kx, double ky) {
-    dx[i] = kx;
-    dy[i] = ky;
-  });
-  for_each_node_force(s, u[0], u[1], u[2], u[3], u[4], u[5], nx_, [&](int i, double kx, double ky) {
-    dx[i] -= kx;
-    dy[i] -= ky;
-  });
-}
-
-void MeshStepper::damped_interior_row(LevelRecord& level, int j, const NodeStencil& s,
-                                      ColumnRange cols, std::vector<double>& scratch) {
-  const bool compute_energy = level.compute_energy;
-  const double* z = zero_row_.data() + 1;
-  auto u = neighbour_rows(u_, j, ny_, z);
-  auto w = neighbour_rows(w_, j, ny_, z);
-  for (int k = 0; k < 6; ++k) { // from the first column swept on
-    u[k] += cols.begin;
-    w[k] += cols.begin;
-  }
-  const int n = cols.size();
-  double* kin = compute_energy ? scratch.data() : nullptr;
-  double* str = compute_energy ? scratch.data() + nx_ : nullptr;
-  double* dis = scratch.data() + 2 * nx_;
-  stencil_damped_velocity_update(s, u[0], u[1], u[2], u[3], u[4], u[5], w[0], w[1], w[2], w[3],
-                                 w[4], w[5], v_.x.row(j) + cols.begin, v_.y.row(j) + cols.begin, n,
-                                 dt_, node_mass(j), dis, kin, str);
-  double dis_sum = 0;
-  for (int i = 0; i < n; ++i)
-    dis_sum += dis[i];
-  level.row_dissipated[j] = dis_sum;
-  if (compute_energy) store_row_energy(level, j, kin, str, n);
-}
-
-// The nodes left out of a sum hold exact zeros, whose terms are +0: leaving them out of
-// the sum in node order changes no bit of it.
-void MeshStepper::store_row_energy(LevelRecord& level, int j, const double* kin, const double* str,
-                                   int count) const {
-  double kin_sum = 0, str_sum = 0;
-  for (int i = 0; i < count; ++i) {
-    kin_sum += kin[i];
-    str_sum += str[i];
-  }
-  level.row_kinetic[j] = 0.5 * node_mass(j) * kin_sum;
-  level.row_strain[j] = 0.5 * str_sum;
-}
-
-double MeshStepper::node_mass(int j) const {
-  return lumped_node_mass(j, ny_, dx_, params_.material.density);
+void MeshStepper::set_skip_quiet(bool on) {
+  upper_.set_skip_quiet(on);
+  if (lower_) lower_->set_skip_quiet(on);
 }
 
 void MeshStepper::step(ThreadTeam& team, bool compute_energy) {
@@ -150,184 +68,55 @@ void MeshStepper::advance(ThreadTeam& team, const std::vector<bool>& energy_step
     LevelRecord& level = levels_[k];
     level.time = double(step_ + k) * dt_;
     level.compute_energy = energy_steps[k];
-    level.row_kinetic.assign(ny_, 0.0);
-    level.row_strain.assign(ny_, 0.0);
-    level.row_dissipated.assign(ny_, 0.0);
+    level.upper.reset(upper_.ny(), energy_steps[k]);
+    if (lower_) level.lower.reset(lower_->ny(), energy_steps[k]);
     level.work = 0;
-    level.swept = 0;
   }
   reserve_scratch(team.size());
-  run_level_pipeline(team, count, ny_, [&](int k, int r, int member) {
+  const int rows = lower_ ? std::max(upper_.ny(), lower_->ny()) : upper_.ny();
+  run_level_pipeline(team, count, rows, [&](int k, int r, int member) {
     row_step(levels_[k], r, energy_scratch_[member]);
   });
 
-  // Sum each step's per-row terms in row order, the steps in order: the same result for any
-  // number of threads and steps per block.
+  // Sum each step's per-row terms in row order (the upper block's rows, then the lower's), the
+  // steps in order: the same result for any number of threads and steps per trip.
   for (int k = 0; k < count; ++k) {
     LevelRecord& level = levels_[k];
-    double dissipated = 0;
-    for (int j = 0; j < ny_; ++j)
-      dissipated += level.row_dissipated[j];
+    double dissipated = 0, kinetic = 0, strain = 0;
+    for (const BlockStepRecord* block : {&level.upper, lower_ ? &level.lower : nullptr}) {
+      if (block == nullptr) continue;
+      for (double d : block->row_dissipated)
+        dissipated += d;
+      if (!level.compute_energy) continue;
+      for (double e : block->row_kinetic)
+        kinetic += e;
+      for (double e : block->row_strain)
+        strain += e;
+    }
     energy_.dissipated += dissipated;
     energy_.external_work += level.work;
     if (level.compute_energy) {
-      double kinetic = 0, strain = 0;
-      for (int j = 0; j < ny_; ++j) {
-        kinetic += level.row_kinetic[j];
-        strain += level.row_strain[j];
-      }
       energy_.kinetic = kinetic;
       energy_.strain = strain;
     }
     level.energy = energy_;
-    swept_node_updates_ += level.swept;
+    swept_node_updates_ += level.upper.swept + (lower_ ? level.lower.swept : 0);
   }
-  for (int j = ny_ - 1; j >= active_rows_; --j) // the highest row that may be non-zero
-    if (!columns_[j].empty()) {
-      active_rows_ = j + 1;
-      break;
-    }
+  upper_.finish_trip();
+  if (lower_) lower_->finish_trip();
   step_ += count;
 }
 
-ColumnRange MeshStepper::sweep_columns(int j) const {
-  // The interface row is always swept whole (its loads change everywhere), and so is the
-  // absorbing top once anything may reach it.
-  if (!skip_quiet_ || j == 0) return ColumnRange{0, nx_};
-  const ColumnRange grown = grown_column_range(columns_, j, nx_);
-  if (j == ny_ - 1 && params_.top == TopBoundary::absorbing && !grown.empty())
-    return ColumnRange{0, nx_};
-  return grown;
-}
-
 void MeshStepper::row_step(LevelRecord& level, int r, std::vector<double>& scratch) {
-  if (r == ny_) { // past the top: only the displacement of the top row is left
-    update_displacement_row(r - 1);
-    return;
-  }
-  const ColumnRange cols = sweep_columns(r);
-  next_columns_[r] = cols;
-  level.swept += cols.size();
-  const bool bulk =
-      r >= 1 && damping_a_ == 0 && !(r == ny_ - 1 && params_.top == TopBoundary::absorbing);
-  if (bulk) {
-    bulk_row_step(level, r, cols, scratch);
-    return;
-  }
-  // Nothing moves in a quiet row (its energy terms stay 0).
-  if (!cols.empty()) velocity_row(level, r, cols, scratch);
-  if (r >= 1) update_displacement_row(r - 1);
-}
-
-void MeshStepper::velocity_row(LevelRecord& level, int j, ColumnRange cols,
-                               std::vector<double>& scratch) {
-  const double* z = zero_row_.data() + 1;
-  if (j == 0) {
-    const double* uxp = ny_ > 1 ? u_.x.row(1) : z;
-    const double* uyp = ny_ > 1 ? u_.y.row(1) : z;
-    for_each_node_force(stencils_.bottom, z, z, u_.x.row(0), u_.y.row(0), uxp, uyp, nx_,
-                        [&](int i, double kx, double ky) {
-                          kx0_[i] = kx;
-                          ky0_[i] = ky;
-                        });
-    if (damping_a_ > 0) damping_force_row(stencils_.bottom, 0, kdx_.data(), kdy_.data());
+  if (r == 0) {
+    upper_.begin_interface_row(level.upper);
+    if (lower_) lower_->begin_interface_row(level.lower);
     interface_row(level);
     level.iface = iface_;
-  } else if (j == ny_ - 1 && params_.top == TopBoundary::absorbing) {
-    if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_top_.data(), kdy_top_.data());
-    absorbing_top_row(level, u_.x.row(j - 1), u_.y.row(j - 1));
-  } else { // a damped bulk row
-    damped_interior_row(level, j, (j == ny_ - 1) ? stencils_.top : stencils_.interior, cols,
-                        scratch);
+    return;
   }
-}
-
-// The columns are taken in blocks of kColumnBlock: the velocity of the block in row r, then
-// the displacement of row r-1 as far as it is no longer read (u of row r-1 at column i is
-// read by the nodes i-1, i, i+1 of row r), so that u and v of row r-1 are advanced while
-// they are in the L1 cache. Each node's arithmetic is that of whole-row sweeps.
-void MeshStepper::bulk_row_step(LevelRecord& level, int r, ColumnRange vel,
-                                std::vector<double>& scratch) {
-  constexpr int kColumnBlock = 256;
-  const ColumnRange dis = next_columns_[r - 1];
-  double* kin = level.compute_energy ? scratch.data() : nullptr;
-  double* str = level.compute_energy ? scratch.data() + nx_ : nullptr;
-  const int lo = std::min(vel.empty() ? nx_ : vel.begin, dis.empty() ? nx_ : dis.begin);
-  const int hi = std::max(vel.empty() ? 0 : vel.end, dis.empty() ? 0 : dis.end);
-  int next = dis.begin; // the first column of row r-1 not yet advanced
-  for (int c = lo; c < hi; c += kColumnBlock) {
-    const int e = std::min(c + kColumnBlock, hi);
-    const int a = std::max(c, vel.begin), b = std::min(e, vel.end);
-    if (a < b)
-      bulk_velocity(r, a, b - a, kin ? kin + (a - vel.begin) : nullptr,
-                    str ? str + (a - vel.begin) : nullptr);
-    const int stop = std::min(e - 1, dis.end);
-    if (!dis.empty() && stop > next) {
-      advance_displacement(r - 1, next, stop);
-      next = stop;
-    }
-  }
-  if (!dis.empty() && dis.end > next) advance_displacement(r - 1, next, dis.end);
-  finish_displacement_row(r - 1);
-  if (level.compute_energy && !vel.empty()) store_row_energy(level, r, kin, str, vel.size());
-}
-
-void MeshStepper::bulk_velocity(int r, int begin, int n, double* kin, double* str) {
-  const double* z = zero_row_.data() + 1;
-  const double* uxm = u_.x.row(r - 1) + begin;
-  const double* uym = u_.y.row(r - 1) + begin;
-  const double* uxp = (r < ny_ - 1 ? u_.x.row(r + 1) : z) + begin;
-  const double* uyp = (r < ny_ - 1 ? u_.y.row(r + 1) : z) + begin;
-  const double* ux0 = u_.x.row(r) + begin;
-  const double* uy0 = u_.y.row(r) + begin;
-  double* vx = v_.x.row(r) + begin;
-  double* vy = v_.y.row(r) + begin;
-  if (r < ny_ - 1 && interior_symmetric_)
-    symmetric_velocity_update(interior_form_, uxm, uym, ux0, uy0, uxp, uyp, vx, vy, n, dt_,
-                              node_mass(r), kin, str);
-  else
-    stencil_velocity_update(r < ny_ - 1 ? stencils_.interior : stencils_.top, uxm, uym, ux0, uy0,
-                            uxp, uyp, vx, vy, n, dt_, node_mass(r), kin, str);
-}
-
-void MeshStepper::finish_displacement_row(int j) {
-  u_.x.refresh_ghosts(j);
-  u_.y.refresh_ghosts(j);
-  if (damping_a_ > 0) {
-    w_.x.refresh_ghosts(j);
-    w_.y.refresh_ghosts(j);
-  }
-  columns_[j] = trim_column_range(u_, v_, j, next_columns_[j]);
-}
-
-void MeshStepper::update_displacement_row(int j) {
-  // Outside the columns swept this step v is zero and u stays as it is.
-  advance_displacement(j, next_columns_[j].begin, next_columns_[j].end);
-  finish_displacement_row(j);
-}
-
-void MeshStepper::advance_displacement(int j, int begin, int end) {
-  const int n = end - begin;
-  double* __restrict ux = u_.x.row(j) + begin;
-  double* __restrict uy = u_.y.row(j) + begin;
-  const double* __restrict vx = v_.x.row(j) + begin;
-  const double* __restrict vy = v_.y.row(j) + begin;
-  if (damping_a_ > 0) { // u and w = u + a v in one pass
-    double* __restrict wx = w_.x.row(j) + begin;
-    double* __restrict wy = w_.y.row(j) + begin;
-    const double a = damping_a_;
-    for (int i = 0; i < n; ++i) {
-      ux[i] += dt_ * vx[i];
-      uy[i] += dt_ * vy[i];
-      wx[i] = ux[i] + a * vx[i];
-      wy[i] = uy[i] + a * vy[i];
-    }
-  } else {
-    for (int i = 0; i < n; ++i) {
-      ux[i] += dt_ * vx[i];
-      uy[i] += dt_ * vy[i];
-    }
-  }
+  upper_.row_step(level.upper, r, scratch);
+  if (lower_) lower_->row_step(level.lower, r, scratch);
 }
 
 } // namespace slipfront::fe

@@ -26,6 +26,14 @@ struct InterfaceSide {
   double v1 = 0, v2 = 0;       // trial velocities of the next half step [m/s]
 };
 
+// A pair of forces within the node pair, +F on the upper side and -F on the lower, that the
+// trial velocities leave out (FE: the initial contact force C0 of the perturbation
+// formulation, docs/physics.md "Two solids"). The law sees it; the sides' velocities only
+// C - F, so that a pair the interface keeps still stays exactly at rest.
+struct PairForce {
+  double f1 = 0, f2 = 0; // [N/m]
+};
+
 struct SplitNodeStep {
   // The interface force C on the upper side (contact_force1/2), p, strength and state; its
   // v1, v2 are the relative velocities (upper minus lower) of the next half step.
@@ -34,11 +42,13 @@ struct SplitNodeStep {
 };
 
 // `c`: dt, dx and the friction law (its masses are not used); gap: u2(upper) - u2(lower) now
-// (>= 0); slip_speed, strength, previous_pressure as for resolve_interface_node. With
-// `lower_rigid` the lower side is ignored (zero motion, infinite mass).
+// (>= 0); slip_speed, strength, previous_pressure as for resolve_interface_node; `internal`:
+// the pair force the trial velocities leave out. With `lower_rigid` the lower side and
+// `internal` are ignored (zero motion, infinite mass: the plane takes any force, so the upper
+// trial velocity holds every force but the plane's, as for resolve_interface_node).
 SplitNodeStep resolve_split_node(const InterfaceNodeConstants& c, double gap,
                                  const InterfaceSide& upper, const InterfaceSide& lower,
                                  bool lower_rigid, double slip_speed, double strength,
-                                 double previous_pressure);
+                                 double previous_pressure, const PairForce& internal = {});
 
 } // namespace slipfront

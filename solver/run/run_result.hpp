@@ -1,5 +1,5 @@
-// What a run returns: the metrics (docs/metrics.md), the front profile, the probe and
-// energy records, the discretisation that was run, and whether it was cancelled.
+// What a run returns: the metrics (docs/metrics.md), the front profile, the probe, station
+// and energy records, the discretisation that was run, and whether it was cancelled.
 #pragma once
 
 #include "solver/mesh_info.hpp"
@@ -12,6 +12,7 @@ struct RunResult {
   Metrics metrics;
   FrontProfile front;
   ProbeRecords probes;
+  StationRecords stations;
   EnergyRecords energy;
   MeshInfo mesh;
   bool cancelled = false;

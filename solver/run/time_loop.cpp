@@ -16,6 +16,7 @@
 #include "solver/run/interface_sampler.hpp"
 #include "solver/run/probe_recorder.hpp"
 #include "solver/run/progress_reporter.hpp"
+#include "solver/run/station_recorder.hpp"
 #include "solver/step_count.hpp"
 #include "solver/thread_team.hpp"
 
@@ -31,6 +32,7 @@ namespace {
 //    the sink, the progress reporter's clock counts from `started`.
 struct Observers {
   ProbeRecorder probes;
+  StationRecorder stations;
   InterfaceSampler sampler;
   EnergyRecorder energy;
   DivergenceCheck divergence;
@@ -42,13 +44,15 @@ struct Observers {
 Observers set_up_observers(const SimulationParams& params, const RunHooks& hooks,
                            const MeshInfo& mesh, const std::vector<double>& x1, double dt,
                            long total_steps, std::chrono::steady_clock::time_point started) {
-  return {ProbeRecorder(params.probes, params.geometry.x_min, mesh.dx, x1),
-          InterfaceSampler(hooks.sink, params.output, dt, total_steps, x1),
-          EnergyRecorder(dt),
-          DivergenceCheck(params),
-          FrontTracker(mesh.nx, params.probes.front_threshold),
-          ArrestRule(params),
-          ProgressReporter(hooks, params.time.duration, dt, total_steps, started)};
+  return {
+      ProbeRecorder(params.probes, params.geometry.x_min, mesh.dx, x1),
+      StationRecorder(params.stations, params.geometry.x_min, mesh.dx, int(x1.size()), total_steps),
+      InterfaceSampler(hooks.sink, params.output, dt, total_steps, x1),
+      EnergyRecorder(dt),
+      DivergenceCheck(params),
+      FrontTracker(mesh.nx, params.probes.front_threshold),
+      ArrestRule(params),
+      ProgressReporter(hooks, params.time.duration, dt, total_steps, started)};
 }
 
 // 2. The method advances `count` steps from step n at once (FE: one trip over the mesh for
@@ -70,6 +74,7 @@ void record_step(Observers& o, long n, double dt, const InterfaceFields& f,
   o.front.update(f.half_velocity, t_n + 0.5 * dt, dt);
   o.divergence.check(f);
   o.probes.record(f, t_n);
+  o.stations.record(f, t_n);
   if (e) {
     o.energy.record(*e, t_n);
     o.divergence.check_energy(*e);
@@ -108,6 +113,7 @@ void derive_metrics(const RuptureMethod& method, const SimulationParams& params,
   if (m.outcome != Outcome::diverged)
     m.outcome = o.arrest.arrested() ? Outcome::arrested : Outcome::running_at_end;
   result.probes = o.probes.take();
+  result.stations = o.stations.take();
   result.energy = o.energy.take();
   derive_front_metrics(params, result.mesh.dx, o.front.arrival(), result.front, m);
   derive_spectral_estimate(params, result.front, result.probes, result.mesh.dx, dt, m);

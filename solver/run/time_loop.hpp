@@ -1,8 +1,8 @@
 // The time loop of one run, for any rupture method (the shape of a scene in uguca's
 // examples), in five named phases (time_loop.cpp): set up the observers (front, divergence,
-// probes, energy, interface samples, arrest, progress); step a block of steps (one step, or
-// several for a method that blocks them); record each step of the block; apply the stop
-// rules (cancel, divergence, arrest) and report progress; derive the metrics
+// probes, stations, energy, interface samples, arrest, progress); step a block of steps (one
+// step, or several for a method that blocks them); record each step of the block; apply the
+// stop rules (cancel, divergence, arrest) and report progress; derive the metrics
 // (docs/metrics.md).
 #pragma once
 

@@ -1,5 +1,6 @@
 #include "solver/spectral/spectral_method.hpp"
 
+#include "solver/interface/ill_posedness.hpp"
 #include "solver/interface/nucleation.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/step_count.hpp"
@@ -118,16 +119,8 @@ MeshInfo SpectralMethod::mesh_info() const {
 std::vector<std::string> SpectralMethod::end_warnings(double /*simulated_time*/) const {
   std::vector<std::string> warnings;
   if (params_.friction.law != FrictionLaw::coulomb) return warnings;
-  const Material &upper = params_.material, &lower = params_.lower.material;
-  const bool dissimilar = params_.lower.elastic() && (upper.density != lower.density ||
-                                                      upper.young_modulus != lower.young_modulus ||
-                                                      upper.poisson_ratio != lower.poisson_ratio);
-  if (dissimilar) // tests/solver/interface_growth_test.cpp: rate dx / c_s 0.074-0.079
-    warnings.push_back("plain Coulomb friction between two different elastic solids is ill-posed: "
-                       "steady sliding is unstable at every wavelength, the finest mode of the "
-                       "mesh growing fastest, at a rate proportional to 1/dx (Adams 1995; Ranjith "
-                       "& Rice 2001), so the results do not converge under refinement; "
-                       "prakash_clifton friction regularises it (docs/verification.md)");
+  if (std::string ill_posed = bimaterial_coulomb_warning(params_); !ill_posed.empty())
+    warnings.push_back(std::move(ill_posed));
   // Measured (tests/solver/interface_growth_test.cpp): 0.021 c_s/dx at beta = 0.4, 0.025-0.030
   // at 0.5; none at 0.3 and 0.25 on every n_d tried.
   if (params_.spectral.time_step_factor >= 0.35) {

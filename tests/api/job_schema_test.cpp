@@ -14,10 +14,17 @@
 namespace slipfront::api {
 namespace {
 
-// A job with `value` at `pointer`, and the method the field belongs to.
+// A field of an elastic lower solid (read only with "lower": {"solid": "elastic"}).
+bool elastic_lower_field(const std::string& pointer) {
+  return pointer.rfind("/lower/", 0) == 0 && pointer != "/lower/solid";
+}
+
+// A job with `value` at `pointer`, the method the field belongs to and, for the fields of a
+// lower solid, the elastic lower solid.
 nlohmann::json job_with(const JobField& field, const nlohmann::json& value) {
   nlohmann::json job = nlohmann::json::object();
   if (!field.fe) job["method"] = "spectral_bi";
+  if (elastic_lower_field(field.pointer)) job["lower"]["solid"] = "elastic";
   job[nlohmann::json::json_pointer(field.pointer)] = value;
   return job;
 }
@@ -48,7 +55,8 @@ TEST(JobSchema, MethodSpecificFieldsAreMarked) {
     if (!f.fe) bi_only.insert(f.pointer);
   }
   EXPECT_EQ(fe_only, (std::set<std::string>{"/fe/mesh_damping", "/geometry/height",
-                                            "/geometry/top_boundary", "/time/safety_factor"}));
+                                            "/geometry/top_boundary", "/lower/bottom_boundary",
+                                            "/lower/height", "/time/safety_factor"}));
   EXPECT_EQ(bi_only,
             (std::set<std::string>{"/spectral_bi/corrector_passes", "/spectral_bi/memory_periods",
                                    "/spectral_bi/time_step_factor"}));
@@ -58,9 +66,24 @@ TEST(JobSchema, MethodSpecificFieldsAreMarked) {
 TEST(JobSchema, DefaultsAreTheCanonicalValuesOfAnEmptyJob) {
   const ParseResult fe = parse_job(nlohmann::json::object());
   const ParseResult bi = parse_job({{"method", "spectral_bi"}});
-  ASSERT_TRUE(fe.errors.empty() && bi.errors.empty());
+  const ParseResult lower = parse_job({{"lower", {{"solid", "elastic"}}}}); // its fields
+  // Without stations, "stations" stays out of the canonical form (so that the specs written
+  // before it existed keep their hashes); its other defaults are those of a job with one.
+  const ParseResult one_station = parse_job({{"stations", {{"x1", {0.0}}}}});
+  ASSERT_TRUE(fe.errors.empty() && bi.errors.empty() && lower.errors.empty() &&
+              one_station.errors.empty());
+  EXPECT_FALSE(fe.spec->canonical.contains("stations"));
+  EXPECT_FALSE(bi.spec->canonical.contains("stations"));
   for (const JobField& f : job_fields()) {
-    const nlohmann::json& canonical = f.fe ? fe.spec->canonical : bi.spec->canonical;
+    if (f.pointer == "/stations/x1") {
+      EXPECT_EQ(f.schema["default"], nlohmann::json::array());
+      continue;
+    }
+    const bool station_field = f.pointer.starts_with("/stations/");
+    const nlohmann::json& canonical = station_field                    ? one_station.spec->canonical
+                                      : elastic_lower_field(f.pointer) ? lower.spec->canonical
+                                      : f.fe                           ? fe.spec->canonical
+                                                                       : bi.spec->canonical;
     EXPECT_EQ(canonical.at(nlohmann::json::json_pointer(f.pointer)), f.schema["default"])
         << f.pointer;
   }

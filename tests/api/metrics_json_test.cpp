@@ -102,6 +102,27 @@ TEST(MetricsJson, HoldsEverySpecMetricByName) {
   EXPECT_EQ(j["code_version"], slipfront::code_version());
 }
 
+// With an elastic lower solid (FE) the mesh also gives the lower block's rows and height.
+TEST(MetricsJson, MeshNamesTheLowerBlock) {
+  slipfront::RunResult result = example_result();
+  result.mesh.lower_ny = 5;
+  result.mesh.lower_height = 1.0;
+  EXPECT_EQ(metrics_json(result)["mesh"], json({{"nx", 4},
+                                                {"ny", 3},
+                                                {"dx", 0.25},
+                                                {"height", 0.5},
+                                                {"threads", 1},
+                                                {"lower_ny", 5},
+                                                {"lower_height", 1.0}}));
+  slipfront::SimulationParams params;
+  params.lower.side = slipfront::LowerSide::elastic;
+  params.lower.bottom = slipfront::TopBoundary::absorbing;
+  EXPECT_EQ(method_description(params),
+            "Q4 2x2 Gauss, lumped mass, central differences; top boundary: traction; lower "
+            "solid: elastic block (split-node interface), bottom boundary: absorbing; "
+            "friction: prakash_clifton, exponential_ramp strength update");
+}
+
 TEST(MetricsJson, UndefinedValuesAreNull) {
   const json j = metrics_json(example_result());
   EXPECT_TRUE(j["arrival_time_at_probe"].is_null());

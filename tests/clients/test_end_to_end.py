@@ -81,6 +81,27 @@ class EndToEnd(unittest.TestCase):
         self.assertIn("%", r.stderr)           # the progress bar
         self.assertIn("t = ", r.stderr)
 
+    def test_presets_list_show_and_submit(self):
+        r = self.client("presets")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.splitlines()[0].split()[:3], ["name", "origin", "title"])
+        self.assertIn("quick_nd10", r.stdout)
+        r = self.client("presets", "quick_nd10")
+        self.assertEqual(json.loads(r.stdout)["geometry"]["nodes_per_meter"], 10)
+        self.assertNotEqual(self.client("presets", "none_such").returncode, 0)
+        # --preset with --set: the server expands the preset and merges the changes over it.
+        r = self.client("submit", "--preset", "quick_nd10", "--set", "time.duration=0.5",
+                        "--set", "method=spectral_bi", "--dry-run")
+        self.assertEqual(json.loads(r.stdout), {"preset": "quick_nd10", "time": {"duration": 0.5},
+                                                "method": "spectral_bi"})
+        r = self.client("submit", "--preset", "quick_nd10", "--set", "time.duration=0.5",
+                        "--set", "method=spectral_bi", "--wait")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        job = self.api.job(r.stdout.strip().splitlines()[-1])
+        self.assertEqual((job["status"], job["spec"]["method"]), ("succeeded", "spectral_bi"))
+        self.assertEqual(job["spec"]["geometry"]["nodes_per_meter"], 10)
+        self.assertEqual(job["spec"]["time"]["duration"], 0.5)
+
     def test_status_human_and_json(self):
         r = self.client("status", self.job_id)
         self.assertEqual(r.returncode, 0, r.stderr)

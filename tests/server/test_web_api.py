@@ -20,6 +20,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from server_harness import TINY, Server, long_job  # noqa: E402
 
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BINARY = None
 WEB_DIR = None
 JOBS = "/api/v1/jobs"
@@ -168,12 +169,43 @@ class FieldSlices(unittest.TestCase):
         self.assertEqual(r.status_code, 400)
         self.assertEqual(r.json()["errors"][0]["pointer"], "/query/method")
 
+    def test_presets_are_served_and_a_job_may_name_one(self):
+        listing = self.server.get("/api/v1/presets")
+        self.assertEqual(listing.status_code, 200)
+        presets = listing.json()["presets"]
+        names = [p["name"] for p in presets]
+        examples = sorted(f[:-5] for f in os.listdir(os.path.join(ROOT, "examples"))
+                          if f.endswith(".json"))
+        self.assertTrue(set(examples) <= set(names), names)
+        for p in presets:
+            self.assertTrue({"name", "origin", "title", "description", "reference", "spec"} <= set(p))
+        one = self.server.get("/api/v1/presets/quick_nd10")
+        self.assertEqual(one.status_code, 200)
+        self.assertEqual(one.json()["spec"]["geometry"]["nodes_per_meter"], 10)
+        missing = self.server.get("/api/v1/presets/none_such")
+        self.assertEqual(missing.status_code, 404)
+        self.assertIn("none_such", missing.json()["detail"])
+        # A job naming a preset is stored expanded, the job's members merged over the preset's.
+        r = self.server.post(JOBS, json={"preset": "quick_nd10", "method": "spectral_bi",
+                                         "time": {"duration": 0.5}, "name": "from a preset"})
+        self.assertEqual(r.status_code, 201, r.text)
+        job = r.json()
+        self.assertNotIn("preset", job["spec"])
+        self.assertEqual(job["spec"]["geometry"]["nodes_per_meter"], 10)
+        self.assertEqual(job["spec"]["time"]["duration"], 0.5)
+        self.assertEqual(job["spec"]["friction"]["L"], 5e-5)
+        self.assertEqual(job["name"], "from a preset")
+        bad = self.server.post(JOBS, json={"preset": "none_such"})
+        self.assertEqual(bad.status_code, 422)
+        self.assertEqual(bad.json()["errors"][0]["pointer"], "/preset")
+
     def test_openapi_documents_the_new_endpoints(self):
         doc = self.server.get("/api/v1/openapi.json").json()
         op = doc["paths"]["/api/v1/jobs/{id}/fields/{name}"]["get"]
         names = {p.get("name") for p in op["parameters"]}
         self.assertTrue({"x1_min", "x1_max", "t_min", "t_max", "max_points"} <= names)
         self.assertIn("/api/v1/job-defaults", doc["paths"])
+        self.assertIn("/api/v1/presets/{name}", doc["paths"])
 
     def test_static_files(self):
         r = self.server.get("/")

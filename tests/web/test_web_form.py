@@ -41,6 +41,9 @@ class SubmitForm(BrowserCase):
         schema = self.server.get("/api/v1/schema/job.json").json()
         self.open_form()
         fields = dict(schema_leaves(schema))
+        # "preset" is not a field but the preset box, which fills the form from its spec.
+        self.assertIn("quick_nd10", fields.pop("/preset")["enum"])
+        self.assertTrue(self.css("#job-preset"))
         for pointer, sub in fields.items():
             f = self.js("const f = document.querySelector(`[data-field='${arguments[0]}']`); if (!f) return null;"
                         "const i = f.querySelector('[data-pointer]');"
@@ -83,22 +86,22 @@ class SubmitForm(BrowserCase):
         self.assert_no_console_errors("submit (422)", expected=(" 422 ",))
 
     def test_presets_fill_the_form_and_only_changes_are_sent(self):
-        examples = sorted(f for f in os.listdir(os.path.join(ROOT, "examples")) if f.endswith(".json"))
-        specs = []
-        for name in examples:
-            with open(os.path.join(ROOT, "examples", name)) as f:
-                specs.append(json.load(f))
+        # The server's presets (GET /api/v1/presets): the scene presets and examples/.
+        served = self.server.get("/api/v1/presets").json()["presets"]
+        examples = [p["name"] + ".json" for p in served]
+        specs = [p["spec"] for p in served]
+        self.assertIn("quick_nd10.json", examples)
         self.open_form()
         self.wait(lambda d: len(Select(self.css("#job-preset")[0]).options) == 1 + len(specs))
         names = [o.text for o in Select(self.css("#job-preset")[0]).options]
-        self.assertEqual(names[1:], [s["name"] for s in specs])
+        self.assertEqual(names[1:], [p["title"] for p in served])
         # Record what the form sends.
         self.js("window.__sent = []; const f = window.fetch; window.fetch = (u, o) => {"
                 " if (o && o.method === 'POST') window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
         quick = examples.index("quick_nd10.json")
         Select(self.css("#job-preset")[0]).select_by_index(1 + quick)
         self.wait(lambda d: self.css("#f_geometry_nodes_per_meter")[0].get_attribute("value") == "10")
-        self.assertIn("examples/", self.css("#preset-note")[0].text)
+        self.assertIn("from the server", self.css("#preset-note")[0].text)
         self.css("#job-submit")[0].click()
         self.wait(lambda d: "#/jobs/" in d.current_url, message="the job page opens")
         sent = self.js("return window.__sent")[0]

@@ -32,7 +32,8 @@ export async function jobForm(view) {
   fill(holder, h('p', { class: 'muted', text: 'Loading the job schema…' }));
 
   const [schema, { presets, source, note }] = await Promise.all([get('/api/v1/schema/job.json'), loadPresets()]);
-  const fields = new SchemaForm(schema, { order: GROUP_ORDER });
+  // "preset" is chosen in the preset box above, which fills the form from the preset's spec.
+  const fields = new SchemaForm(schema, { order: GROUP_ORDER, skip: ['preset'] });
   fill(holder, fields.element);
   const methodInput = form.querySelector('[data-pointer="/method"]');
   let defaults = {};

@@ -108,6 +108,45 @@ TEST(SplitNode, AnOpeningPairFeelsNoForce) {
   EXPECT_EQ(r.lower.v2, lower_side.v2);
 }
 
+// The internal pair force F (FE: the initial contact force C0) is seen by the law but moves
+// the sides only by C - F: a pre-stressed pair the interface holds stays exactly at rest, and
+// with F the result is that of trial velocities holding -F (+F on the lower side).
+TEST(SplitNode, AnInternalPairForceIsSeenByTheLawAndLeavesAHeldPairAtRest) {
+  InterfaceNodeConstants c = constants();
+  const PairForce c0{-0.2, 1.0}; // shear below mu * pressure: stuck
+  const InterfaceSide up_rest{2.0, 5.0, 0.0, 0.0}, low_rest{3.0, 4.0, 0.0, 0.0};
+  const SplitNodeStep held =
+      resolve_split_node(c, 0.0, up_rest, low_rest, false, 0.0, 0.0, 0.0, c0);
+  ASSERT_EQ(held.relative.state, NodeState::stick);
+  EXPECT_EQ(held.upper.v1, 0.0);
+  EXPECT_EQ(held.upper.v2, 0.0);
+  EXPECT_EQ(held.lower.v1, 0.0);
+  EXPECT_EQ(held.lower.v2, 0.0);
+  EXPECT_NEAR(held.relative.contact_force1, c0.f1, 1e-15);
+  EXPECT_NEAR(held.relative.pressure * c.tributary_length, c0.f2, 1e-15);
+
+  for (double mu : {0.05, 0.5}) { // slipping and stuck, and opening (gap 1e-2)
+    c.friction.mu = mu;
+    for (double gap : {0.0, 1e-2}) {
+      InterfaceSide up_with = upper_side, low_with = lower_side;
+      up_with.v1 -= c.dt * c0.f1 / up_with.mass1;
+      up_with.v2 -= c.dt * c0.f2 / up_with.mass2;
+      low_with.v1 += c.dt * c0.f1 / low_with.mass1;
+      low_with.v2 += c.dt * c0.f2 / low_with.mass2;
+      const SplitNodeStep a =
+          resolve_split_node(c, gap, upper_side, lower_side, false, 0.0, 0.3, 0.6, c0);
+      const SplitNodeStep b = resolve_split_node(c, gap, up_with, low_with, false, 0.0, 0.3, 0.6);
+      EXPECT_EQ(a.relative.state, b.relative.state);
+      EXPECT_NEAR(a.relative.contact_force1, b.relative.contact_force1, 1e-14);
+      EXPECT_NEAR(a.relative.contact_force2, b.relative.contact_force2, 1e-14);
+      EXPECT_NEAR(a.upper.v1, b.upper.v1, 1e-15);
+      EXPECT_NEAR(a.upper.v2, b.upper.v2, 1e-15);
+      EXPECT_NEAR(a.lower.v1, b.lower.v1, 1e-15);
+      EXPECT_NEAR(a.lower.v2, b.lower.v2, 1e-15);
+    }
+  }
+}
+
 TEST(SplitNode, AHeavierAndHeavierLowerSideAtRestTendsToTheRigidPlane) {
   const SplitNodeStep rigid =
       resolve_split_node(constants(), 1e-4, upper_side, lower_side, true, 0.0, 0.0, 0.0);
