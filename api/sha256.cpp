@@ -2,8 +2,11 @@
 #include "api/job_spec.hpp"
 
 #include <openssl/evp.h>
+#include <unistd.h>
 
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -62,6 +65,21 @@ std::string sha256_file(const std::string& path) {
     update(context.get(), buffer.data(), static_cast<std::size_t>(file.gcount()));
   }
   if (file.bad()) throw std::runtime_error("SHA-256: cannot read " + path);
+  return final_hex(context.get());
+}
+
+std::string sha256_descriptor(int fd) {
+  DigestContext context = new_sha256_context();
+  std::vector<char> buffer(1 << 20);
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("SHA-256: cannot read: ") + std::strerror(errno));
+    }
+    update(context.get(), buffer.data(), static_cast<std::size_t>(n));
+  }
   return final_hex(context.get());
 }
 

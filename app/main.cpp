@@ -1,7 +1,8 @@
-// The `slipfront` executable: run, validate, schema, stations, serve (docs/api-job-spec.md "The
-// CLI", docs/server.md; usage in app/usage.cpp).
+// The `slipfront` executable: run, validate, schema, stations, serve, check
+// (docs/api-job-spec.md "The CLI", docs/server.md; usage in app/usage.cpp).
 #include "app/commands.hpp"
 
+#include "server/check.hpp"
 #include "server/serve.hpp"
 #include "solver/simulation.hpp"
 
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   if (command == "schema") return schema_command(args);
   if (command == "presets") return presets_command(args);
   if (command == "stations") return stations_command(args);
+  if (command == "check") return slipfront::server::check_main(args);
   if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
   if (command == "--version" || command == "version") {
     std::cout << "slipfront " << slipfront::code_version() << '\n';

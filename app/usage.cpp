@@ -92,7 +92,10 @@ usage:
       The on-fault stations of a result file: rupture times, or every step as CSV.
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [--max-memory SIZE] [...]
       Run the HTTP job server (docs/server.md).
-  slipfront run|validate|presets|stations|serve --help   the options of one command
+  slipfront check DATA_DIR
+      List what a server could not read in DATA_DIR/slipfront.db (rows whose stored JSON
+      does not parse, PRAGMA quick_check); exit 0 and "ok" if nothing.
+  slipfront run|validate|presets|stations|serve|check --help   the options of one command
   slipfront --version
   slipfront help | --help
 

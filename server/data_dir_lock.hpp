@@ -1,8 +1,10 @@
-// Exclusive ownership of a data directory: an flock(2) on DATA_DIR/slipfront.lock, held
-// for the life of the object (the kernel drops it when the process dies, even on SIGKILL,
-// so a crash never leaves a stale lock). A second server on the same directory would
-// re-queue the first one's running jobs and delete their temporary files: it must not
-// start.
+// Exclusive ownership of a data directory: flock(2) on the directory itself, held on an open
+// descriptor for the life of the object, and on DATA_DIR/slipfront.lock (which names the
+// holder's pid). The kernel drops both when the process dies, even on SIGKILL, so a crash never
+// leaves a stale lock; and the directory's lock does not depend on a file that can be deleted
+// (a second server after `rm slipfront.lock` would otherwise lock a new file of that name).
+// A second server on the same directory would re-queue the first one's running jobs and delete
+// their temporary files: it must not start.
 #pragma once
 
 #include <string>
@@ -19,7 +21,10 @@ public:
   DataDirLock& operator=(const DataDirLock&) = delete;
 
 private:
-  int fd_ = -1;
+  void release();
+
+  int dir_fd_ = -1;
+  int file_fd_ = -1;
 };
 
 } // namespace slipfront::server

@@ -83,6 +83,12 @@ void ServerApp::start() {
   if (!config_.token_file.empty()) tokens_ = TokenTable::load(config_.token_file);
 
   store_ = std::make_unique<JobStore>(config_.data_dir + "/slipfront.db", config_.integrity_check);
+  if (auto malformed = store_->malformed_rows(); !malformed.empty()) {
+    log_error("start-up check: " + std::to_string(malformed.size()) +
+              " row(s) of the database hold JSON that does not parse; listings leave them out "
+              "(`slipfront check " +
+              config_.data_dir + "` lists them), the first: " + describe(malformed.front()));
+  }
   queue_ = std::make_unique<JobQueue>(config_.queue_limit);
   const bool slurm = config_.executor == "slurm";
   int recovered = store_->requeue_all_running(slurm);
@@ -113,7 +119,7 @@ void ServerApp::start() {
   wo.db_progress_interval_s = config_.db_progress_interval_s;
   study_store_ = std::make_unique<StudyStore>(*store_);
   supervisor_ = std::make_unique<StudySupervisor>(*study_store_, *service_);
-  studies_ = std::make_unique<StudyService>(*study_store_, *service_, *queue_, *supervisor_);
+  studies_ = std::make_unique<StudyService>(*study_store_, *service_, *supervisor_);
   wo.on_finished = [this](const std::string& id) { supervisor_->job_finished(id); };
   service_->set_on_cancelled([this](const std::string& id) { supervisor_->job_finished(id); });
   if (slurm)
@@ -155,6 +161,8 @@ void ServerApp::start() {
   limits.max_connections = connection_cap(config_.max_connections);
   offload_pool_ = std::make_unique<net::thread_pool>(2);
   limits.offload_pool = offload_pool_.get();
+  // Answers built in memory and not yet read by their clients, over all connections.
+  limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);

@@ -16,6 +16,8 @@ struct ServerConfig {
   double max_memory_bytes = 0.0;    // 0 = 3/4 of physical memory shared by the workers
   double max_result_bytes = 20.0e9; // a job whose result-file estimate is above is refused
   std::uint64_t max_body_bytes = 1 << 20;
+  // Answers built in memory and not yet read by their clients, over all connections.
+  std::uint64_t max_unsent_bytes = std::uint64_t{256} << 20;
   std::string token_file;     // "" = no authentication
   int io_threads = 2;         // threads answering HTTP
   int request_timeout_s = 30; // to receive a request; idle keep-alive connections

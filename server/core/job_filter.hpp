@@ -36,6 +36,9 @@ struct JobPage {
   std::optional<std::int64_t> next_cursor; // before_seq of the next page (newest first)
   std::optional<std::int64_t> next_offset; // offset of the next page (sorted listings)
   std::map<std::string, std::string> convergence_status; // job id -> status, if in a study
+  // Rows of the page that could not be read (stored JSON that does not parse): left out, and
+  // reported as "ID: reason" (docs/server.md, GET /jobs).
+  std::vector<std::string> skipped;
 };
 
 } // namespace slipfront::server

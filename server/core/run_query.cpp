@@ -252,12 +252,20 @@ std::vector<std::string> searchable_fields() {
 }
 
 std::vector<Condition> parse_where(std::string_view text) {
-  return WhereParser(text).parse();
+  auto conditions = WhereParser(text).parse();
+  if (conditions.size() > max_where_conditions)
+    throw QueryError("where", "has " + std::to_string(conditions.size()) + " conditions; at most " +
+                                  std::to_string(max_where_conditions) + " conditions are allowed");
+  return conditions;
 }
 
 std::vector<SortKey> parse_sort(std::string_view text) {
   std::vector<SortKey> out;
-  for (std::string_view item : split_list(text)) {
+  const auto items = split_list(text);
+  if (items.size() > max_sort_keys)
+    throw QueryError("sort", "has " + std::to_string(items.size()) + " keys; at most " +
+                                 std::to_string(max_sort_keys) + " keys are allowed");
+  for (std::string_view item : items) {
     SortKey key;
     if (!item.empty() && (item.front() == '-' || item.front() == '+')) {
       key.descending = item.front() == '-';

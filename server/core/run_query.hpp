@@ -55,6 +55,11 @@ struct SortKey {
   bool descending = false;
 };
 
+// Bounds on one search: each condition and key becomes SQL, and SQLite refuses an expression
+// tree deeper than 1000 (docs/server.md, "Searching runs"). Above them: QueryError.
+inline constexpr std::size_t max_where_conditions = 64;
+inline constexpr std::size_t max_sort_keys = 16;
+
 // Conditions joined by `;` or ` and `: `friction.L<1e-4; metrics.outcome=arrested`.
 std::vector<Condition> parse_where(std::string_view text);
 // A comma list of fields, each optionally prefixed by `-` (descending) or `+`.

@@ -23,6 +23,7 @@ struct StudyRecord {
   nlohmann::json request;
   std::string scene_hash; // of the base scene (the regularised one for the preset)
   std::string submitted_by;
+  std::string idempotency_key; // "" = none (POST /studies' Idempotency-Key)
   int priority = 0;
   bool fresh = false;
   std::string created_at, updated_at, finished_at;

@@ -140,6 +140,21 @@ void parse_convergence(const json& c, StudyRequest& r, Errors& errors) {
         {"/convergence", "at most " + std::to_string(max_study_runs) + " runs per study"});
 }
 
+// Each run carries /base/tags, the study's tags and "study:<id>" (run_document), and a job
+// has at most 32 tags (api/job_reader.cpp): the study's and the base's share 31.
+void check_tag_count(const StudyRequest& r, Errors& errors) {
+  constexpr std::size_t max_job_tags = 32;
+  const std::size_t base_tags = base_tag_count(r);
+  if (r.tags.size() + base_tags <= max_job_tags - 1) return;
+  errors.push_back(
+      {"/tags", "has " + std::to_string(r.tags.size()) + " tags" +
+                    (base_tags ? ", and " + std::to_string(base_tags) + " in /base/tags" : "") +
+                    ": at most " + std::to_string(max_job_tags - 1) +
+                    " tags are allowed (together with /base/tags; each run also "
+                    "gets the tag study:<id>, and a job has at most " +
+                    std::to_string(max_job_tags) + ")"});
+}
+
 } // namespace
 
 StudyRequestParse parse_study_request(const json& body) {
@@ -188,6 +203,7 @@ StudyRequestParse parse_study_request(const json& body) {
       errors.push_back({"/fresh", "must be a boolean"});
   }
   parse_base(body, r, errors);
+  check_tag_count(r, errors);
 
   const bool grid = body.contains("grid"), convergence = body.contains("convergence"),
              preset = body.contains("preset");
@@ -208,6 +224,11 @@ StudyRequestParse parse_study_request(const json& body) {
   return out;
 }
 
+std::size_t base_tag_count(const StudyRequest& request) {
+  const auto it = request.base.find("tags");
+  return it != request.base.end() && it->is_array() ? it->size() : 0;
+}
+
 using api::number_text;
 
 json run_document(const StudyRequest& request, const std::string& study_id, const json& overrides,
@@ -221,9 +242,7 @@ json run_document(const StudyRequest& request, const std::string& study_id, cons
     if (!regime.empty()) name += " " + regime;
     doc["name"] = name + " L=" + number_text(L) + " n_d=" + number_text(n_d);
   }
-  json tags = request.base.contains("tags") && request.base["tags"].is_array()
-                  ? request.base["tags"]
-                  : json::array();
+  json tags = base_tag_count(request) ? request.base["tags"] : json::array();
   for (const auto& tag : request.tags)
     tags.push_back(tag);
   tags.push_back("study:" + study_id);

@@ -42,6 +42,9 @@ constexpr std::size_t max_study_runs = 400;
 
 StudyRequestParse parse_study_request(const nlohmann::json& body);
 
+// How many tags /base/tags holds (each run carries them first, then the study's).
+std::size_t base_tag_count(const StudyRequest& request);
+
 // The job document of one run: base, then the regime's overrides (JSON merge patch), then
 // friction.L and geometry.nodes_per_meter; name "<study name> L=<L> n_d=<n_d>" unless the
 // base names its runs; tags: the base's, the study's and "study:<id>".

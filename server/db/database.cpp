@@ -8,6 +8,19 @@
 namespace slipfront::server {
 
 namespace {
+// At most the first 200 characters of a statement, for an error (never tens of kB of SQL in
+// the log).
+std::string sql_excerpt(const std::string& sql) {
+  constexpr std::size_t shown = 200;
+  std::string out = "`";
+  out.append(sql, 0, shown);
+  if (sql.size() <= shown) return out + "`";
+  out += "...` (";
+  out += std::to_string(sql.size());
+  out += " characters)";
+  return out;
+}
+
 std::string message(sqlite3* db, int rc, const std::string& what) {
   std::string text = what + ": " + sqlite3_errstr(rc);
   if (db) text += " (" + std::string(sqlite3_errmsg(db)) + ")";
@@ -33,7 +46,7 @@ bool SqliteError::unavailable_code(int code) {
 
 Statement::Statement(sqlite3* db, const std::string& sql) : db_(db), sql_(sql) {
   int rc = sqlite3_prepare_v2(db_, sql.c_str(), static_cast<int>(sql.size()), &stmt_, nullptr);
-  if (rc != SQLITE_OK) throw SqliteError(message(db_, rc, "preparing SQL `" + sql + "`"), rc);
+  if (rc != SQLITE_OK) throw SqliteError(message(db_, rc, "preparing SQL " + sql_excerpt(sql)), rc);
 }
 
 Statement::~Statement() {
@@ -47,7 +60,7 @@ Statement::Statement(Statement&& other) noexcept
 
 void Statement::check(int rc, const char* what) const {
   if (rc != SQLITE_OK)
-    throw SqliteError(message(db_, rc, std::string(what) + " `" + sql_ + "`"), rc);
+    throw SqliteError(message(db_, rc, std::string(what) + " " + sql_excerpt(sql_)), rc);
 }
 
 Statement& Statement::bind(int index, const std::string& value) {
@@ -85,7 +98,7 @@ bool Statement::step() {
   int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;
   if (rc == SQLITE_DONE) return false;
-  throw SqliteError(message(db_, rc, "running `" + sql_ + "`"), rc);
+  throw SqliteError(message(db_, rc, "running " + sql_excerpt(sql_)), rc);
 }
 
 void Statement::run() {
@@ -137,7 +150,7 @@ int Statement::column_index(const std::string& name) const {
   }
   for (std::size_t i = 0; i < names_.size(); ++i)
     if (names_[i] == name) return static_cast<int>(i);
-  throw SqliteError("no result column " + name + " in `" + sql_ + "`");
+  throw SqliteError("no result column " + name + " in " + sql_excerpt(sql_));
 }
 
 Database::Database(const std::string& path) : path_(path) {
@@ -161,7 +174,7 @@ void Database::exec(const std::string& sql) {
   char* error = nullptr;
   int rc = sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error);
   if (rc != SQLITE_OK) {
-    std::string text = "running `" + sql + "`: " + (error ? error : sqlite3_errstr(rc));
+    std::string text = "running " + sql_excerpt(sql) + ": " + (error ? error : sqlite3_errstr(rc));
     sqlite3_free(error);
     throw SqliteError(text, rc);
   }
@@ -181,14 +194,15 @@ void Database::set_user_version(std::int64_t version) {
   exec("PRAGMA user_version = " + std::to_string(version));
 }
 
-Transaction::Transaction(Database& db) : db_(db) {
-  db_.exec("BEGIN IMMEDIATE");
+Transaction::Transaction(Database& db)
+    : db_(db), nested_(sqlite3_get_autocommit(db.handle()) == 0) {
+  db_.exec(nested_ ? "SAVEPOINT nested" : "BEGIN IMMEDIATE");
 }
 
 Transaction::~Transaction() {
   if (!done_) {
     try {
-      db_.exec("ROLLBACK");
+      db_.exec(nested_ ? "ROLLBACK TO nested; RELEASE nested" : "ROLLBACK");
     } catch (...) { // a destructor cannot throw; the failure of the original operation is
                     // already propagating and carries the context
     }
@@ -196,7 +210,7 @@ Transaction::~Transaction() {
 }
 
 void Transaction::commit() {
-  db_.exec("COMMIT");
+  db_.exec(nested_ ? "RELEASE nested" : "COMMIT");
   done_ = true;
 }
 

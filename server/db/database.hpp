@@ -95,7 +95,10 @@ private:
   std::string path_;
 };
 
-// BEGIN IMMEDIATE ... COMMIT; rolls back when destroyed without commit().
+// BEGIN IMMEDIATE ... COMMIT; rolls back when destroyed without commit(). Inside a
+// transaction already open on the connection it is a savepoint instead (RELEASE on commit(),
+// ROLLBACK TO when destroyed without it), so that a store method that is one transaction can
+// also be one step of a larger one (StoreDb::in_transaction).
 class Transaction {
 public:
   explicit Transaction(Database& db);
@@ -106,6 +109,7 @@ public:
 
 private:
   Database& db_;
+  bool nested_ = false;
   bool done_ = false;
 };
 

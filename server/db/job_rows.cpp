@@ -176,6 +176,15 @@ Job read_job(const Statement& s) {
   return job;
 }
 
+std::optional<Job> read_job_or_skip(const Statement& s, std::vector<std::string>& skipped) {
+  try {
+    return read_job(s);
+  } catch (const std::exception& e) {
+    skipped.push_back(s.text("id") + ": " + e.what());
+    return std::nullopt;
+  }
+}
+
 const std::string& insert_job_sql() {
   static const std::string sql = [] {
     std::string names, values;

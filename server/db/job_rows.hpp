@@ -6,7 +6,9 @@
 #include "server/core/job.hpp"
 #include "server/db/database.hpp"
 
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace slipfront::server {
 
@@ -16,6 +18,9 @@ const std::string& select_jobs();
 
 // A row of select_jobs().
 Job read_job(const Statement& row);
+// The same, or nullopt when the row's stored JSON does not parse: "ID: reason" is added to
+// `skipped` (a malformed row never breaks a listing, docs/reliability.md).
+std::optional<Job> read_job_or_skip(const Statement& row, std::vector<std::string>& skipped);
 
 // "INSERT INTO jobs (<the columns a new job sets>) VALUES (?1, ...)"; bind_new_job binds them.
 const std::string& insert_job_sql();

@@ -2,6 +2,7 @@
 
 #include "api/job_spec.hpp"
 #include "api/metrics_row.hpp"
+#include "server/core/log.hpp"
 #include "server/db/job_rows.hpp"
 
 #include <cmath>
@@ -96,8 +97,11 @@ std::vector<Job> JobStore::running_slurm_jobs() {
   auto s = db->prepare(select_jobs() + "WHERE j.status = 'running' AND j.slurm_job_id IS NOT NULL "
                                        "ORDER BY j.seq ASC");
   std::vector<Job> jobs;
+  std::vector<std::string> skipped;
   while (s.step())
-    jobs.push_back(read_job(s));
+    if (auto job = read_job_or_skip(s, skipped)) jobs.push_back(std::move(*job));
+  for (const auto& why : skipped)
+    log_error("job " + why + "; left out (slipfront check lists such rows)");
   return jobs;
 }
 
@@ -210,8 +214,11 @@ std::vector<Job> JobStore::queued_jobs() {
   auto s =
       db->prepare(select_jobs() + "WHERE j.status = 'queued' ORDER BY j.priority DESC, j.seq ASC");
   std::vector<Job> jobs;
+  std::vector<std::string> skipped;
   while (s.step())
-    jobs.push_back(read_job(s));
+    if (auto job = read_job_or_skip(s, skipped)) jobs.push_back(std::move(*job));
+  for (const auto& why : skipped)
+    log_error("job " + why + "; left out (slipfront check lists such rows)");
   return jobs;
 }
 
@@ -222,15 +229,19 @@ JobPage JobStore::list(const JobFilter& f) {
   auto s = db->prepare(q.sql);
   bind_all(s, q.params);
   JobPage page;
+  int rows = 0;              // read or skipped: the offset of a sorted listing counts both
+  std::int64_t last_seq = 0; // of the last row, read or skipped
   while (s.step()) {
-    if (static_cast<int>(page.jobs.size()) == limit) {
+    if (rows == limit) {
       if (f.sort.empty())
-        page.next_cursor = page.jobs.back().seq;
+        page.next_cursor = last_seq;
       else
         page.next_offset = f.offset + limit;
       break;
     }
-    page.jobs.push_back(read_job(s));
+    ++rows;
+    last_seq = s.integer("seq");
+    if (auto job = read_job_or_skip(s, page.skipped)) page.jobs.push_back(std::move(*job));
   }
   auto status = db->prepare("SELECT convergence_status FROM study_runs WHERE job_id = ?1 "
                             "ORDER BY rowid DESC LIMIT 1");
@@ -252,6 +263,10 @@ std::map<std::string, std::int64_t> JobStore::count_by_status() {
   while (s.step())
     counts[s.text(0)] = s.integer(1);
   return counts;
+}
+
+std::vector<MalformedRow> JobStore::malformed_rows() {
+  return db_.with_db([](Database& db) { return find_malformed_rows(db); });
 }
 
 std::optional<nlohmann::json> JobStore::front(const std::string& id) {

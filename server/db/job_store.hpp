@@ -8,6 +8,7 @@
 #include "server/core/job_filter.hpp"
 #include "server/core/run_record.hpp"
 #include "server/db/database.hpp"
+#include "server/db/malformed_rows.hpp"
 #include "server/db/migrations.hpp"
 #include "server/db/run_query_sql.hpp"
 #include "server/db/store_db.hpp"
@@ -25,7 +26,7 @@ namespace slipfront::server {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 6;
+  static constexpr int schema_version = 7;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).
@@ -71,6 +72,8 @@ public:
 
   JobPage list(const JobFilter& filter);
   std::map<std::string, std::int64_t> count_by_status();
+  // Rows whose stored JSON does not parse (slipfront check, the start-up log).
+  std::vector<MalformedRow> malformed_rows();
   std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
 
   std::string path() const { return db_.path(); }

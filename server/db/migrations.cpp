@@ -14,6 +14,7 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m4_study_cancelled()},
       {migrations::m5_slurm_executor()},
       {migrations::m6_search_indexes()},
+      {migrations::m7_study_idempotency_keys()},
   };
   return list;
 }

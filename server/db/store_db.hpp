@@ -28,6 +28,18 @@ public:
     return f(db_);
   }
 
+  // Runs `f()` as one transaction, holding the connection's lock: the store calls f makes on
+  // this thread join it (their own transactions become savepoints), so all of them are
+  // committed together or none is. f returns true to commit, false to roll back (an exception
+  // rolls back too). Returns what f returned.
+  template <class F> bool in_transaction(F&& f) {
+    std::lock_guard lock(mutex_);
+    Transaction tx(db_);
+    if (!f()) return false;
+    tx.commit();
+    return true;
+  }
+
   // The connection, locked while the returned object lives: for a method that is one short
   // transaction (`auto db = store.lock(); db->prepare(...)`).
   class Locked {
@@ -37,7 +49,7 @@ public:
     Database& operator*() { return db_; }
 
   private:
-    std::lock_guard<std::mutex> lock_;
+    std::lock_guard<std::recursive_mutex> lock_;
     Database& db_;
   };
   Locked lock() { return Locked(*this); }
@@ -49,7 +61,8 @@ public:
   std::string path() const { return db_.path(); }
 
 private:
-  std::mutex mutex_;
+  // Recursive: a thread inside in_transaction() calls store methods that take it again.
+  std::recursive_mutex mutex_;
   Database db_;
   std::mutex probe_mutex_;
   std::optional<Database> probe_db_; // opened after the migrations

@@ -11,7 +11,7 @@ namespace {
 const char* study_columns =
     "seq, id, name, tags, kind, base_spec, request, scene_hash, submitted_by, priority, fresh, "
     "created_at, updated_at, finished_at, status, runs_done, runs_total, L_c, "
-    "spectral_critical_length, result FROM studies ";
+    "spectral_critical_length, result, idempotency_key FROM studies ";
 
 // A row of SELECT study_columns, read by column name.
 StudyRecord read_study(const Statement& s) {
@@ -40,6 +40,7 @@ StudyRecord read_study(const Statement& s) {
   r.L_c = s.real("L_c");
   r.spectral_critical_length = s.real("spectral_critical_length");
   r.result = parse_stored_json(s.text("result"), "result of study " + r.id);
+  r.idempotency_key = s.text("idempotency_key");
   return r;
 }
 
@@ -84,7 +85,8 @@ void StudyStore::insert(const StudyRecord& st) {
   db_.with_db([&](Database& db) {
     auto s = db.prepare("INSERT INTO studies (id, name, tags, kind, base_spec, request, "
                         "scene_hash, submitted_by, priority, fresh, created_at, updated_at, "
-                        "status) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?11, ?12)");
+                        "status, idempotency_key) "
+                        "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?11, ?12, ?13)");
     s.bind(1, st.id)
         .bind(2, st.name)
         .bind(3, json(st.tags).dump())
@@ -97,6 +99,7 @@ void StudyStore::insert(const StudyRecord& st) {
         .bind(10, std::int64_t{st.fresh ? 1 : 0})
         .bind(11, st.created_at)
         .bind(12, std::string(api::to_string(st.status)))
+        .bind(13, text_or_null(st.idempotency_key))
         .run();
   });
 }
@@ -107,6 +110,17 @@ void StudyStore::add_run(const std::string& study_id, const std::string& job_id,
     auto s = db.prepare("INSERT OR IGNORE INTO study_runs (study_id, job_id, regime, L, n_d) "
                         "VALUES (?1, ?2, ?3, ?4, ?5)");
     s.bind(1, study_id).bind(2, job_id).bind(3, regime).bind(4, L).bind(5, n_d).run();
+  });
+}
+
+std::optional<StudyRecord> StudyStore::find_by_idempotency_key(const std::string& user,
+                                                               const std::string& key) {
+  return db_.with_db([&](Database& db) -> std::optional<StudyRecord> {
+    auto s = db.prepare(std::string("SELECT ") + study_columns +
+                        "WHERE submitted_by = ?1 AND idempotency_key = ?2");
+    s.bind(1, user).bind(2, key);
+    if (!s.step()) return std::nullopt;
+    return read_study(s);
   });
 }
 

@@ -24,6 +24,9 @@ public:
   void add_run(const std::string& study_id, const std::string& job_id, const std::string& regime,
                double L, double n_d);
   std::optional<StudyRecord> get(const std::string& id);
+  // The study `user` created with this Idempotency-Key, if any.
+  std::optional<StudyRecord> find_by_idempotency_key(const std::string& user,
+                                                     const std::string& key);
   // Newest first; `before_seq` is the cursor of the previous page.
   std::vector<StudyRecord> list(int limit, std::optional<std::int64_t> before_seq,
                                 std::optional<api::StudyStatus> status);

@@ -1,14 +1,17 @@
 #include "server/http/auth.hpp"
 
 #include "api/job_spec.hpp"
+#include "server/core/file_descriptor.hpp"
 #include "server/http/responses.hpp"
 
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace slipfront::server {
 
 namespace {
+constexpr std::size_t max_token_file_bytes = 1 << 20;
+
 std::string trim(const std::string& s) {
   auto b = s.find_first_not_of(" \t\r");
   if (b == std::string::npos) return {};
@@ -18,8 +21,14 @@ std::string trim(const std::string& s) {
 } // namespace
 
 TokenTable TokenTable::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read token file " + path);
+  // A regular file only, opened without blocking: a FIFO in its place is refused at once.
+  std::string text;
+  try {
+    text = read_regular_file(path, max_token_file_bytes);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("cannot read token file ") + e.what());
+  }
+  std::istringstream in(text);
   std::map<std::string, std::string> users_by_token;
   std::string line;
   int number = 0;

@@ -18,6 +18,7 @@ HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, Se
 }
 
 HttpSession::~HttpSession() {
+  release_unsent();
   if (open_count_) --*open_count_;
 }
 
@@ -118,8 +119,31 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
   send(std::move(response), false);
 }
 
+bool UnsentBytes::reserve(std::uint64_t n) {
+  auto held = held_.load();
+  do {
+    if (n > always_allowed && held + n > limit_) return false;
+  } while (!held_.compare_exchange_weak(held, held + n));
+  return true;
+}
+
 void HttpSession::send(Response response, bool close_after) {
   read_deadline_.cancel();
+  if (limits_.unsent && response.held_bytes() > 0) {
+    if (!limits_.unsent->reserve(response.held_bytes())) {
+      Request req;
+      req.version(11);
+      auto busy =
+          problem_response(req, http::status::service_unavailable,
+                           "the server holds " + std::to_string(limits_.unsent->limit() >> 20) +
+                               " MiB of answers its clients have not read yet; retry later");
+      busy.set(http::field::retry_after, "5");
+      busy.keep_alive(response.keep_alive());
+      response = Response(std::move(busy));
+      limits_.unsent->reserve(response.held_bytes()); // small: always allowed
+    }
+    unsent_held_ = response.held_bytes();
+  }
   stats_.record_request(
       response.status(),
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
@@ -131,6 +155,7 @@ void HttpSession::send(Response response, bool close_after) {
 }
 
 void HttpSession::on_write(bool keep_alive, beast::error_code ec, std::size_t) {
+  release_unsent();
   if (ec) return close();
   if (!keep_alive) return drain_then_close();
   read_header();
@@ -159,6 +184,11 @@ void HttpSession::drain_then_close() {
                             if (rec || self->discarded_ > (64u << 20)) return self->close();
                             self->drain_then_close();
                           });
+}
+
+void HttpSession::release_unsent() {
+  if (limits_.unsent && unsent_held_) limits_.unsent->release(unsent_held_);
+  unsent_held_ = 0;
 }
 
 void HttpSession::close() {

@@ -18,11 +18,32 @@
 
 namespace slipfront::server {
 
+// The bytes of answers built in memory and not yet taken by their clients, over all
+// connections: a client that asks and never reads holds its answer until the write timeout,
+// so their sum is bounded (docs/reliability.md). An answer of at most `always_allowed` bytes
+// is never refused (errors, status, health).
+class UnsentBytes {
+public:
+  static constexpr std::uint64_t always_allowed = 64 * 1024;
+  explicit UnsentBytes(std::uint64_t limit) : limit_(limit) {}
+  // Counts `n` in, unless that would pass the limit (then false, nothing counted).
+  bool reserve(std::uint64_t n);
+  void release(std::uint64_t n) { held_ -= n; }
+  std::uint64_t held() const { return held_; }
+  std::uint64_t limit() const { return limit_; }
+
+private:
+  std::uint64_t limit_;
+  std::atomic<std::uint64_t> held_{0};
+};
+
 struct SessionLimits {
   std::uint64_t max_body_bytes = 1 << 20;
   std::chrono::seconds request_timeout{30}; // to receive a whole request (and idle keep-alive)
   std::chrono::seconds write_timeout{600};  // to send a whole response (large result files)
   int max_connections = 256; // open at once; more are answered 503 and closed at once
+  // Shared by every session; null = no bound.
+  std::shared_ptr<UnsentBytes> unsent;
   // Where offloaded routes (Router::offloaded) run; null = on the I/O thread.
   boost::asio::thread_pool* offload_pool = nullptr;
 };
@@ -48,6 +69,7 @@ private:
   void drain_then_close();
   void close();
   void arm_read_deadline();
+  void release_unsent(); // the answer being written no longer counts in limits_.unsent
 
   beast::tcp_stream stream_;
   // The read deadline is a timer that cancels the read (not tcp_stream's expiry, which
@@ -63,6 +85,7 @@ private:
   std::array<char, 8192> discard_{};
   std::size_t discarded_ = 0;
   std::shared_ptr<std::atomic<int>> open_count_;
+  std::uint64_t unsent_held_ = 0; // counted in limits_.unsent for the answer being written
 };
 
 } // namespace slipfront::server

@@ -3,6 +3,7 @@
 #include "server/core/priority.hpp"
 #include "server/core/run_query.hpp"
 #include "server/http/handlers.hpp"
+#include "server/http/idempotency_key.hpp"
 #include "server/http/job_filter_query.hpp"
 #include "server/http/job_json.hpp"
 #include "server/http/query_string.hpp"
@@ -44,12 +45,9 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
     options.priority = number ? priority_of(*number) : std::nullopt;
     if (!options.priority) errors.push_back({"/query/priority", priority_rule()});
   }
-  std::string key(req["Idempotency-Key"]);
-  if (req.count("Idempotency-Key") && (key.empty() || key.size() > 200))
-    errors.push_back({"/headers/Idempotency-Key", "must be 1 to 200 characters"});
+  options.idempotency_key = idempotency_key(req, errors);
   if (!errors.empty())
     return problem_response(req, http::status::bad_request, "invalid query parameters", errors);
-  options.idempotency_key = key;
 
   SubmitResult r = ctx.service.submit(req.body(), options);
   using Kind = SubmitResult::Kind;
@@ -127,6 +125,10 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
                                     : text_response(rc.request, http::status::ok, runs_ndjson(rows),
                                                     "application/x-ndjson");
     if (next) response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
+    if (!page.skipped.empty())
+      response.set("Skipped-Rows", std::to_string(page.skipped.size()) +
+                                       " unreadable row(s) left out, the first: " +
+                                       page.skipped.front().substr(0, 200));
     return response;
   }
   nlohmann::json body;
@@ -134,6 +136,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   for (const auto& job : page.jobs)
     body["jobs"].push_back(job_to_json(job, fields));
   body["count"] = page.jobs.size();
+  if (!page.skipped.empty()) body["skipped"] = page.skipped; // unreadable rows left out
   if (next_cursor) {
     body["next_cursor"] = *next_cursor;
     body["next"] = *next;
@@ -160,6 +163,11 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
     return problem_response(rc.request, http::status::conflict,
                             "job " + id + " has already finished (" + to_string(r.job->status) +
                                 ")");
+  case Kind::finishing:
+    return problem_response(rc.request, http::status::conflict,
+                            "job " + id +
+                                " is finishing: its run has ended and its result is being "
+                                "stored; it will not be cancelled");
   case Kind::cancelled: {
     auto body = job_to_json(*r.job);
     body["cancel_requested"] = true;

@@ -148,7 +148,7 @@ const char* document = R"json({
         "responses": {"200": {"$ref": "#/components/responses/Job"}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/cancel": {
-      "post": {"summary": "Cancel a job (queued: at once; running: within about a second)", "security": [{"bearer": []}],
+      "post": {"summary": "Cancel a job (queued: 200 at once; running: 202, it ends cancelled within about a second; finishing or finished: 409)", "security": [{"bearer": []}],
         "parameters": [{"$ref": "#/components/parameters/id"}],
         "responses": {"200": {"$ref": "#/components/responses/Job"}, "202": {"$ref": "#/components/responses/Job"},
           "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
@@ -164,7 +164,7 @@ const char* document = R"json({
           "206": {"description": "One byte range", "content": {"application/x-hdf5": {}}},
           "304": {"description": "Not modified"},
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
-          "410": {"description": "The job succeeded but its result file was deleted from the data dir (an identical new job runs again)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+          "410": {"description": "The job succeeded but its result file was deleted from the data dir, is damaged (another size or SHA-256 than stored) or is not a regular file; an identical new job runs again", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
           "416": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/jobs/{id}/result.xdmf": {
@@ -222,9 +222,13 @@ const char* document = R"json({
         "responses": {"200": {"description": "the preset", "content": {"application/json": {}}}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/studies": {
-      "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist)", "security": [{"bearer": []}],
+      "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist); the study and its first runs are stored in one transaction", "security": [{"bearer": []}],
+        "parameters": [
+          {"name": "Idempotency-Key", "in": "header", "schema": {"type": "string", "maxLength": 200}, "description": "a retried POST with the same key and body returns the first study (200, Idempotent-Replayed: true); another body with the key is a 422"}],
         "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/StudyRequest"}}}},
         "responses": {"201": {"description": "Created; Location names the study", "headers": {"Location": {"schema": {"type": "string"}}},
+            "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
+          "200": {"description": "Replayed: the study an earlier request with the same Idempotency-Key created", "headers": {"Idempotent-Replayed": {"schema": {"type": "string"}}},
             "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
           "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
           "422": {"$ref": "#/components/responses/Problem"}, "503": {"$ref": "#/components/responses/Unavailable"}}},

@@ -48,7 +48,43 @@ std::string percent_encode(std::string_view text) {
   return out;
 }
 
+namespace {
+
+bool starts_with_ignoring_case(std::string_view text, std::string_view prefix) {
+  if (text.size() < prefix.size()) return false;
+  for (std::size_t i = 0; i < prefix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(text[i])) != prefix[i]) return false;
+  return true;
+}
+
+// The absolute form `http://host:port/path?query` (RFC 9112 §3.2.2: a server accepts it, as a
+// proxy would send it) as its path and query; "/" when it has no path. Other schemes: nullopt.
+std::optional<std::string> origin_form(std::string_view target) {
+  std::size_t scheme = 0;
+  if (starts_with_ignoring_case(target, "http://"))
+    scheme = 7;
+  else if (starts_with_ignoring_case(target, "https://"))
+    scheme = 8;
+  else
+    return std::nullopt;
+  const auto path = target.find_first_of("/?", scheme);
+  if (path == scheme) return std::nullopt; // no authority
+  if (path == std::string_view::npos) return std::string("/");
+  std::string out(target.substr(path));
+  if (out.front() == '?') out.insert(0, 1, '/');
+  return out;
+}
+
+} // namespace
+
 std::optional<Target> parse_target(std::string_view target) {
+  std::string absolute;
+  if (!target.empty() && target.front() != '/') {
+    auto origin = origin_form(target);
+    if (!origin) return std::nullopt;
+    absolute = std::move(*origin);
+    target = absolute;
+  }
   if (target.empty() || target.front() != '/') return std::nullopt;
   auto q = target.find('?');
   Target t;

@@ -22,7 +22,8 @@ struct Target {
   std::map<std::string, std::string> query; // decoded; the last value of a repeated key wins
 };
 
-// nullopt on a malformed target (bad escapes, not starting with '/').
+// The origin form (/path?query) or the absolute form (http://host/path?query, its path and
+// query); nullopt on a malformed target (bad escapes, another scheme, neither form).
 std::optional<Target> parse_target(std::string_view target);
 
 } // namespace slipfront::server

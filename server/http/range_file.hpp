@@ -19,6 +19,11 @@ public:
     file_.open(path, mode, ec);
     if (!ec) length_ = file_.size(ec);
   }
+  // Takes an open descriptor over (ResultFiles::open), read from its current position.
+  void adopt(native_handle_type fd, boost::beast::error_code& ec) {
+    file_.native_handle(fd);
+    length_ = file_.size(ec);
+  }
   // Restrict to [offset, offset + length); call after open().
   void set_range(std::uint64_t offset, std::uint64_t length, boost::beast::error_code& ec) {
     file_.seek(offset, ec);

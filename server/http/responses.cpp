@@ -1,5 +1,7 @@
 #include "server/http/responses.hpp"
 
+#include <algorithm>
+
 #include "server/http/query_string.hpp"
 
 #include <cstdint>
@@ -72,12 +74,17 @@ http::response<http::string_body> problem_response(const Request& req, http::sta
   body["type"] = "about:blank";
   body["title"] = std::string(http::obsolete_reason(status));
   body["status"] = static_cast<unsigned>(status);
-  body["detail"] = detail;
+  // An error body never grows with its request beyond max_listed_errors entries.
+  const std::size_t listed = std::min(errors.size(), max_listed_errors);
+  body["detail"] = listed == errors.size()
+                       ? detail
+                       : detail + "; the first " + std::to_string(listed) + " are listed, and " +
+                             std::to_string(errors.size() - listed) + " more";
   body["instance"] = std::string(req.target());
   if (!errors.empty()) {
     body["errors"] = nlohmann::json::array();
-    for (const auto& e : errors)
-      body["errors"].push_back({{"pointer", e.pointer}, {"reason", e.reason}});
+    for (std::size_t i = 0; i < listed; ++i)
+      body["errors"].push_back({{"pointer", errors[i].pointer}, {"reason", errors[i].reason}});
   }
   return text_response(req, status,
                        body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),

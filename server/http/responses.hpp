@@ -24,7 +24,10 @@ std::string fnv1a_hex(const std::string& bytes);
 // which equals it under the weak comparison of RFC 9110 §8.8.3.2 (W/ prefixes ignored on both
 // sides).
 bool etag_list_matches(std::string_view if_none_match, std::string_view etag);
-// errors: [{"pointer": ..., "reason": ...}]
+// At most this many field errors are listed in a problem body; the detail says how many more
+// there were.
+inline constexpr std::size_t max_listed_errors = 100;
+// errors: [{"pointer": ..., "reason": ...}] (the first max_listed_errors)
 http::response<http::string_body> problem_response(const Request& req, http::status status,
                                                    const std::string& detail,
                                                    const std::vector<api::FieldError>& errors = {});

@@ -6,6 +6,7 @@
 #include "api/result_xdmf.hpp"
 #include "api/station_csv.hpp"
 #include "server/core/job_id.hpp"
+#include "server/core/log.hpp"
 #include "server/http/byte_range.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/range_file.hpp"
@@ -42,21 +43,43 @@ Response not_finished(const Request& req, const Job& job, const std::string& wha
                               " yet");
 }
 
-Response result_gone(const Request& req, const Job& job) {
+// The answer for a result file that cannot be served as the database describes it. Its words
+// never hold the server's paths (the log has the full story).
+Response result_gone(const Request& req, const Job& job, const OpenedResult& file) {
+  using State = OpenedResult::State;
+  std::string why;
+  switch (file.state) {
+  case State::missing:
+    why = "is no longer on the server (deleted from its data dir)";
+    break;
+  case State::not_regular:
+    why = "is not a regular file on the server";
+    break;
+  case State::damaged:
+    why = "is " + file.reason;
+    break;
+  case State::unreadable:
+    why = "cannot be read on the server (" + file.reason + ")";
+    break;
+  case State::intact:
+    throw std::logic_error("result_gone for an intact file");
+  }
+  log_error("job " + job.id + ": result file " + job.result.path + " " + why + "; answered 410");
   return problem_response(req, http::status::gone,
-                          "the result file of job " + job.id +
-                              " is no longer on the server (deleted from its data dir); "
-                              "submit the job again with fresh=true to recompute it");
+                          "the result file of job " + job.id + " " + why +
+                              "; submit the job again with fresh=true to recompute it");
 }
 
-// A finished job's result file on disk.
+// A finished job's result file, open and verified (ResultFiles).
 struct ResultOnDisk {
   Job job;
-  std::string path; // absolute: the stored path is relative to the data dir
+  OpenedResult file;
+  std::string path; // absolute, for HDF5: the stored path is relative to the data dir
 };
 
 // The result file of the path's job, or the response to send instead: 404 (unknown job, or
-// a job that ended without a result file), 409 (not finished yet), 410 (file deleted).
+// a job that ended without a result file), 409 (not finished yet), 410 (file deleted,
+// damaged or not a regular file). Verifying may hash the file: only on the blocking pool.
 std::variant<ResultOnDisk, Response> find_result(ServerContext& ctx, RequestContext& rc) {
   auto found = find_job(ctx, rc);
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
@@ -67,18 +90,25 @@ std::variant<ResultOnDisk, Response> find_result(ServerContext& ctx, RequestCont
     return problem_response(req, http::status::not_found,
                             "job " + job.id + " has no result file (" + to_string(job.status) +
                                 (job.error.empty() ? "" : ": " + job.error) + ")");
-  // The stored path is relative to the data dir and made of a validated id only.
-  std::string path = ctx.data_dir + "/" + job.result.path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return result_gone(req, job);
-  return ResultOnDisk{std::move(job), std::move(path)};
+  auto& files = ctx.service.result_files();
+  auto file = files.open(job.result);
+  if (file.state != OpenedResult::State::intact) return result_gone(req, job, file);
+  std::string path = files.absolute_path(job.result);
+  return ResultOnDisk{std::move(job), std::move(file), std::move(path)};
+}
+
+// `text` (an error from the HDF5 reader) without the server's path of the file.
+std::string without_path(std::string text, const std::string& path, const Job& job) {
+  const std::string name = job.id + ".h5";
+  for (auto at = text.find(path); at != std::string::npos; at = text.find(path, at + name.size()))
+    text.replace(at, path.size(), name);
+  return text;
 }
 
 Response download(ServerContext& ctx, RequestContext& rc) {
   auto found = find_result(ctx, rc);
   if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
   const Job& job = std::get<ResultOnDisk>(found).job;
-  const std::string& path = std::get<ResultOnDisk>(found).path;
   const auto& req = rc.request;
   const std::string etag = "\"" + job.result.sha256 + "\"";
   if (req.count(http::field::if_none_match) &&
@@ -91,11 +121,10 @@ Response download(ServerContext& ctx, RequestContext& rc) {
   }
   beast::error_code ec;
   RangeFile file;
-  file.open(path.c_str(), beast::file_mode::scan, ec);
-  if (ec == beast::errc::no_such_file_or_directory) return result_gone(req, job);
+  file.adopt(std::get<ResultOnDisk>(found).file.fd.release(), ec);
   if (ec)
     return problem_response(req, http::status::internal_server_error,
-                            "result file of job " + job.id + " cannot be opened: " + ec.message());
+                            "result file of job " + job.id + ": " + ec.message());
   const std::uint64_t size = file.size(ec);
   RangeRequest range;
   if (req.count(http::field::range)) {
@@ -150,8 +179,9 @@ Response xdmf(ServerContext& ctx, RequestContext& rc) {
   try {
     text = api::result_xdmf(path, job.id + ".h5");
   } catch (const std::exception& e) {
+    log_error("XDMF of job " + job.id + ": " + e.what());
     return problem_response(req, http::status::internal_server_error,
-                            "XDMF of job " + job.id + ": " + e.what());
+                            "XDMF of job " + job.id + ": " + without_path(e.what(), path, job));
   }
   auto res = text_response(req, http::status::ok, std::move(text), "application/xml");
   res.set(http::field::content_disposition, "attachment; filename=\"" + job.id + ".xdmf\"");
@@ -256,9 +286,12 @@ Response field(ServerContext& ctx, RequestContext& rc) {
   const std::string& path = std::get<ResultOnDisk>(found).path;
   std::string why;
   auto slice = api::read_field_slice(path, name, window, why);
-  if (!slice)
+  if (!slice) {
+    log_error("field " + name + " of job " + job.id + ": " + why);
     return problem_response(req, http::status::internal_server_error,
-                            "the result file of job " + job.id + " cannot be read: " + why);
+                            "the result file of job " + job.id +
+                                " cannot be read: " + without_path(why, path, job));
+  }
   nlohmann::json body;
   body["id"] = job.id;
   body["field"] = name;
@@ -300,9 +333,12 @@ Response stations_csv(ServerContext& ctx, RequestContext& rc) {
   const auto& req = rc.request;
   std::string why;
   const auto stations = api::read_stations(path, why);
-  if (!stations)
+  if (!stations) {
+    log_error("stations of job " + job.id + ": " + why);
     return problem_response(req, http::status::internal_server_error,
-                            "the result file of job " + job.id + " cannot be read: " + why);
+                            "the result file of job " + job.id +
+                                " cannot be read: " + without_path(why, path, job));
+  }
   if (stations->empty())
     return problem_response(req, http::status::not_found,
                             "job " + job.id +
@@ -318,8 +354,10 @@ Response stations_csv(ServerContext& ctx, RequestContext& rc) {
 } // namespace
 
 void add_result_routes(Router& router, ServerContext& ctx) {
-  router.add(http::verb::get, api_prefix + "/jobs/{id}/result.h5",
-             [&ctx](RequestContext& rc) { return download(ctx, rc); });
+  // On the blocking pool: the file is opened and may be hashed (ResultFiles).
+  router.add(
+      http::verb::get, api_prefix + "/jobs/{id}/result.h5",
+      [&ctx](RequestContext& rc) { return download(ctx, rc); }, true);
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/result.xdmf",
       [&ctx](RequestContext& rc) { return xdmf(ctx, rc); }, true);

@@ -8,6 +8,15 @@
 namespace slipfront::server {
 
 namespace {
+// "GET /api/v1/jobs?..." for the log: a target of up to 16 kB is cut at 300 characters.
+std::string request_line(const Request& request) {
+  constexpr std::size_t shown = 300;
+  std::string target(request.target().substr(0, shown));
+  if (request.target().size() > shown)
+    target += "... (" + std::to_string(request.target().size()) + " characters)";
+  return std::string(request.method_string()) + " " + target;
+}
+
 std::vector<std::string> split_path(const std::string& path) {
   std::vector<std::string> out;
   std::size_t start = 1;
@@ -68,7 +77,9 @@ Response Router::dispatch(const Request& request) const {
 Response Router::answer(const Request& request) const {
   auto target = parse_target(request.target());
   if (!target)
-    return problem_response(request, http::status::bad_request, "malformed request target");
+    return problem_response(request, http::status::bad_request,
+                            "malformed request target: give a path (/api/v1/...) or an absolute "
+                            "http:// or https:// URL");
   auto segments = split_path(target->path);
   std::string allow;
   // HEAD is answered by the GET route, without the body (RFC 9110 §9.3.2).
@@ -84,8 +95,7 @@ Response Router::answer(const Request& request) const {
     try {
       return route.handler(ctx);
     } catch (const StorageError& e) {
-      log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
-                e.what());
+      log_error(request_line(request) + ": " + e.what());
       if (!e.unavailable())
         return problem_response(request, http::status::internal_server_error,
                                 "internal error (the server log has the details)");
@@ -96,8 +106,7 @@ Response Router::answer(const Request& request) const {
       res.set(http::field::retry_after, std::to_string(retry_after_s_));
       return res;
     } catch (const std::exception& e) {
-      log_error(std::string(request.method_string()) + " " + std::string(request.target()) + ": " +
-                e.what());
+      log_error(request_line(request) + ": " + e.what());
       // The exception's text may quote internals (SQL, library messages): it goes to the
       // log only.
       return problem_response(request, http::status::internal_server_error,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <set>
+#include <string_view>
 
 namespace slipfront::server {
 
@@ -24,9 +25,14 @@ nlohmann::json text_or_null(const std::string& s) {
   return s.empty() ? nlohmann::json(nullptr) : nlohmann::json(s);
 }
 
+// A text cell that a spreadsheet would read as a formula (=, +, -, @, or a tab or carriage
+// return before one) starts with ' instead (OWASP, "CSV Injection"); numbers stay numbers.
 std::string csv_cell(const nlohmann::ordered_json& v) {
   if (v.is_null()) return "";
   std::string text = v.is_string() ? v.get<std::string>() : v.dump();
+  if (v.is_string() && !text.empty() &&
+      std::string_view("=+-@\t\r").find(text[0]) != std::string_view::npos)
+    text.insert(0, 1, '\'');
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (char c : text) {

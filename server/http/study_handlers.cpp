@@ -2,6 +2,7 @@
 // GET /studies/{id}/speed-accuracy, GET /convergence-map (docs/studies-api.md).
 #include "server/core/job_id.hpp"
 #include "server/http/handlers.hpp"
+#include "server/http/idempotency_key.hpp"
 #include "server/http/job_filter_query.hpp" // parse_long
 #include "server/http/responses.hpp"
 #include "server/http/study_json.hpp"
@@ -40,7 +41,11 @@ Response create_study(ServerContext& ctx, RequestContext& rc) {
     return res;
   }
   if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
-  auto r = ctx.studies.create(req.body(), rc.user);
+  std::vector<api::FieldError> header_errors;
+  const std::string key = idempotency_key(req, header_errors);
+  if (!header_errors.empty())
+    return problem_response(req, http::status::bad_request, "invalid headers", header_errors);
+  auto r = ctx.studies.create(req.body(), rc.user, key);
   using Kind = StudyCreateResult::Kind;
   switch (r.kind) {
   case Kind::bad_json:
@@ -58,13 +63,20 @@ Response create_study(ServerContext& ctx, RequestContext& rc) {
     res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
     return res;
   }
+  case Kind::key_conflict:
+    return problem_response(req, http::status::unprocessable_entity,
+                            r.errors.empty() ? "Idempotency-Key conflict" : r.errors[0].reason);
   case Kind::created:
+  case Kind::replayed:
     break;
   }
   auto view = ctx.studies.view(*r.id);
   if (!view) throw std::runtime_error("study " + *r.id + " vanished after its creation");
-  auto res = json_response(req, http::status::created, study_to_json(*view));
+  const bool replayed = r.kind == Kind::replayed;
+  auto res =
+      json_response(req, replayed ? http::status::ok : http::status::created, study_to_json(*view));
   res.set(http::field::location, api_prefix + "/studies/" + *r.id);
+  if (replayed) res.set("Idempotent-Replayed", "true");
   return res;
 }
 

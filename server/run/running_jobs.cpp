@@ -28,16 +28,16 @@ std::optional<JobProgress> RunningJobs::progress(const std::string& id) const {
   return entry->progress;
 }
 
-bool RunningJobs::request_cancel(const std::string& id, const std::string& user) {
+RunningJobs::CancelRequest RunningJobs::request_cancel(const std::string& id,
+                                                       const std::string& user) {
   auto entry = find(id);
-  if (!entry) return false;
-  {
-    std::lock_guard lock(entry->mutex);
-    entry->cancelled_by = user;
-  }
+  if (!entry) return CancelRequest::not_running;
+  std::lock_guard lock(entry->mutex);
+  if (entry->finishing) return CancelRequest::finishing;
+  entry->cancelled_by = user;
   entry->user_cancelled = true;
   entry->cancel = true;
-  return true;
+  return CancelRequest::requested;
 }
 
 void RunningJobs::cancel_all_for_drain() {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <filesystem>
 
 namespace slipfront::server {
 
@@ -146,8 +147,15 @@ void WorkerPool::run_one(const std::string& id) {
     record = failed_run(std::string("run failed: ") + e.what());
   }
   const double wall_time_s = std::chrono::duration<double>(clock::now() - started).count();
-  const bool stopped = record.status == JobStatus::cancelled;
-  const bool user_cancelled = entry->user_cancelled;
+  bool stopped = record.status == JobStatus::cancelled;
+  // A cancel accepted (202) after the last step is kept: the job ends cancelled, its file
+  // removed; from here on a cancel is answered 409 "finishing".
+  const bool user_cancelled = entry->finish();
+  if (user_cancelled && !stopped) {
+    std::error_code ec;
+    std::filesystem::remove(output, ec);
+    stopped = true;
+  }
   if (stopped && user_cancelled) record = cancelled_run(entry->canceller());
   // Only a succeeded run leaves a result; the store keeps its data-dir relative path.
   if (record.status != JobStatus::succeeded)

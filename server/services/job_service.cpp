@@ -14,7 +14,8 @@ namespace slipfront::server {
 
 JobService::JobService(ServiceOptions options, JobStore& store, JobQueue& queue,
                        RunningJobs& running)
-    : options_(std::move(options)), store_(store), queue_(queue), running_(running) {}
+    : options_(std::move(options)), store_(store), queue_(queue), running_(running),
+      result_files_(options_.data_dir) {}
 
 ServiceLoad JobService::load() const {
   return {running_.size(), queue_.size(), queue_.limit()};
@@ -54,13 +55,6 @@ std::vector<api::FieldError> take_server_fields(nlohmann::json& doc, SubmitOptio
 }
 
 } // namespace
-
-bool JobService::result_file_exists(const Job& job) const {
-  std::error_code ec;
-  const auto path =
-      std::filesystem::path(options_.data_dir.empty() ? "." : options_.data_dir) / job.result.path;
-  return std::filesystem::is_regular_file(path, ec);
-}
 
 api::ParseResult JobService::validate(nlohmann::json doc) const {
   // One solver thread per job unless the spec asks: N workers use N cores.
@@ -125,11 +119,15 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
     // sampling, so another sampling is another file (docs/server.md, "Result cache").
     auto earlier = store_.find_reusable(spec.sha256, options_.code_version,
                                         spec.canonical.value("output", nlohmann::json()));
-    if (earlier && !result_file_exists(*earlier)) {
-      // Deleted by hand (or lost): never point a new job at it; run the job again.
-      log_error("job " + earlier->id + ": result file " + earlier->result.path +
-                " is missing; identical jobs are run again instead of reusing it");
-      earlier.reset();
+    if (earlier) {
+      // Deleted by hand, lost or damaged: never point a new job at it; run the job again.
+      auto file = result_files_.open(earlier->result);
+      if (file.state != OpenedResult::State::intact) {
+        log_error("job " + earlier->id + ": result file " + earlier->result.path + " is " +
+                  (file.state == OpenedResult::State::missing ? "missing" : file.reason) +
+                  "; identical jobs are run again instead of reusing it");
+        earlier.reset();
+      }
     }
     if (earlier) {
       job.status = JobStatus::succeeded;
@@ -149,18 +147,46 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
     }
   }
 
-  if (!options.ignore_queue_limit && queue_.full()) return failure(Kind::queue_full, {});
+  if (!options.ignore_queue_limit && !queue_has_room()) return failure(Kind::queue_full, {});
   job.seq = store_.insert(job); // committed before the 201 is sent
-  // Pushes are serialised by submit_mutex_, so the queue has room; if it was closed
-  // (draining), the job stays queued in the database and the next start-up runs it.
-  if (options.ignore_queue_limit)
-    queue_.push_unbounded(job.id, job.priority);
-  else
-    queue_.push(job.id, job.priority);
+  enqueue(job.id, job.priority, options.ignore_queue_limit);
   SubmitResult r;
   r.kind = Kind::created;
   r.job = job;
   return r;
+}
+
+bool JobService::queue_has_room() const {
+  return queue_.size() + (batch_ ? batch_->size() : 0) < queue_.limit();
+}
+
+void JobService::enqueue(const std::string& id, int priority, bool ignore_queue_limit) {
+  if (batch_) {
+    batch_->push_back({id, priority});
+    return;
+  }
+  // Pushes are serialised by submit_mutex_, so the queue has room; if it was closed
+  // (draining), the job stays queued in the database and the next start-up runs it.
+  if (ignore_queue_limit)
+    queue_.push_unbounded(id, priority);
+  else
+    queue_.push(id, priority);
+}
+
+bool JobService::submit_together(const std::function<bool()>& f) {
+  std::lock_guard lock(submit_mutex_);
+  if (batch_) return f(); // already inside a batch: one transaction for both
+  batch_.emplace();
+  struct EndBatch {
+    std::optional<std::vector<Pending>>& batch;
+    ~EndBatch() { batch.reset(); }
+  } end_batch{batch_};
+  if (!store_.db().in_transaction(f)) return false;
+  // Committed: every job of the batch was admitted against the limit, so each is queued
+  // whatever happened to the queue meanwhile (a job committed as queued must be runnable).
+  for (const auto& p : *batch_)
+    queue_.push_unbounded(p.id, p.priority);
+  return true;
 }
 
 std::optional<Job> JobService::get(const std::string& id) {
@@ -189,7 +215,14 @@ CancelResult JobService::cancel(const std::string& id, const std::string& user) 
     if (on_cancelled_) on_cancelled_(id);
     return {CancelResult::Kind::cancelled, store_.get(id)};
   }
-  if (running_.request_cancel(id, user)) return {CancelResult::Kind::cancel_requested, get(id)};
+  switch (running_.request_cancel(id, user)) {
+  case RunningJobs::CancelRequest::requested:
+    return {CancelResult::Kind::cancel_requested, get(id)};
+  case RunningJobs::CancelRequest::finishing:
+    return {CancelResult::Kind::finishing, get(id)};
+  case RunningJobs::CancelRequest::not_running:
+    break;
+  }
   job = store_.get(id); // it finished in between
   return {CancelResult::Kind::already_final, job};
 }

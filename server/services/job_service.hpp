@@ -6,6 +6,7 @@
 #include "server/db/job_store.hpp"
 #include "server/run/job_queue.hpp"
 #include "server/run/running_jobs.hpp"
+#include "server/services/result_files.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -41,7 +42,14 @@ struct SubmitResult {
 };
 
 struct CancelResult {
-  enum class Kind { cancelled, cancel_requested, not_found, forbidden, already_final } kind;
+  enum class Kind {
+    cancelled,        // it was queued: cancelled now
+    cancel_requested, // running: it stops at its next step and ends cancelled
+    finishing,        // its run has ended, its result is being stored: not cancelled
+    not_found,
+    forbidden,
+    already_final,
+  } kind;
   std::optional<Job> job;
 };
 
@@ -51,7 +59,7 @@ struct ServiceOptions {
   std::string code_version;
   bool auth_enabled = false;
   // Result paths are relative to it; "" = the working directory. A cached result whose file
-  // is gone is not reused.
+  // is gone or damaged (ResultFiles) is not reused.
   std::string data_dir;
 };
 
@@ -69,6 +77,13 @@ public:
   SubmitResult submit(const std::string& body, const SubmitOptions& options);
   // The same for a parsed document (studies submit their runs through this).
   SubmitResult submit_document(nlohmann::json doc, const SubmitOptions& options);
+  // Submits several jobs as one (a study with its first runs): f() runs holding the
+  // submission lock, inside one database transaction (StoreDb::in_transaction). The jobs it
+  // submits join the run queue only once that transaction commits; when f returns false or
+  // throws, none of them stays, nor anything else f wrote. Within f the queue limit counts
+  // the jobs f has submitted so far, so batches and single jobs together never pass it.
+  // Returns whether f committed.
+  bool submit_together(const std::function<bool()>& f);
   // Validates a job document as submit() would, without submitting it.
   api::ParseResult validate(nlohmann::json doc) const;
   std::optional<Job> get(const std::string& id); // with live progress if running
@@ -89,16 +104,31 @@ public:
     on_cancelled_ = std::move(f);
   }
   const ServiceOptions& options() const { return options_; }
+  // The result files, verified before they are served (they may be hashed: off the I/O
+  // threads).
+  ResultFiles& result_files() { return result_files_; }
 
 private:
-  bool result_file_exists(const Job& job) const;
+  // A job inserted into the store goes to the run queue: at once, or at the commit of the
+  // batch of submit_together(). The caller holds submit_mutex_.
+  void enqueue(const std::string& id, int priority, bool ignore_queue_limit);
+  bool queue_has_room() const; // counts the batch's jobs not queued yet
+
+  struct Pending {
+    std::string id;
+    int priority = 0;
+  };
 
   ServiceOptions options_;
   JobStore& store_;
   JobQueue& queue_;
   RunningJobs& running_;
-  std::mutex submit_mutex_; // queue-limit check, insert and push are one step
+  // Queue-limit check, insert and push are one step. Recursive: submit_together() holds it
+  // while f() submits.
+  std::recursive_mutex submit_mutex_;
+  std::optional<std::vector<Pending>> batch_; // inside submit_together(): queued at its commit
   std::function<void(const std::string& id)> on_cancelled_;
+  ResultFiles result_files_;
 };
 
 } // namespace slipfront::server

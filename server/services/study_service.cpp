@@ -12,6 +12,7 @@
 #include "api/study/failure_regimes.hpp"
 #include "api/study_analysis.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -66,6 +67,21 @@ std::string value_pointer(const StudyRequest& r, const char* axis, double value)
   return "/preset";
 }
 
+// A run's tags are /base/tags, then the study's /tags, then study:<id> (run_document): the
+// pointer of the one the client sent, or nullopt when `pointer` is not at a run's tag.
+std::optional<std::string> run_tag_pointer(const StudyRequest& r, const std::string& pointer) {
+  const std::string prefix = "/tags/";
+  if (pointer.rfind(prefix, 0) != 0) return std::nullopt;
+  std::size_t index = 0;
+  const auto digits = pointer.substr(prefix.size());
+  auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+  if (ec != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
+  const std::size_t base_tags = base_tag_count(r);
+  if (index < base_tags) return "/base/tags/" + std::to_string(index);
+  if (index < base_tags + r.tags.size()) return "/tags/" + std::to_string(index - base_tags);
+  return std::nullopt;
+}
+
 // The job validator's errors for one run, with pointers into the study body.
 void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
                std::vector<api::FieldError>& errors, std::set<std::string>& seen) {
@@ -78,7 +94,7 @@ void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
     else if (e.pointer == "/geometry/nodes_per_meter")
       pointer = value_pointer(r, "n_d", p.n_d);
     else
-      pointer = "/base" + e.pointer;
+      pointer = run_tag_pointer(r, e.pointer).value_or("/base" + e.pointer);
     std::string reason = e.reason;
     if (!p.regime.empty()) reason += " (preset regime " + p.regime + ")";
     if (seen.insert(pointer + "\n" + reason).second) errors.push_back({pointer, reason});
@@ -87,7 +103,8 @@ void check_run(JobService& jobs, const StudyRequest& r, const Planned& p,
 
 } // namespace
 
-StudyCreateResult StudyService::create(const std::string& body, const std::string& user) {
+StudyCreateResult StudyService::create(const std::string& body, const std::string& user,
+                                       const std::string& idempotency_key) {
   StudyCreateResult out;
   auto body_json = api::parse_bounded_json(body);
   if (!body_json.ok()) {
@@ -113,10 +130,6 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   std::size_t now_count = 0;
   for (const auto& p : planned)
     now_count += p.submit_now ? 1 : 0;
-  if (queue_.size() + now_count > queue_.limit()) {
-    out.kind = Kind::queue_full;
-    return out;
-  }
 
   StudyRecord study;
   study.id = new_job_id();
@@ -126,6 +139,7 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   study.base = request.base;
   study.request = request.body;
   study.submitted_by = user;
+  study.idempotency_key = idempotency_key;
   study.priority = request.priority.value_or(0);
   study.fresh = request.fresh.value_or(false);
   study.created_at = now_iso8601();
@@ -133,18 +147,37 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
   auto base = jobs_.validate(run_document(request, study.id, json::object(), "", 5e-5, 10));
   study.scene_hash = base.spec ? api::scene_hash(base.spec->canonical) : "";
 
+  // Under the step lock and the submission lock, in one transaction: the key is looked up
+  // where the study would be inserted, and the queue limit counts the runs as they go in.
   supervisor_.exclusive([&] {
-    studies_.insert(study);
-    for (const auto& p : planned) {
-      if (!p.submit_now) continue;
-      auto r = submit_study_run(jobs_, studies_, study, request, p.overrides, p.regime, p.L, p.n_d,
-                                true);
-      if (!r.job)
-        log_error("study " + study.id + ": a run was refused after validation: " +
-                  (r.errors.empty() ? "" : r.errors[0].pointer + " " + r.errors[0].reason));
-    }
-    supervisor_.step_locked(study.id);
+    jobs_.submit_together([&] {
+      if (!idempotency_key.empty())
+        if (auto earlier = studies_.find_by_idempotency_key(user, idempotency_key)) {
+          out.id = earlier->id;
+          out.kind = earlier->request == request.body ? Kind::replayed : Kind::key_conflict;
+          return false;
+        }
+      studies_.insert(study);
+      for (const auto& p : planned) {
+        if (!p.submit_now) continue;
+        auto r = submit_study_run(jobs_, studies_, study, request, p.overrides, p.regime, p.L,
+                                  p.n_d, false);
+        if (r.kind == SubmitResult::Kind::queue_full) {
+          out.kind = Kind::queue_full;
+          return false; // nothing of the study stays
+        }
+        if (!r.job)
+          log_error("study " + study.id + ": a run was refused after validation: " +
+                    (r.errors.empty() ? "" : r.errors[0].pointer + " " + r.errors[0].reason));
+      }
+      supervisor_.step_locked(study.id);
+      return true;
+    });
   });
+  if (out.kind == Kind::key_conflict)
+    out.errors.push_back({"", "Idempotency-Key " + idempotency_key +
+                                  " was used for a different study (" + *out.id + ")"});
+  if (out.kind != Kind::created) return out;
   log_info("study " + study.id + " created (" + study.kind + ", " + std::to_string(now_count) +
            " run(s) submitted) by " + user);
   out.id = study.id;

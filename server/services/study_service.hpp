@@ -5,7 +5,6 @@
 #pragma once
 
 #include "server/db/study_store.hpp"
-#include "server/run/job_queue.hpp"
 #include "server/services/job_service.hpp"
 #include "server/services/study_supervisor.hpp"
 
@@ -19,7 +18,14 @@
 namespace slipfront::server {
 
 struct StudyCreateResult {
-  enum class Kind { created, bad_json, invalid, queue_full } kind = Kind::created;
+  enum class Kind {
+    created,      // 201
+    replayed,     // 200: the same Idempotency-Key and request as an earlier study: that study
+    bad_json,     // 400
+    invalid,      // 422 (errors)
+    key_conflict, // 422: the Idempotency-Key was used for another request
+    queue_full,   // 503
+  } kind = Kind::created;
   std::vector<api::FieldError> errors;
   std::optional<std::string> id;
 };
@@ -50,10 +56,15 @@ struct StudyView {
 
 class StudyService {
 public:
-  StudyService(StudyStore& studies, JobService& jobs, JobQueue& queue, StudySupervisor& supervisor)
-      : studies_(studies), jobs_(jobs), queue_(queue), supervisor_(supervisor) {}
+  StudyService(StudyStore& studies, JobService& jobs, StudySupervisor& supervisor)
+      : studies_(studies), jobs_(jobs), supervisor_(supervisor) {}
 
-  StudyCreateResult create(const std::string& body, const std::string& user);
+  // One transaction: the study, its first runs and their analysis are stored together or not
+  // at all (a crash mid-creation leaves nothing), and the runs are queued once it commits.
+  // `idempotency_key` ("" = none): a second request with the same key and the same body gets
+  // the first one's study.
+  StudyCreateResult create(const std::string& body, const std::string& user,
+                           const std::string& idempotency_key = "");
   std::optional<StudyView> view(const std::string& id); // GET /studies/{id}
   std::optional<StudyRecord> get(const std::string& id);
   // Newest first, at most `limit`; `before_seq` is the cursor of the previous page.
@@ -73,7 +84,6 @@ private:
 
   StudyStore& studies_;
   JobService& jobs_;
-  JobQueue& queue_;
   StudySupervisor& supervisor_;
 };
 

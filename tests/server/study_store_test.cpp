@@ -107,6 +107,7 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
   ASSERT_TRUE(study);
   EXPECT_EQ(study->status, api::StudyStatus::running);
   EXPECT_EQ(study->result["x"], 1);
+  EXPECT_EQ(study->idempotency_key, "");        // migration 7: none for the studies before it
   ASSERT_EQ(studies.runs(study_id).size(), 1u); // the rebuild did not cascade to study_runs
   EXPECT_EQ(studies.study_of_job(job_id), study_id);
 
@@ -123,6 +124,38 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
             "', '" + job_id + "', 1e-5, 20)");
   }),
                std::exception);
+}
+
+// POST /studies' Idempotency-Key: found per submitter, unique per submitter, and a study
+// inserted inside a transaction that rolls back is not there (StudyService::create).
+TEST(StudyStore, FindsAStudyByItsIdempotencyKeyPerSubmitter) {
+  TempDir dir("slipfront-study-");
+  JobStore jobs(dir.file("db.sqlite"));
+  StudyStore studies(jobs);
+  StudyRecord st;
+  st.id = new_job_id();
+  st.kind = "grid";
+  st.base = st.request = nlohmann::json::object();
+  st.submitted_by = "alice";
+  st.idempotency_key = "k";
+  st.created_at = "2024";
+  studies.insert(st);
+  ASSERT_TRUE(studies.find_by_idempotency_key("alice", "k"));
+  EXPECT_EQ(studies.find_by_idempotency_key("alice", "k")->id, st.id);
+  EXPECT_FALSE(studies.find_by_idempotency_key("bob", "k"));
+  EXPECT_FALSE(studies.find_by_idempotency_key("alice", "other"));
+
+  StudyRecord again = st;
+  again.id = new_job_id();
+  EXPECT_THROW(studies.insert(again), std::exception); // the same key twice for alice
+  again.submitted_by = "bob";
+  EXPECT_FALSE(jobs.db().in_transaction([&] {
+    studies.insert(again);
+    EXPECT_TRUE(studies.find_by_idempotency_key("bob", "k"));
+    return false; // rolled back
+  }));
+  EXPECT_FALSE(studies.find_by_idempotency_key("bob", "k"));
+  EXPECT_FALSE(studies.get(again.id));
 }
 
 TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {

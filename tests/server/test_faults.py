@@ -41,8 +41,15 @@ def integrity(data_dir):
 def refused_start(test, data_dir, message):
     """A server on `data_dir` must exit 1 at start with `message` in its log."""
     server = Server(BINARY, data_dir=data_dir)
-    with test.assertRaises(RuntimeError) as caught:
+    try:
         server.start()
+    except RuntimeError as e:
+        caught = e
+    else:
+        server.kill()  # it started: stop it before failing, never leave it running
+        server.cleanup()
+        test.fail(f"a server started on {data_dir}")
+    caught = type("Caught", (), {"exception": caught})
     test.assertIn(message, str(caught.exception))
     test.assertEqual(server.proc.returncode, 1)
     server.cleanup()
@@ -80,6 +87,30 @@ class SecondServerOnTheSameDir(unittest.TestCase):
             self.assertEqual(third.get("/healthz").status_code, 200)
             self.assertEqual(third.terminate(), 0)
             third.cleanup()
+        finally:
+            first.own_dir = True
+            first.cleanup()
+
+    def test_deleting_the_lock_file_does_not_free_the_dir(self):
+        """Issue 22 item 3: the lock was the file's; after `rm slipfront.lock` a second server
+        locked a new file of that name, re-queued the first one's running job and deleted its
+        temporary file (the job ended failed, attempts 2)."""
+        first = Server(BINARY, args=["--workers", "1"]).start()
+        try:
+            job = first.submit(long_job("owned-unlocked")).json()
+            first.wait_status(job["id"], {"running"}, timeout=30)
+            os.remove(os.path.join(first.data_dir, "slipfront.lock"))
+            refused_start(self, first.data_dir, "in use by another slipfront server")
+            now = first.get(f"{JOBS}/{job['id']}").json()
+            self.assertEqual(now["status"], "running")
+            self.assertEqual(now["attempts"], 1)
+            self.assertEqual(first.post(f"{JOBS}/{job['id']}/cancel").status_code, 202)
+            first.wait_status(job["id"], TERMINAL, timeout=10)
+            self.assertEqual(first.terminate(), 0)
+            second = Server(BINARY, data_dir=first.data_dir).start()
+            self.assertEqual(second.get("/healthz").status_code, 200)
+            self.assertEqual(second.terminate(), 0)
+            second.cleanup()
         finally:
             first.own_dir = True
             first.cleanup()
@@ -603,6 +634,39 @@ class TokenReload(unittest.TestCase):
         finally:
             server.cleanup()
             os.remove(tokens.name)
+
+    def test_a_fifo_as_token_file_never_blocks_sigterm(self):
+        """Issue 22 item 14: with the token file replaced by a FIFO, SIGHUP blocked the signal
+        thread and a later SIGTERM was not handled."""
+        directory = tempfile.mkdtemp(prefix="slipfront-fifo-tokens-")
+        path = os.path.join(directory, "tokens")
+        with open(path, "w") as f:
+            f.write("alice:alice-token-1\n")
+        server = Server(BINARY, args=["--workers", "1", "--token-file", path]).start()
+        try:
+            os.remove(path)
+            os.mkfifo(path)
+            server.proc.send_signal(signal.SIGHUP)
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline and "not a regular file" not in server.read_log():
+                time.sleep(0.05)
+            self.assertIn("tokens not reloaded", server.read_log())
+            self.assertIn("not a regular file", server.read_log())
+            r = server.get("/healthz")
+            self.assertEqual(r.status_code, 200)
+            t0 = time.monotonic()
+            self.assertEqual(server.terminate(timeout=10), 0)
+            self.assertLess(time.monotonic() - t0, 10)
+        finally:
+            # Unblock a reader still waiting on the FIFO (before the fix), then clean up.
+            try:
+                fd = os.open(path, os.O_WRONLY | os.O_NONBLOCK)
+                os.close(fd)
+            except OSError:
+                pass
+            server.kill()
+            server.cleanup()
+            shutil.rmtree(directory, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -296,6 +296,79 @@ class HostileInput(unittest.TestCase):
         self.assertRejected(self.server.post(STUDIES, json=study), 422,
                             "/base/spectral_bi/time_step_factor")
 
+    # --- issue 22, item 8: search expressions too long for SQLite --------------------------
+    def test_long_search_expressions_are_400_naming_the_limit(self):
+        where = ";".join(f"L>{i}" for i in range(1100))  # 1,100 terms in 12 kB
+        b = self.assertRejected(self.server.get(JOBS, params={"where": where}), 400,
+                                "/query/where")
+        self.assertIn("at most 64 conditions", json.dumps(b))
+        sort = ",".join(["n_d", "-L"] * 1050)  # 2,100 keys in 12 kB (the header limit: 16)
+        b = self.assertRejected(self.server.get(JOBS, params={"sort": sort}), 400, "/query/sort")
+        self.assertIn("at most 16 keys", json.dumps(b))
+        # At the limits the search still answers.
+        ok = self.server.get(JOBS, params={"where": ";".join(["friction.L>0"] * 64),
+                                           "sort": ",".join(["friction.L"] * 16)})
+        self.assertEqual(ok.status_code, 200, ok.text[:300])
+        # No statement of tens of kB in the log (before: 30-100 KB of SQL per request).
+        longest = max(len(line) for line in self.server.read_log().splitlines())
+        self.assertLess(longest, 4000)
+
+    # --- issue 22, item 10: an error body never amplifies its request -------------------
+    def test_error_bodies_list_at_most_100_errors(self):
+        body = {f"u{i}": 0 for i in range(90000)}
+        text = json.dumps(body, separators=(",", ":"))
+        self.assertLess(len(text), 1 << 20)
+        r = self.post_raw(JOBS, text)
+        b = self.assertRejected(r, 422)
+        self.assertEqual(len(b["errors"]), 100)
+        self.assertIn("and 89900 more", b["detail"])
+        self.assertLess(len(r.content), 64 * 1024)
+        study = {"grid": {"L": [1e-5], "n_d": [10]}, **{f"x{i}": 0 for i in range(5000)}}
+        b = self.assertRejected(self.server.post(STUDIES, json=study), 422)
+        self.assertEqual(len(b["errors"]), 100)
+        self.assertIn("and 4900 more", b["detail"])
+
+    # --- issue 22, item 15 -----------------------------------------------------------
+    def test_study_tags_errors_point_at_what_the_client_sent(self):
+        grid = {"grid": {"L": [1e-4], "n_d": [5]}, "base": {"time": {"duration": 2.0}}}
+        # 31 of the study's own tags fit (its runs carry one more: study:<id>); 32 do not.
+        b = self.assertRejected(self.server.post(STUDIES, json=dict(
+            grid, tags=[f"t{i}" for i in range(32)])), 422, "/tags")
+        self.assertIn("at most 31 tags", json.dumps(b))
+        b = self.assertRejected(self.server.post(STUDIES, json=dict(
+            grid, tags=["a", "b"], base=dict(grid["base"], tags=[f"b{i}" for i in range(30)]))),
+            422, "/tags")
+        self.assertIn("30 in /base/tags", json.dumps(b))
+        pointers = lambda body: [e["pointer"] for e in body["errors"]]  # noqa: E731
+        b = self.assertRejected(self.server.post(STUDIES, json=dict(grid, tags=["ok", ""])),
+                                422, "/tags/1")
+        self.assertNotIn("/base/tags", pointers(b))
+        b = self.assertRejected(self.server.post(STUDIES, json=dict(
+            grid, base=dict(grid["base"], tags=["x" * 1000]))), 422, "/base/tags/0")
+        self.assertNotIn("/tags/0", pointers(b))
+
+    def test_absolute_form_request_target_is_accepted(self):
+        import socket
+        host, port = self.server.base[len("http://"):].split(":")
+        for target in (f"http://{host}:{port}/healthz", f"HTTP://{host}:{port}/healthz?x=1",
+                       f"http://{host}:{port}/api/v1/jobs/{self.seed['id']}"):
+            with self.subTest(target=target):
+                with socket.create_connection((host, int(port)), timeout=5) as s:
+                    s.sendall(f"GET {target} HTTP/1.1\r\nHost: {host}:{port}\r\n"
+                              "Connection: close\r\n\r\n".encode())
+                    answer = b""
+                    while chunk := s.recv(65536):
+                        answer += chunk
+                self.assertTrue(answer.startswith(b"HTTP/1.1 200"), answer[:300])
+        with socket.create_connection((host, int(port)), timeout=5) as s:
+            s.sendall(b"GET ftp://elsewhere/healthz HTTP/1.1\r\nHost: x\r\n"
+                      b"Connection: close\r\n\r\n")
+            answer = b""
+            while chunk := s.recv(65536):
+                answer += chunk
+        self.assertTrue(answer.startswith(b"HTTP/1.1 400"), answer[:300])
+        self.assertIn(b"http://", answer)
+
     # --- breadth: every endpoint, bad fields, ids, queries, headers, methods -------------
     def assertClientError(self, r, pointer=None):
         """Any 4xx in problem+json form (naming `pointer` if given), never a 5xx."""

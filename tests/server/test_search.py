@@ -161,6 +161,26 @@ class SearchTest(unittest.TestCase):
                 self.assertEqual(self.ids_of(where=where), set())
         self.assertEqual(self.listing(limit=1000)["count"], before)
 
+    def test_csv_cells_never_start_a_formula(self):
+        """Issue 22 item 15: text cells starting with =, +, -, @ are neutralised with a leading
+        ' (a spreadsheet would run them); numbers, negative ones too, stay numbers."""
+        names = ["=HYPERLINK(\"http://x\")", "+1+2", "-2+3", "@SUM(A1)"]
+        for name in names:
+            r = self.server.submit({"geometry": {"nodes_per_meter": 5}, "time": {"duration": 2.0},
+                                    "name": name, "tags": ["=tag", "formula"]})
+            self.assertIn(r.status_code, (200, 201), r.text)
+        r = self.server.get(JOBS, params={"format": "csv", "tag": "formula", "limit": 100})
+        self.assertEqual(r.status_code, 200, r.text)
+        rows = list(csv.DictReader(io.StringIO(r.text)))
+        self.assertEqual(sorted(row["name"] for row in rows), sorted("'" + n for n in names))
+        for row in rows:
+            self.assertEqual(row["tags"], "'=tag;formula")
+            self.assertFalse(row["spec.geometry.nodes_per_meter"].startswith("'"))
+        # NDJSON is JSON: unchanged.
+        r = self.server.get(JOBS, params={"format": "ndjson", "tag": "formula", "limit": 100})
+        self.assertEqual(sorted(json.loads(line)["name"] for line in r.text.splitlines()),
+                         sorted(names))
+
     def test_csv_and_ndjson_export(self):
         r = self.server.get(JOBS, params={"format": "csv", "where": "method=spectral_bi",
                                           "sort": "friction.L"})

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 using namespace slipfront::server;
@@ -17,7 +18,9 @@ using slipfront::server::testing::TempDir;
 
 namespace {
 
-// Behaves as the job's name says: "throw", "wait" (until cancelled, at most 10 s), else succeed.
+// Behaves as the job's name says: "throw", "wait" (until cancelled, at most 10 s),
+// "last-step" (its steps done, writes its file for 300 ms whatever the cancel flag says, then
+// succeeds), else succeed.
 class ScriptedRunner : public JobRunner {
 public:
   RunRecord run(const Job& job, const std::string& output_path,
@@ -34,6 +37,13 @@ public:
       }
       if (hooks.cancel->load()) report.status = JobStatus::cancelled;
       return report;
+    }
+    if (job.name == "last-step") {
+      slipfront::Progress p;
+      p.fraction = 1.0;
+      hooks.on_progress(p);
+      std::ofstream(output_path) << "result";
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
     }
     report.metrics = {{"outcome", "arrested"}, {"steps", 10}, {"simulated_time", 2.0}};
     report.front = {{"x1", {0.0}}, {"arrival_time", {0.1}}, {"rupture_speed", {nullptr}}};
@@ -111,11 +121,38 @@ TEST(WorkerPool, SuccessFailureAndUserCancel) {
   for (int i = 0; i < 200 && !f.running.progress(slow); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   EXPECT_TRUE(f.running.progress(slow).has_value()) << "live progress is kept in memory";
-  EXPECT_TRUE(f.running.request_cancel(slow, "alice"));
+  EXPECT_EQ(f.running.request_cancel(slow, "alice"), RunningJobs::CancelRequest::requested);
   Job cancelled = f.wait_for(slow, final_status);
   EXPECT_EQ(cancelled.status, JobStatus::cancelled);
   EXPECT_NE(cancelled.error.find("alice"), std::string::npos);
   f.pool.drain();
+}
+
+// Issue 22 item 11: a cancel accepted after the run's last step is kept (the job ends
+// cancelled, its file removed); once the worker has the run's end, a cancel is refused.
+TEST(WorkerPool, ACancelAcceptedAfterTheLastStepIsKept) {
+  Fixture f;
+  f.pool.start();
+  auto id = f.submit("last-step");
+  for (int i = 0; i < 500 && !f.running.progress(id); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_TRUE(f.running.progress(id).has_value());
+  EXPECT_EQ(f.running.request_cancel(id, "alice"), RunningJobs::CancelRequest::requested);
+  Job job = f.wait_for(id, final_status);
+  EXPECT_EQ(job.status, JobStatus::cancelled);
+  EXPECT_TRUE(job.result.path.empty());
+  EXPECT_FALSE(fs::exists(f.dir.path() / "results" / (id + ".h5")));
+  f.pool.drain();
+}
+
+TEST(RunningJobs, ACancelAfterTheRunEndedIsRefusedAsFinishing) {
+  RunningJobs running;
+  auto entry = running.add("a");
+  EXPECT_FALSE(entry->finish()); // no cancel before
+  EXPECT_EQ(running.request_cancel("a", "alice"), RunningJobs::CancelRequest::finishing);
+  EXPECT_FALSE(entry->user_cancelled);
+  EXPECT_FALSE(entry->cancel);
+  EXPECT_EQ(running.request_cancel("b", "alice"), RunningJobs::CancelRequest::not_running);
 }
 
 TEST(WorkerPool, DrainRequeuesRunningJobs) {
@@ -174,7 +211,8 @@ TEST(WorkerPool, EndThatCannotBeStoredIsRetried) {
   auto slow = f.submit("wait");
   f.wait_for(slow, running_status);
   WriteLock lock(f.dir.str() + "/db.sqlite");
-  EXPECT_TRUE(f.running.request_cancel(slow, "alice")); // finish() now fails
+  EXPECT_EQ(f.running.request_cancel(slow, "alice"),
+            RunningJobs::CancelRequest::requested); // finish() now fails
   std::this_thread::sleep_for(std::chrono::seconds(7));
   EXPECT_EQ(f.store.get(slow)->status, JobStatus::running);
   lock.release();

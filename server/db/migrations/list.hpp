@@ -14,5 +14,6 @@ void m3_fill_scene_hashes(Database& db);
 const char* m4_study_cancelled();
 const char* m5_slurm_executor();
 const char* m6_search_indexes();
+const char* m7_study_idempotency_keys();
 
 } // namespace slipfront::server::migrations

@@ -1,0 +1,14 @@
+// Entry point of `slipfront check DATA_DIR`: reads a server's database without changing it and
+// lists what a server could not read (docs/server.md, "Checking a data dir").
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace slipfront::server {
+
+// Prints "ok" and returns 0 when `PRAGMA quick_check` passes and every stored JSON parses;
+// otherwise prints each problem (one line each) and returns 1; 2 for a usage error.
+int check_main(const std::vector<std::string>& args);
+
+} // namespace slipfront::server
