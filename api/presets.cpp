@@ -28,12 +28,14 @@ Preset read_preset(const nlohmann::json& entry) {
     preset.description = text_member(file, "description");
     preset.reference = text_member(file, "reference");
     preset.spec = file["spec"];
+    if (file.contains("fe")) preset.fe = file["fe"];
   } else {
     preset.spec = file;
     preset.title = text_member(file, "name");
     preset.description = "The job file examples/" + preset.name + ".json.";
   }
   if (preset.title.empty()) preset.title = preset.name;
+  if (!preset.fe.is_object()) preset.fe = nlohmann::json::object();
   return preset;
 }
 
@@ -65,10 +67,34 @@ const Preset* find_preset(std::string_view name) {
   return it == all.end() ? nullptr : &*it;
 }
 
+namespace {
+
+std::string own_method(const Preset& preset) {
+  const auto it = preset.spec.find("method");
+  return it != preset.spec.end() && it->is_string() ? it->get<std::string>() : "fe";
+}
+
+} // namespace
+
+nlohmann::json preset_job(const Preset& preset, const std::string& method) {
+  nlohmann::json job = preset.spec;
+  if (method == "fe") {
+    job.merge_patch(preset.fe);
+  } else {
+    job["method"] = method;
+  }
+  return job;
+}
+
 nlohmann::json preset_json(const Preset& preset) {
-  return {{"name", preset.name},           {"origin", preset.origin},
-          {"title", preset.title},         {"description", preset.description},
-          {"reference", preset.reference}, {"spec", preset.spec}};
+  return {{"name", preset.name},
+          {"origin", preset.origin},
+          {"title", preset.title},
+          {"description", preset.description},
+          {"reference", preset.reference},
+          {"spec", preset_job(preset, own_method(preset))},
+          {"specs",
+           {{"fe", preset_job(preset, "fe")}, {"spectral_bi", preset_job(preset, "spectral_bi")}}}};
 }
 
 nlohmann::json expand_preset(const nlohmann::json& job, std::vector<FieldError>& errors) {
@@ -84,7 +110,11 @@ nlohmann::json expand_preset(const nlohmann::json& job, std::vector<FieldError>&
   }
   nlohmann::json patch = job;
   patch.erase("preset");
-  nlohmann::json expanded = preset->spec;
+  // The method the job asks for (an invalid one is the reader's error to report).
+  const auto method = patch.find("method");
+  nlohmann::json expanded =
+      preset_job(*preset, method != patch.end() && method->is_string() ? method->get<std::string>()
+                                                                       : own_method(*preset));
   expanded.merge_patch(patch);
   return expanded;
 }

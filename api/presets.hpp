@@ -4,8 +4,9 @@
 // server and the web view offer the same list without a data directory.
 //
 // A job may name one: {"preset": "scec_tpv3_2d", "method": "spectral_bi"} is the preset's
-// spec with the job's other members merged over it as a JSON merge patch (RFC 7396: objects
-// merge member by member, anything else replaces, null removes). The stored spec is the
+// job for that method (preset_job) with the job's other members merged over it as a JSON
+// merge patch (RFC 7396: objects merge member by member, anything else replaces, null
+// removes). The stored spec is the
 // expanded one, so a record never depends on the catalogue of the version that ran it.
 #pragma once
 
@@ -25,7 +26,9 @@ struct Preset {
   std::string title;       // one line
   std::string description; // what the scene is and what it shows
   std::string reference;   // where its numbers come from ("" for the examples)
-  nlohmann::json spec;     // the job, as a user would write it
+  nlohmann::json spec;     // the job for either method, as a user would write it
+  nlohmann::json fe;       // members only the FE method reads (block heights, boundaries),
+                           // merged over `spec` when the job runs by FE; {} if none
 };
 
 // Every preset: the scene presets first, then the examples, each group sorted by name.
@@ -34,7 +37,12 @@ const std::vector<Preset>& presets();
 // The preset called `name`, or nullptr.
 const Preset* find_preset(std::string_view name);
 
-// As a JSON object: {name, origin, title, description, reference, spec}.
+// The preset's job for `method` ("fe" or "spectral_bi"): `spec`, with `fe` merged over it
+// for FE and "method" set for any other method.
+nlohmann::json preset_job(const Preset& preset, const std::string& method);
+
+// As a JSON object: {name, origin, title, description, reference, spec, specs}: `spec` the
+// job by the preset's own method (FE unless its spec says), `specs` the job by each method.
 nlohmann::json preset_json(const Preset& preset);
 
 // The job with its "preset" member expanded (see above); the job unchanged when it names

@@ -17,7 +17,8 @@ void print_presets_usage(std::ostream& out) {
 
 Without NAME: the presets, one per line (name and title), or with --json the whole list
 ({"presets": [{name, origin, title, description, reference, spec}]}, as GET /api/v1/presets).
-With NAME: that preset's job as JSON on stdout, to run or edit; with --json the whole entry.
+With NAME: that preset's job as JSON on stdout (by FE unless the preset says), to run or
+edit; with --json the whole entry, its job by each method under "specs".
 A job file may name a preset and change some fields:
   {"preset": "scec_tpv3_2d", "method": "spectral_bi"}
 (the preset's job with the file's other members merged over it; docs/presets.md).
@@ -51,7 +52,8 @@ int presets_command(const std::vector<std::string>& args) {
                 << "\" (`slipfront presets` lists them)\n";
       return exit_code::bad_input;
     }
-    std::cout << (json ? api::preset_json(*preset) : preset->spec).dump(2) << '\n';
+    const nlohmann::json entry = api::preset_json(*preset);
+    std::cout << (json ? entry : entry["spec"]).dump(2) << '\n';
     return exit_code::success;
   }
   if (json) {

@@ -22,14 +22,72 @@ TEST(Presets, EveryPresetIsAValidJobByBothMethods) {
     EXPECT_FALSE(preset.description.empty());
     for (const char* method : {"fe", "spectral_bi"}) {
       SCOPED_TRACE(method);
-      nlohmann::json job = preset.spec;
-      job["method"] = method;
-      if (std::string(method) == "spectral_bi") job.erase("fe"); // FE-only options
-      ParseResult parsed = parse_job(job);
+      // Written out, and named with the method: the same job.
+      ParseResult parsed = parse_job(preset_job(preset, method));
+      const ParseResult named = parse_job({{"preset", preset.name}, {"method", method}});
+      ASSERT_EQ(parsed.ok(), named.ok());
+      if (parsed.ok()) {
+        EXPECT_EQ(parsed.spec->sha256, named.spec->sha256);
+      }
       for (const FieldError& e : parsed.errors)
         ADD_FAILURE() << e.pointer << ": " << e.reason;
     }
   }
+}
+
+TEST(Presets, FeOnlyMembersApplyToFeJobsOnly) {
+  const Preset* tpv3 = find_preset("scec_tpv3_2d");
+  ASSERT_NE(tpv3, nullptr);
+  ASSERT_FALSE(tpv3->fe.empty());
+  std::vector<FieldError> errors;
+  const nlohmann::json fe = expand_preset({{"preset", "scec_tpv3_2d"}}, errors);
+  const nlohmann::json bi =
+      expand_preset({{"preset", "scec_tpv3_2d"}, {"method", "spectral_bi"}}, errors);
+  ASSERT_TRUE(errors.empty());
+  EXPECT_EQ(fe["lower"]["height"], "auto");
+  EXPECT_FALSE(bi["lower"].contains("height"));
+  EXPECT_EQ(bi["lower"]["s_wave_speed"], 3464);
+  // The job's own members still win over the FE members.
+  const nlohmann::json mine =
+      expand_preset({{"preset", "scec_tpv3_2d"}, {"lower", {{"height", 30000}}}}, errors);
+  EXPECT_EQ(mine["lower"]["height"], 30000);
+}
+
+TEST(Presets, TheSceneNumbersAreTheIssuesWords) {
+  // SCEC TPV3 in 2-D and the two bimaterial scenes, as issue 21 states them.
+  const Preset* tpv3 = find_preset("scec_tpv3_2d");
+  const Preset* sw = find_preset("bimaterial_slip_weakening");
+  const Preset* pc = find_preset("bimaterial_prakash_clifton");
+  ASSERT_TRUE(tpv3 && sw && pc);
+  const nlohmann::json& t = tpv3->spec;
+  EXPECT_EQ(t["material"],
+            (nlohmann::json{{"density", 2670}, {"p_wave_speed", 6000}, {"s_wave_speed", 3464}}));
+  EXPECT_EQ(t["loading"]["normal_stress"], -120e6);
+  EXPECT_EQ(t["loading"]["shear_stress"], 70e6);
+  EXPECT_EQ(t["nucleation"]["shear_stress"], 81.6e6);
+  EXPECT_EQ(t["nucleation"]["x1_max"], 1500);
+  EXPECT_EQ(t["friction"]["mu_s"], 0.677);
+  EXPECT_EQ(t["friction"]["mu_d"], 0.525);
+  EXPECT_EQ(t["friction"]["D_c"], 0.4);
+  EXPECT_EQ(t["profiles"][0]["mu_s"], 10000);
+  EXPECT_EQ(t["time"]["duration"], 16);
+  EXPECT_EQ(t["stations"]["x1"], (nlohmann::json{0, 4500, 7500, 12000}));
+  for (const Preset* b : {sw, pc}) {
+    EXPECT_EQ(b->spec["material"]["s_wave_speed"], 2620);
+    EXPECT_EQ(b->spec["lower"]["s_wave_speed"], 3091.6);
+    EXPECT_EQ(b->spec["lower"]["density"], 2745.739);
+    EXPECT_EQ(b->spec["loading"]["normal_stress"], -130e6);
+    EXPECT_EQ(b->spec["time"]["duration"], 0.1);
+    EXPECT_GT(b->spec["loading"]["shear_stress"].get<double>(), 0); // upper towards +x1
+  }
+  EXPECT_EQ(sw->spec["geometry"]["width"], 600);
+  EXPECT_EQ(sw->spec["friction"]["t_star"], 0.35e-3);
+  EXPECT_EQ(sw->spec["friction"]["D_c"], 0.744e-3);
+  EXPECT_EQ(sw->spec["nucleation"]["shear_stress"], 91.001e6);
+  EXPECT_EQ(pc->spec["friction"]["L"], 1e-3);
+  EXPECT_EQ(pc->spec["friction"]["v_star"], 0.26);
+  EXPECT_EQ(pc->spec["nucleation"]["shear_stress"], 100.1e6);
+  EXPECT_EQ(pc->spec["loading"]["shear_stress"], 89.18e6);
 }
 
 TEST(Presets, ExamplesAreInTheCatalogue) {
