@@ -31,7 +31,8 @@ def reference_runs(study):
 
 
 def make_figures(study, drawn, coulomb_results, crow, fig_dir, formats):
-    from .plots import common, convergence, mesh_growth, slip_map, velocity
+    from .plots import common, convergence, mesh_growth, slip_map, station_rates
+    from .stations import load_stations
     made = {}
 
     def save(fig, stem):
@@ -44,16 +45,19 @@ def make_figures(study, drawn, coulomb_results, crow, fig_dir, formats):
     save(fig, "convergence")
     ordered = [drawn[L] for L in sorted(drawn, reverse=True)]
     if ordered:
-        fig, _ = velocity.plot_velocity(ordered, PROBES,
-                                        "Slip rate, drawn run of each L (BI, bimaterial)")
+        fig, _ = station_rates.plot_station_rates(
+            [(r.label(), load_stations(r.path)) for r in ordered], PROBES,
+            "Slip rate at the stations, drawn run of each L (BI)")
         save(fig, "velocity_by_L")
         for L in sorted(drawn, reverse=True):
             fig, _ = slip_map.plot_map(drawn[L], PROBES, None, f"|V|, {drawn[L].label()}")
             save(fig, f"map_L{L:g}")
     if coulomb_results:
         default = [c for c, r in zip(coulomb_results, crow) if r["beta"] == 0.5] or coulomb_results
-        fig, _ = velocity.plot_velocity(default, PROBES,
-                                        "Slip rate, plain Coulomb under refinement (BI, β = 0.5)")
+        fig, _ = station_rates.plot_station_rates(
+            [(r.label(), load_stations(r.path)) for r in default], PROBES,
+            "Slip rate at the stations, plain Coulomb under refinement (BI, β = 0.5)",
+            log_scale=True)
         save(fig, "velocity_coulomb")
         finest = default[-1]
         fig, _ = slip_map.plot_map(finest, PROBES, None, f"|V|, {finest.label()}")
