@@ -147,3 +147,24 @@ def study_metrics(api, study):
         out[r["job_id"]] = api.job(r["job_id"]).get("metrics") or {}
         r["_metrics"] = out[r["job_id"]]
     return out
+
+
+def _time(text):
+    import datetime
+    return datetime.datetime.fromisoformat(str(text).replace("Z", "+00:00"))
+
+
+def computation_span(api, job_ids):
+    """Seconds from the first submission to the last end among the jobs that computed these
+    runs (a reused run counts by the job it was reused from); None if unknown."""
+    starts, ends = [], []
+    for job_id in job_ids:
+        job = api.job(job_id)
+        if job.get("cached_from"):
+            job = api.job(job["cached_from"])
+        try:
+            starts.append(_time(job["created_at"]))
+            ends.append(_time(job["finished_at"]))
+        except (KeyError, TypeError, ValueError):
+            return None
+    return (max(ends) - min(starts)).total_seconds() if starts else None
