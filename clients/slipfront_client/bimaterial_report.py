@@ -31,6 +31,19 @@ def reference_runs(study):
     return {L: chosen_run(study, L) for L in runs_by_L(study)}
 
 
+def zoom_to_front(ax, result, margin=30.0):
+    """Limit a map to where the front went (± `margin` m, from t = 0 to 1.5 × its last
+    time): an arrested event fills a small part of the 600 m, 0.1 s plane."""
+    import numpy as np
+    known = np.isfinite(result.arrival_time)
+    if not known.any():
+        return
+    x, t = result.front_x1[known], result.arrival_time[known]
+    lo, hi = max(float(result.x1.min()), x.min() - margin), min(float(result.x1.max()), x.max() + margin)
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(0.0, min(float(result.time.max()), 1.5 * float(t.max())))
+
+
 def make_figures(study, drawn, coulomb_results, crow, fig_dir, formats):
     from .plots import common, convergence, mesh_growth, slip_map, station_rates
     from .stations import load_stations
@@ -45,13 +58,21 @@ def make_figures(study, drawn, coulomb_results, crow, fig_dir, formats):
                                           "Convergence map, bimaterial Prakash–Clifton (BI)")
     save(fig, "convergence")
     ordered = [drawn[L] for L in sorted(drawn, reverse=True)]
-    if ordered:
+    converged = [r for r in ordered if converged_n_d(study, r.L) is not None]
+    if converged:  # the unconverged L apart: their peaks would flatten these curves
         fig, _ = station_rates.plot_station_rates(
-            [(r.label(), load_stations(r.path)) for r in ordered], PROBES,
-            "Slip rate at the stations, drawn run of each L (BI)")
+            [(r.label(), load_stations(r.path)) for r in converged], PROBES,
+            "Slip rate at the stations, mesh-converged L (BI)")
         save(fig, "velocity_by_L")
+    others = [r for r in ordered if r not in converged]
+    if others:
+        fig, _ = station_rates.plot_station_rates(
+            [(r.label(), load_stations(r.path)) for r in others], PROBES,
+            "Slip rate at the stations, L not mesh-converged (BI, finest run)", log_scale=True)
+        save(fig, "velocity_unconverged")
         for L in sorted(drawn, reverse=True):
             fig, _ = slip_map.plot_map(drawn[L], PROBES, None, f"|V|, {drawn[L].label()}")
+            zoom_to_front(fig.axes[0], drawn[L])
             save(fig, f"map_L{L:g}")
     if coulomb_results:
         default = [c for c, r in zip(coulomb_results, crow) if r["beta"] == 0.5] or coulomb_results
@@ -99,8 +120,8 @@ def coulomb_lines(crow):
                      + " (a mesh-independent answer would give × 1).")
     warnings = sorted({w for r in crow for w in r.get("warnings") or []})
     if warnings:
-        lines += ["", "The runs' own warnings (each Coulomb run carries the first; the β = 0.5 "
-                  "runs the second):", ""]
+        lines += ["", "The runs' own warnings (the ill-posedness warning on every Coulomb run, "
+                  "the others where they apply):", ""]
         lines += [f"- {w}" for w in warnings]
     return lines + [""]
 
@@ -185,6 +206,50 @@ def steps_lines(study):
     return lines + [""]
 
 
+def reading(study, crow):
+    """What the comparisons say, from the finest run of each L: the largest L's that agree
+    pairwise, where agreement breaks, and how the smallest L compares with Coulomb."""
+    rows = finest_rows(study)
+    lengths = sorted(rows, reverse=True)
+    if len(lengths) < 2:
+        return []
+    top = [lengths[0]]
+    for big, small in zip(lengths, lengths[1:]):
+        if not (rows[big]["converged"] and rows[small]["converged"]
+                and analysis.results_agree(rows[big], rows[small])):
+            break
+        top.append(small)
+    out = []
+    if len(top) > 1:
+        out.append(f"The large L's agree with each other: L = {', '.join(f'{L:g}' for L in top)} m "
+                   "(mesh-converged, same result within 0.5 % / 0.1 %): a plateau at the "
+                   "**large**-L end (presumably where the regularisation filters the normal-stress "
+                   "changes out of the event: not checked here); below it the result depends on L.")
+    below = [L for L in lengths if L < top[-1]]
+    if below:
+        out.append("Below L = " + f"{top[-1]:g} m the result moves with L: "
+                   + "; ".join(f"L = {L:g} m ({rows[L]['outcome']}, propagation "
+                               f"{fmt(rows[L]['propagation_distance'], 4)} m, max |V| "
+                               f"{fmt(rows[L]['max_slip_velocity'], 3)} m/s, "
+                               + ("mesh-converged" if rows[L]["converged"] else
+                                  f"not mesh-converged up to n_d = {rows[L]['n_d']:g}") + ")"
+                               for L in below) + ".")
+    smallest = rows[lengths[-1]]
+    same_mesh = [r for r in crow if r["beta"] == 0.5 and abs(r["n_d"] - smallest["n_d"]) < 1e-9]
+    if same_mesh and not smallest["converged"]:
+        c = same_mesh[0]
+        out.append(f"At the smallest L ({lengths[-1]:g} m) the regularised run behaves like plain "
+                   f"Coulomb at the same mesh (n_d = {c['n_d']:g}: {smallest['outcome']} vs "
+                   f"{c.get('outcome')}, propagation {fmt(smallest['propagation_distance'], 4)} vs "
+                   f"{fmt(c.get('propagation_distance'), 4)} m, max |V| "
+                   f"{fmt(smallest['max_slip_velocity'], 3)} vs {fmt(c.get('max_slip_velocity'), 3)} m/s) "
+                   "and does not converge: as L decreases the answer approaches the ill-posed "
+                   "Coulomb problem, which has no mesh-independent limit. **No critical length in "
+                   "the paper's sense** (an L below which every L gives the same, converged "
+                   "answer) exists on this grid.")
+    return out
+
+
 def verdict(study, crow):
     """The sentences the report leads with, from the runs."""
     v = report_mod.verdict_text(study)
@@ -210,6 +275,7 @@ def verdict(study, crow):
                    + f"; flagged ill-posed by the solver in "
                    f"{sum(any(ILL_POSED in w for w in r['warnings']) for r in group)}"
                    f" of {len(group)} runs.")
+    out += reading(study, crow)
     worst = pc_growth(study)
     out.append(f"Prakash–Clifton, for comparison: max |V| changes by at most × {fmt(worst, 3)} "
                "between successive meshes of one L.")
@@ -315,9 +381,12 @@ def write(path, args, study, run, crow, chosen, metrics, figures, run_sum):
     add(img("peak_rate_growth", "peak slip rate against n_d"))
     add("## Figures\n")
     add("Slip rate |V| at x1 = −20 m (the negative direction), +20 m and +40 m (the "
-        "preferred direction and the probe), the drawn run of each L (its coarsest "
-        "mesh-converged run, else its finest):\n")
+        "preferred direction and the probe), the drawn run of each mesh-converged L (its "
+        "coarsest mesh-converged run):\n")
     add(img("velocity_by_L", "slip rate by L"))
+    if "velocity_unconverged" in figures:
+        add("The L without a mesh-converged run, its finest run (log scale):\n")
+        add(img("velocity_unconverged", "slip rate, unconverged L"))
     for L in sorted(chosen, reverse=True):
         r, conv = chosen[L]
         stem = f"map_L{L:g}"
