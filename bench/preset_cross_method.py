@@ -6,7 +6,8 @@ blocks at the same element size, and prints a markdown table: each station's rup
 by both methods and their relative difference, the extents of the ruptured stretch (the
 smallest and largest x1 the front reached) and their difference relative to the propagation
 distance, the wall time of each run. Issue 21's bars: rupture times within 1 %, extents
-within 2 %. The FE blocks are cut at --height (each) with absorbing far boundaries (the
+within 2 %. Stations inside an overstressed nucleation patch slip at t ~ 0 by construction
+and are listed but not compared. The FE blocks are cut at --height (each) with absorbing far boundaries (the
 half-spaces of BI; "auto" keeps every reflection out, at much more cost).
 
 usage: /usr/bin/python3 bench/preset_cross_method.py bimaterial_prakash_clifton
@@ -87,11 +88,20 @@ def main():
     print("| station x1 [m] | rupture time BI [s] | FE [s] | difference |")
     print("| --- | --- | --- | --- |")
     worst_time = 0.0
+    patch = preset.get("nucleation", {})
+    in_patch = (lambda x: patch.get("x1_min", 1) <= x <= patch.get("x1_max", 0)) \
+        if patch.get("type") == "overstressed_patch" else (lambda x: False)
     for s_bi, s_fe in zip(bi.get("stations", []), fe.get("stations", [])):
+        fmt = lambda t: "never" if t is None else f"{t:.6f}"  # noqa: E731
+        if in_patch(s_bi["x1"]):
+            # Overstressed from the start: it slips at t ~ 0 by construction, and a relative
+            # difference of two times near zero measures nothing.
+            print(f"| {s_bi['x1']:g} | {fmt(s_bi['rupture_time'])} | {fmt(s_fe['rupture_time'])} "
+                  "| in the nucleation patch (not compared) |")
+            continue
         d = relative(s_fe["rupture_time"], s_bi["rupture_time"])
         if d is not None:
             worst_time = max(worst_time, d)
-        fmt = lambda t: "never" if t is None else f"{t:.6f}"  # noqa: E731
         print(f"| {s_bi['x1']:g} | {fmt(s_bi['rupture_time'])} | {fmt(s_fe['rupture_time'])} | {pct(d)} |")
     lo_bi, hi_bi = extents(bi)
     lo_fe, hi_fe = extents(fe)
@@ -104,7 +114,7 @@ def main():
             worst_extent = max(worst_extent, d)
         print(f"| {name} | {a} | {b} | {pct(d)} |")
     ok = worst_time <= 0.01 and worst_extent <= 0.02
-    print(f"\nlargest rupture-time difference {pct(worst_time)} (bar 1 %), largest extent "
+    print(f"\nlargest rupture-time difference outside the patch {pct(worst_time)} (bar 1 %), largest extent "
           f"difference {pct(worst_extent)} (bar 2 %): {'within' if ok else 'NOT within'} the bars")
     return 0 if ok else 1
 
