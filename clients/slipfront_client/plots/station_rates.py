@@ -8,8 +8,10 @@ from .common import colours
 from .velocity import signal_window
 
 
-def plot_station_rates(runs, positions, title=None, log_scale=False):
-    """`runs`: [(label, Stations)]. A station a run lacks is skipped in that run."""
+def plot_station_rates(runs, positions, title=None, log_scale=False, t_max=None):
+    """`runs`: [(label, Stations)], drawn in that order (the last on top). A station a run
+    lacks is skipped in that run. `t_max` [s]: the end of the time axis instead of the
+    signal's window."""
     fig, axes = plt.subplots(len(positions), 1, figsize=(6.4, 2.5 * len(positions) + 0.6),
                              squeeze=False, constrained_layout=True)
     data = {}
@@ -25,6 +27,8 @@ def plot_station_rates(runs, positions, title=None, log_scale=False):
             data.setdefault(label, {})[x] = float(v.max()) if v.size else None
             ax.plot(st.time * 1e3, v, color=colour, lw=1.0, label=label)
         window = signal_window(samples) if samples else None
+        if t_max is not None:
+            window = (0.0, t_max)
         if window:
             ax.set_xlim(window[0] * 1e3, window[1] * 1e3)
         if log_scale:
