@@ -90,6 +90,13 @@ def _agree(row, ref):
     return distance < DISTANCE_TOL and (not arrived or arrival < ARRIVAL_TOL)
 
 
+def results_agree(row, ref):
+    """Whether two run summaries agree by the convergence criterion (also the rule between
+    two L's, docs/studies.md "Agreement of two results"), `ref` the finer mesh or the
+    smaller L."""
+    return _agree(row, ref)
+
+
 def _pick(rows, L, n_d):
     """The run that stands for an (L, n_d) cell: a result before a pending run before a
     void one; among equals the smallest id."""

@@ -69,6 +69,26 @@ def make_figures(study, bi_study, rows, chosen, results, fig_dir, formats, log_f
     return made
 
 
+def map_table_lines(study):
+    """The convergence map as a table: one row per L (largest first), one column per n_d,
+    each cell "status (outcome)", and the coarsest converged n_d."""
+    by_L = runs_by_L(study)
+    nds = sorted({float(r["n_d"]) for r in study.get("runs") or []})
+    lines = ["| L [m] | " + " | ".join(f"n_d = {n:g}" for n in nds) + " | converged from |",
+             "| --- | " + " | ".join("---" for _ in nds) + " | --- |"]
+    for L in sorted(by_L, reverse=True):
+        cells = []
+        for n in nds:
+            r = next((r for r in by_L[L] if abs(float(r["n_d"]) - n) < 1e-9), None)
+            if r is None:
+                cells.append("")
+            else:
+                conv = (r.get("convergence") or {}).get("status", "?")
+                cells.append(f"{conv} ({r.get('outcome') or r.get('job_status')})")
+        lines.append(f"| {L:g} | " + " | ".join(cells) + f" | {fmt(converged_n_d(study, L))} |")
+    return lines + [""]
+
+
 def write_report(path, args, study, bi, chosen, results, metrics, figures, timing,
                  fig2=(None, None)):
     """`bi`: {"study", "metrics", "wall", "rows_source"} of the spectral BI study (or None)."""
@@ -164,20 +184,7 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
 
     # convergence map table
     add("## Convergence map\n")
-    nds = sorted({float(r["n_d"]) for r in study.get("runs") or []})
-    add("| L [m] | " + " | ".join(f"n_d = {n:g}" for n in nds) + " | converged from |")
-    add("| --- | " + " | ".join("---" for _ in nds) + " | --- |")
-    for L in sorted(by_L, reverse=True):
-        cells = []
-        for n in nds:
-            r = next((r for r in by_L[L] if abs(float(r["n_d"]) - n) < 1e-9), None)
-            if r is None:
-                cells.append("")
-            else:
-                conv = (r.get("convergence") or {}).get("status", "?")
-                cells.append(f"{conv} ({r.get('outcome') or r.get('job_status')})")
-        add(f"| {L:g} | " + " | ".join(cells) + f" | {fmt(converged_n_d(study, L))} |")
-    add("")
+    lines.extend(map_table_lines(study))
     refinement = study.get("refinement") or {}
     if refinement:
         add("Refinement per L (server): " + "; ".join(
