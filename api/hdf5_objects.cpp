@@ -2,8 +2,14 @@
 
 #include <hdf5_hl.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 namespace slipfront::api::hdf5 {
@@ -120,6 +126,23 @@ void Handle::close(const std::string& what) {
   if (id_ < 0) return;
   check(close_object(id_), what);
   id_ = H5I_INVALID_HID;
+}
+
+bool readable_file(const std::string& path, std::string& why) {
+  if (path.empty()) {
+    why = "no result file";
+    return false;
+  }
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK); // a FIFO cannot block
+  if (fd < 0) {
+    why = std::strerror(errno);
+    return false;
+  }
+  struct stat status {};
+  const bool regular = ::fstat(fd, &status) == 0 && S_ISREG(status.st_mode);
+  ::close(fd);
+  if (!regular) why = S_ISDIR(status.st_mode) ? std::strerror(EISDIR) : "not a regular file";
+  return regular;
 }
 
 Handle create_file(const std::string& path) {

@@ -67,6 +67,10 @@ private:
 };
 
 Handle create_file(const std::string& path); // truncates
+
+// Whether `path` can be read as a result file; if not, `why` says why as the system does
+// ("No such file or directory", "Permission denied", "Is a directory").
+bool readable_file(const std::string& path, std::string& why);
 Handle create_group(hid_t parent, const std::string& name);
 
 // A 1-D float64 dataset (chunked and compressed when not empty) with a `units` attribute.

@@ -1,6 +1,7 @@
 #include "api/job_checks.hpp"
 
 #include "api/interface_checks.hpp"
+#include "api/memory_size.hpp"
 #include "api/number_text.hpp"
 #include "solver/simulation.hpp"
 
@@ -30,21 +31,29 @@ std::string text(double value) {
   return number_text(value, 12);
 }
 
-// "length * nodes_per_meter" must be a whole number of elements.
+// "length * nodes_per_meter" must be a whole number of elements. Too many of them is blamed
+// on the factor that is out of scale: nodes_per_meter when it is above sqrt(1e7) ~ 3162 per
+// metre (then every axis is too long, and the error is given once), else the length.
 void check_whole_elements(const char* pointer, const char* what, double length,
                           double nodes_per_meter, double min_elements,
                           std::vector<FieldError>& errors) {
   const double elements = length * nodes_per_meter;
   const double whole = std::round(elements);
-  if (std::abs(elements - whole) > whole_elements_tolerance * elements) {
+  if (!(whole <= max_elements_per_axis)) { // an infinite product too
+    const bool resolution = nodes_per_meter > std::sqrt(max_elements_per_axis);
+    const std::string blamed = resolution ? "/geometry/nodes_per_meter" : pointer;
+    if (!has_error(errors, blamed))
+      errors.push_back(
+          {blamed, std::string(what) + " * nodes_per_meter = " + text(length) + " * " +
+                       text(nodes_per_meter) + " = " + text(elements) +
+                       " elements, more than the " + text(max_elements_per_axis) +
+                       " allowed along one axis: use " +
+                       (resolution ? "fewer nodes per meter" : "a smaller " + std::string(what))});
+  } else if (std::abs(elements - whole) > whole_elements_tolerance * elements) {
     errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(length) + " * " +
                                    text(nodes_per_meter) + " = " + text(elements) +
                                    " must be a whole number of elements (within 1e-9 relative): "
                                    "the mesh is regular with element size 1/nodes_per_meter"});
-  } else if (whole > max_elements_per_axis) {
-    errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(elements) +
-                                   " elements, more than the " + text(max_elements_per_axis) +
-                                   " allowed along one axis"});
   } else if (whole < min_elements) {
     errors.push_back({pointer, std::string(what) + " * nodes_per_meter = " + text(elements) +
                                    " elements, need at least " + text(min_elements)});
@@ -141,11 +150,11 @@ void check_job_consistency(const JobSpec& job, std::vector<FieldError>& errors) 
 void check_memory(const JobSpec& job, const ValidationLimits& limits,
                   std::vector<FieldError>& errors) {
   if (!(job.memory_estimate_bytes <= limits.max_memory_bytes)) { // NaN too
-    errors.push_back(
-        {"/geometry/nodes_per_meter",
-         "the run would need about " + text(job.memory_estimate_bytes / 1e9) +
-             " GB of memory (estimate), above the limit of " + text(limits.max_memory_bytes / 1e9) +
-             " GB: use fewer nodes per meter, a smaller domain or a shorter duration"});
+    errors.push_back({"/geometry/nodes_per_meter",
+                      "the run would need about " + byte_size_text(job.memory_estimate_bytes) +
+                          " of memory (estimate), above the limit of " +
+                          byte_size_text(limits.max_memory_bytes) +
+                          ": use fewer nodes per meter, a smaller domain or a shorter duration"});
   }
 }
 

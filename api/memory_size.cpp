@@ -1,5 +1,7 @@
 #include "api/memory_size.hpp"
 
+#include "api/number_text.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -22,6 +24,22 @@ std::optional<double> parse_memory_size(const std::string& text) {
   } catch (const std::exception&) {
     return std::nullopt;
   }
+}
+
+std::string memory_size_expected(const std::string& text) {
+  return "needs a size such as 8G or 500M (bytes, or K, M, G, T: powers of 1000), got \"" + text +
+         "\"";
+}
+
+std::string byte_size_text(double bytes) {
+  static const char* const units[] = {"bytes", "kB", "MB", "GB", "TB"};
+  int unit = 0;
+  // 999.95 MB prints as "1e+03 MB" with three digits: move on to the next unit from 999.5.
+  while (unit < 4 && std::abs(bytes) >= 999.5) {
+    bytes /= 1000.0;
+    ++unit;
+  }
+  return number_text(bytes, 3) + " " + units[unit];
 }
 
 } // namespace slipfront::api

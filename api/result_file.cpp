@@ -264,12 +264,11 @@ void ResultFileWriter::Impl::fail(const std::exception& error) {
   if (code == ENOSPC || code == EDQUOT) {
     const auto directory = std::filesystem::path(final_path).parent_path().string();
     message += "the disk holding " + (directory.empty() ? std::string(".") : directory) +
-               " is full (" + std::strerror(code) + ")";
-  } else {
-    message += error.what();
+               " is full (" + std::strerror(code) + "); the partial file was removed [" +
+               error.what() + "]";
+  } else { // HDF5's message once, with the reason it carries
+    message += std::string(error.what()) + "; the partial file was removed";
   }
-  message += "; the partial file was removed";
-  if (code != 0) message += " [" + std::string(error.what()) + "]";
   throw std::runtime_error(message);
 }
 

@@ -5,22 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 namespace slipfront::api {
 
 namespace {
 
 using hdf5::Handle;
-
-bool file_exists(const std::string& path, std::string& why) {
-  std::error_code ec;
-  if (path.empty() || !std::filesystem::exists(path, ec)) {
-    why = "no result file";
-    return false;
-  }
-  return true;
-}
 
 // The group `name` of an open file; an invalid handle (and the reason) when it is missing.
 Handle open_group(hid_t file, const char* name, const std::string& missing, std::string& why) {
@@ -163,7 +153,7 @@ std::optional<FieldSlice> slice_of(hid_t file, const std::string& name, const Sl
 } // namespace
 
 std::optional<ProbeRecord> read_probe_record(const std::string& path, std::string& why) {
-  if (!file_exists(path, why)) return std::nullopt;
+  if (!hdf5::readable_file(path, why)) return std::nullopt;
   hdf5::QuietErrors quiet; // errors are reported through `why`
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.valid()) {
@@ -201,7 +191,7 @@ std::string slice_field_units(const std::string& name) {
 
 std::optional<FieldSlice> read_field_slice(const std::string& path, const std::string& name,
                                            const SliceWindow& window, std::string& why) {
-  if (!file_exists(path, why)) return std::nullopt;
+  if (!hdf5::readable_file(path, why)) return std::nullopt;
   hdf5::QuietErrors quiet; // errors are reported through `why`
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.valid()) {

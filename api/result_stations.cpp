@@ -5,7 +5,6 @@
 #include "api/result_stations_writer.hpp"
 
 #include <array>
-#include <filesystem>
 
 namespace slipfront::api {
 
@@ -72,11 +71,7 @@ void write_stations(hid_t root, const StationRecords& r) {
 }
 
 std::optional<StationRecords> read_stations(const std::string& path, std::string& why) {
-  std::error_code ec;
-  if (path.empty() || !std::filesystem::exists(path, ec)) {
-    why = "no result file";
-    return std::nullopt;
-  }
+  if (!hdf5::readable_file(path, why)) return std::nullopt;
   hdf5::QuietErrors quiet; // errors are reported through `why`
   hdf5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.valid()) {

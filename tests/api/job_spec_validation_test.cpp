@@ -239,8 +239,26 @@ TEST(JobValidation, MeshMustHoldWholeElements) {
 }
 
 TEST(JobValidation, ElementCountsStayBounded) {
-  expect_single_error({{"geometry", {{"nodes_per_meter", 1e6}, {"height", 1}}}}, "/geometry/width",
-                      "more than the 10000000 allowed along one axis");
+  expect_single_error({{"geometry", {{"nodes_per_meter", 1e6}, {"height", 1}}}},
+                      "/geometry/nodes_per_meter", "more than the 10000000 allowed along one axis");
+  // An absurd resolution makes both axes too long: one error, on the resolution, not on the
+  // width and the height that are fine (issue 24 item 5). 1e300 overflows the products. An
+  // absurd length is blamed itself.
+  for (const char* length : {"width", "height"}) {
+    const ParseResult huge = parse_job({{"geometry", {{length, 1e300}}}});
+    ASSERT_EQ(huge.errors.size(), 1u) << length;
+    EXPECT_EQ(huge.errors[0].pointer, std::string("/geometry/") + length);
+    EXPECT_NE(huge.errors[0].reason.find(std::string("use a smaller ") + length), std::string::npos)
+        << huge.errors[0].reason;
+  }
+  for (const double nodes_per_meter : {1e9, 1e300}) {
+    const ParseResult absurd = parse_job({{"geometry", {{"nodes_per_meter", nodes_per_meter}}}});
+    ASSERT_EQ(absurd.errors.size(), 1u) << nodes_per_meter;
+    EXPECT_EQ(absurd.errors[0].pointer, "/geometry/nodes_per_meter");
+    EXPECT_NE(absurd.errors[0].reason.find("width * nodes_per_meter = 40 * "), std::string::npos)
+        << absurd.errors[0].reason;
+    EXPECT_NE(absurd.errors[0].reason.find("use fewer nodes per meter"), std::string::npos);
+  }
   expect_single_error({{"geometry", {{"height", "auto"}}}, {"time", {{"duration", 1e9}}}},
                       "/geometry/height", "give a height or a shorter duration");
 }
@@ -339,9 +357,9 @@ TEST(JobValidation, MemoryLimitRefusesHugeMeshes) {
   const ParseResult result = parse_job({{"geometry", {{"nodes_per_meter", 40}}}}, limits);
   ASSERT_EQ(result.errors.size(), 1u);
   EXPECT_EQ(result.errors[0].pointer, "/geometry/nodes_per_meter");
-  EXPECT_NE(result.errors[0].reason.find("limit of 0.001 GB"), std::string::npos)
+  EXPECT_NE(result.errors[0].reason.find("limit of 1 MB"), std::string::npos)
       << result.errors[0].reason;
-  EXPECT_NE(result.errors[0].reason.find("GB of memory (estimate)"), std::string::npos);
+  EXPECT_NE(result.errors[0].reason.find("MB of memory (estimate)"), std::string::npos);
 
   // The default limit accepts the paper's finest mesh ...
   EXPECT_TRUE(parse_job({{"geometry", {{"nodes_per_meter", 120}}}}).ok());

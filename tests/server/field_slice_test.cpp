@@ -114,7 +114,7 @@ TEST(FieldSlice, MissingFileOrDatasetSaysWhy) {
   testing::TempDir dir("slipfront-slice-");
   std::string why;
   EXPECT_FALSE(read_field_slice(dir.file("none.h5"), "slip", {}, why));
-  EXPECT_EQ(why, "no result file");
+  EXPECT_EQ(why, "No such file or directory");
   const auto path = write_file(dir);
   EXPECT_FALSE(read_field_slice(path, "strength", {}, why));
   EXPECT_NE(why.find("/interface/strength"), std::string::npos) << why;
