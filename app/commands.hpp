@@ -1,10 +1,11 @@
-// The subcommands of the `slipfront` executable. Each takes the arguments after its own
-// name and returns the process exit code.
+// The subcommands of the `slipfront` executable. Each add_*_command defines its command on
+// the top-level CLI11 app (arguments, flags, help; one file each) and returns what runs it
+// once the command line is parsed, returning the process exit code.
 #pragma once
 
-#include <iosfwd>
-#include <string>
-#include <vector>
+#include <CLI/CLI.hpp>
+
+#include <functional>
 
 namespace slipfront::app {
 
@@ -16,18 +17,19 @@ constexpr int diverged = 3;      // the run ended with outcome "diverged"
 constexpr int interrupted = 130; // SIGINT (128 + 2)
 } // namespace exit_code
 
-int run_command(const std::vector<std::string>& args);
-int validate_command(const std::vector<std::string>& args);
-int schema_command(const std::vector<std::string>& args);
-int presets_command(const std::vector<std::string>& args);  // presets_command.cpp
-int stations_command(const std::vector<std::string>& args); // stations_command.cpp
-void print_usage(std::ostream& out);
-void print_run_usage(std::ostream& out);
-void print_validate_usage(std::ostream& out);
-void print_presets_usage(std::ostream& out);  // presets_command.cpp
-void print_stations_usage(std::ostream& out); // stations_command.cpp
+// A command as main sees it: its place on the command line (to find which one was given) and
+// what runs it with the parsed values, returning the process exit code.
+struct Command {
+  CLI::App* cli;
+  std::function<int()> run;
+};
 
-// True if the arguments ask for help (--help or -h anywhere).
-bool wants_help(const std::vector<std::string>& args);
+Command add_run_command(CLI::App& slipfront);      // run_command.cpp
+Command add_validate_command(CLI::App& slipfront); // validate_command.cpp
+Command add_schema_command(CLI::App& slipfront);   // schema_command.cpp
+Command add_presets_command(CLI::App& slipfront);  // presets_command.cpp
+Command add_stations_command(CLI::App& slipfront); // stations_command.cpp
+Command add_serve_command(CLI::App& slipfront);    // serve_command.cpp
+Command add_check_command(CLI::App& slipfront);    // check_command.cpp
 
 } // namespace slipfront::app

@@ -2,8 +2,10 @@
 
 #include "api/json_parse.hpp"
 
-#include <cmath>
+#include <cerrno>
+#include <cstring>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -12,15 +14,22 @@
 namespace slipfront::app {
 
 std::string read_job_text(const std::string& path) {
+  const std::string name = path == "-" ? "standard input" : "job file " + path;
   std::ostringstream text;
   if (path == "-") {
     text << std::cin.rdbuf();
-    return text.str();
+  } else {
+    std::error_code ec; // a directory opens as a stream and reads as nothing
+    const int error = std::filesystem::is_directory(path, ec) ? EISDIR : 0;
+    std::ifstream file(path);
+    if (!file || error != 0)
+      throw std::runtime_error("cannot open " + name + ": " + std::strerror(error ? error : errno));
+    text << file.rdbuf();
+    if (file.bad()) throw std::runtime_error("cannot read " + name);
   }
-  std::ifstream file(path);
-  if (!file) throw std::runtime_error("cannot open job file " + path);
-  text << file.rdbuf();
-  if (file.bad()) throw std::runtime_error("cannot read job file " + path);
+  if (text.str().find_first_not_of(" \t\r\n") == std::string::npos)
+    throw std::runtime_error(name + " is empty: it should hold the job as a JSON object "
+                                    "({} is the paper's scene)");
   return text.str();
 }
 
@@ -30,13 +39,14 @@ void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors)
   }
 }
 
-std::optional<api::JobSpec> load_job(const std::string& path, std::optional<int> threads,
+std::optional<api::JobSpec> load_job(const std::string& command, const std::string& path,
+                                     std::optional<int> threads,
                                      const api::ValidationLimits& limits) {
   std::string text;
   try {
     text = read_job_text(path);
   } catch (const std::exception& e) {
-    std::cerr << "slipfront: " << e.what() << '\n';
+    std::cerr << command << ": " << e.what() << '\n';
     return std::nullopt;
   }
 

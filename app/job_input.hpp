@@ -2,11 +2,11 @@
 #pragma once
 
 #include "api/job_spec.hpp"
-#include "api/memory_size.hpp"
 
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace slipfront::app {
 
@@ -18,13 +18,10 @@ std::string read_job_text(const std::string& path);
 void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors);
 
 // Reads and validates the job at `path` against `limits`. On any problem prints it to
-// stderr and returns nothing. `threads`, when given, overrides the job's "threads" field
-// before validation.
-std::optional<api::JobSpec> load_job(const std::string& path,
-                                     std::optional<int> threads = std::nullopt,
-                                     const api::ValidationLimits& limits = {});
-
-// A memory size for --max-memory (api/memory_size.hpp).
-using api::parse_memory_size;
+// stderr (a file that cannot be read after `command`: "slipfront run: ...") and returns
+// nothing. `threads`, when given, overrides the job's "threads" field before validation.
+std::optional<api::JobSpec> load_job(const std::string& command, const std::string& path,
+                                     std::optional<int> threads,
+                                     const api::ValidationLimits& limits);
 
 } // namespace slipfront::app

@@ -4,47 +4,50 @@
 //   slipfront presets scec_tpv3_2d > tpv3.json && slipfront run tpv3.json
 // A job file may also name it: {"preset": "scec_tpv3_2d", "method": "spectral_bi"}.
 #include "app/commands.hpp"
+#include "app/options.hpp"
 
 #include "api/presets.hpp"
 
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 namespace slipfront::app {
 
-void print_presets_usage(std::ostream& out) {
-  out << R"(usage: slipfront presets [NAME] [--json]
+namespace {
 
-Without NAME: the presets, one per line (name and title), or with --json the whole list
-({"presets": [{name, origin, title, description, reference, spec}]}, as GET /api/v1/presets).
-With NAME: that preset's job as JSON on stdout (by FE unless the preset says), to run or
-edit; with --json the whole entry, its job by each method under "specs".
-A job file may name a preset and change some fields:
-  {"preset": "scec_tpv3_2d", "method": "spectral_bi"}
-(the preset's job with the file's other members merged over it; docs/presets.md).
+struct PresetsOptions {
+  std::string name;
+  bool json = false;
+};
 
-exit codes: 0 success, 2 unknown preset or argument.
-)";
+int list_presets(const PresetsOptions& options);
+
+} // namespace
+
+Command add_presets_command(CLI::App& slipfront) {
+  auto options = std::make_shared<PresetsOptions>();
+  CLI::App* command = add_command(
+      slipfront, "presets",
+      "The presets a job may start from (the field's standard scenes and the examples): one "
+      "per line, name and title; with NAME that preset's job as JSON on stdout (by FE unless "
+      "the preset says), to run or edit. A job file may name a preset and change some fields "
+      "(the preset's job with the file's other members merged over it; docs/presets.md):\n"
+      "  {\"preset\": \"scec_tpv3_2d\", \"method\": \"spectral_bi\"}",
+      "exit codes: 0 success, 2 unknown preset or invalid command line.");
+  command->add_option("NAME", options->name, "a preset's name (`slipfront presets` lists them)");
+  command->add_flag("--json", options->json,
+                    "without NAME the whole list ({\"presets\": [{name, origin, title, "
+                    "description, reference, spec}]}, as GET /api/v1/presets); with NAME the "
+                    "whole entry, its job by each method under \"specs\"");
+  return {command, [options] { return list_presets(*options); }};
 }
 
-int presets_command(const std::vector<std::string>& args) {
-  if (wants_help(args)) {
-    print_presets_usage(std::cout);
-    return exit_code::success;
-  }
-  bool json = false;
-  std::string name;
-  for (const std::string& arg : args) {
-    if (arg == "--json") {
-      json = true;
-    } else if (!arg.empty() && arg[0] != '-' && name.empty()) {
-      name = arg;
-    } else {
-      std::cerr << "slipfront presets: unexpected argument \"" << arg << "\"\n\n";
-      print_presets_usage(std::cerr);
-      return exit_code::bad_input;
-    }
-  }
+namespace {
+
+int list_presets(const PresetsOptions& options) {
+  const std::string& name = options.name;
+  const bool json = options.json;
   if (!name.empty()) {
     const api::Preset* preset = api::find_preset(name);
     if (preset == nullptr) {
@@ -67,5 +70,7 @@ int presets_command(const std::vector<std::string>& args) {
     std::cout << std::left << std::setw(28) << preset.name << ' ' << preset.title << '\n';
   return exit_code::success;
 }
+
+} // namespace
 
 } // namespace slipfront::app

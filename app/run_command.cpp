@@ -2,6 +2,7 @@
 //                        [--progress-file F] [--report-file F]`
 #include "app/commands.hpp"
 #include "app/job_input.hpp"
+#include "app/options.hpp"
 #include "app/progress_display.hpp"
 
 #include "api/result_xdmf.hpp"
@@ -14,6 +15,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 namespace slipfront::app {
@@ -46,65 +48,47 @@ struct RunOptions {
   std::string report_path;   // written once the run has a result (or diverged)
 };
 
-// Parses the arguments; prints the problem and returns nothing if they are wrong.
-std::optional<RunOptions> parse_options(const std::vector<std::string>& args) {
-  RunOptions options;
-  bool have_job = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    const bool has_value = i + 1 < args.size();
-    if (arg == "--output" && has_value) {
-      options.output_path = args[++i];
-    } else if (arg == "--threads" && has_value) {
-      try {
-        std::size_t used = 0;
-        options.threads = std::stoi(args[++i], &used);
-        if (used != args[i].size()) throw std::invalid_argument("trailing characters");
-      } catch (const std::exception&) {
-        std::cerr << "slipfront run: --threads needs an integer, got \"" << args[i] << "\"\n";
-        return std::nullopt;
-      }
-    } else if (arg == "--max-memory" && has_value) {
-      const std::optional<double> bytes = parse_memory_size(args[++i]);
-      if (!bytes) {
-        std::cerr << "slipfront run: --max-memory needs a size such as 8G or 500M, got \""
-                  << args[i] << "\"\n";
-        return std::nullopt;
-      }
-      options.limits.max_memory_bytes = *bytes;
-    } else if (arg == "--progress-file" && has_value) {
-      options.progress_path = args[++i];
-    } else if (arg == "--report-file" && has_value) {
-      options.report_path = args[++i];
-    } else if (arg == "--quiet") {
-      options.quiet = true;
-    } else if ((arg.starts_with("-") && arg != "-") || have_job) {
-      std::cerr << "slipfront run: unexpected argument \"" << arg
-                << "\" (see slipfront run --help)\n";
-      return std::nullopt;
-    } else {
-      options.job_path = arg;
-      have_job = true;
-    }
-  }
-  if (!have_job) {
-    std::cerr << "slipfront run: missing JOB.json (see slipfront run --help)\n";
-    return std::nullopt;
-  }
-  return options;
-}
+int run(const RunOptions& options);
 
 } // namespace
 
-int run_command(const std::vector<std::string>& args) {
-  if (wants_help(args)) {
-    print_run_usage(std::cout);
-    return exit_code::success;
-  }
-  const std::optional<RunOptions> options = parse_options(args);
-  if (!options) return exit_code::bad_input;
+Command add_run_command(CLI::App& slipfront) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* command = add_command(
+      slipfront, "run",
+      "Run one job in the foreground; progress on stderr (a bar on a terminal, a line every "
+      "few seconds otherwise, and a final line with the outcome, arrest position and wall "
+      "time), the metrics as one JSON object on stdout.",
+      "exit codes: 0 success, 1 the run failed, 2 invalid job or command line, 3 diverged, "
+      "130 interrupted (SIGINT). The job JSON: docs/api-job-spec.md.");
+  add_job_file(*command, options->job_path);
+  command
+      ->add_option("--output", options->output_path,
+                   "write the HDF5 result file (docs/hdf5-layout.md) and its XDMF sidecar "
+                   "RESULT.xdmf (ParaView, VisIt); written only when the run ends with a result")
+      ->type_name("RESULT.h5");
+  add_threads(*command, options->threads);
+  add_max_memory(*command, options->limits.max_memory_bytes, "8G");
+  add_quiet(*command, options->quiet);
+  command
+      ->add_option("--progress-file", options->progress_path,
+                   "rewrite F about twice a second with the progress as JSON (fraction, time, "
+                   "duration, steps, eta_s, wall_s), written to F.tmp and renamed: what the "
+                   "server's SLURM executor follows (docs/cluster.md)")
+      ->type_name("F");
+  command
+      ->add_option("--report-file", options->report_path,
+                   "write F once the run has a result or diverged: metrics, front, result "
+                   "file (docs/api-job-spec.md \"The CLI\")")
+      ->type_name("F");
+  return {command, [options] { return run(*options); }};
+}
+
+namespace {
+
+int run(const RunOptions& options) {
   const std::optional<api::JobSpec> job =
-      load_job(options->job_path, options->threads, options->limits);
+      load_job("slipfront run", options.job_path, options.threads, options.limits);
   if (!job) return exit_code::bad_input;
 
   ProgressDisplay display(std::cerr, ::isatty(STDERR_FILENO) == 1);
@@ -112,10 +96,10 @@ int run_command(const std::vector<std::string>& args) {
   hooks.cancel = &interrupted;
   std::string progress_error; // reported once: the run goes on without the file
   hooks.on_progress = [&](const Progress& p) {
-    if (!options->quiet) display.update(p);
-    if (options->progress_path.empty()) return;
+    if (!options.quiet) display.update(p);
+    if (options.progress_path.empty()) return;
     try {
-      api::write_json_atomically(options->progress_path, api::progress_json(p), false);
+      api::write_json_atomically(options.progress_path, api::progress_json(p), false);
     } catch (const std::exception& e) {
       if (progress_error.empty()) {
         progress_error = e.what();
@@ -127,14 +111,14 @@ int run_command(const std::vector<std::string>& args) {
 
   api::JobOutput output;
   try {
-    output = api::run_job(*job, options->output_path, hooks);
+    output = api::run_job(*job, options.output_path, hooks);
   } catch (const std::exception& e) {
     display.finish();
     std::cerr << "slipfront run: " << e.what() << '\n';
     return exit_code::failure;
   }
   display.finish();
-  if (!options->quiet && !output.result.cancelled)
+  if (!options.quiet && !output.result.cancelled)
     std::cerr << format_final(output.result.metrics, job->params.time.duration) << std::endl;
 
   if (output.result.cancelled) {
@@ -143,9 +127,9 @@ int run_command(const std::vector<std::string>& args) {
     return exit_code::interrupted;
   }
 
-  if (!options->report_path.empty()) {
+  if (!options.report_path.empty()) {
     try {
-      api::write_json_atomically(options->report_path, api::run_report_json(output));
+      api::write_json_atomically(options.report_path, api::run_report_json(output));
     } catch (const std::exception& e) {
       std::cerr << "slipfront run: report file: " << e.what() << '\n';
       return exit_code::failure;
@@ -174,10 +158,12 @@ int run_command(const std::vector<std::string>& args) {
 
   if (output.result.metrics.outcome == Outcome::diverged) {
     std::cerr << "slipfront run: the run diverged: " << output.result.metrics.message
-              << (options->output_path.empty() ? "" : "; no result file written") << '\n';
+              << (options.output_path.empty() ? "" : "; no result file written") << '\n';
     return exit_code::diverged;
   }
   return exit_code::success;
 }
+
+} // namespace
 
 } // namespace slipfront::app

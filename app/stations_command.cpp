@@ -1,6 +1,7 @@
 // `slipfront stations RESULT.h5 [--csv FILE]`: the stations of a result file
 // (docs/hdf5-layout.md "/stations"): their rupture times, or every step as CSV.
 #include "app/commands.hpp"
+#include "app/options.hpp"
 
 #include "api/result_stations.hpp"
 #include "api/station_csv.hpp"
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 namespace slipfront::app {
 
@@ -33,43 +35,49 @@ void print_rupture_times(std::ostream& out, const StationRecords& r) {
   }
 }
 
+struct StationsOptions {
+  std::string result_path;
+  std::string csv; // "" = the rupture times; "-" = the CSV on stdout
+};
+
+int show_stations(const StationsOptions& options);
+
 } // namespace
 
-int stations_command(const std::vector<std::string>& args) {
-  if (wants_help(args)) {
-    print_stations_usage(std::cout);
-    return exit_code::success;
-  }
-  std::vector<std::string> files;
-  std::string csv;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--csv") {
-      if (i + 1 == args.size()) {
-        std::cerr << "slipfront stations: --csv needs a FILE (or - for standard output)\n";
-        return exit_code::bad_input;
-      }
-      csv = args[++i];
-    } else if (args[i].starts_with("-")) {
-      std::cerr << "slipfront stations: unexpected argument \"" << args[i]
-                << "\" (see slipfront stations --help)\n";
-      return exit_code::bad_input;
-    } else {
-      files.push_back(args[i]);
-    }
-  }
-  if (files.size() != 1) {
-    std::cerr << "slipfront stations: expects exactly one RESULT.h5 (see slipfront stations "
-                 "--help)\n";
-    return exit_code::bad_input;
-  }
+Command add_stations_command(CLI::App& slipfront) {
+  auto options = std::make_shared<StationsOptions>();
+  CLI::App* command = add_command(
+      slipfront, "stations",
+      "The on-fault stations of a result file (the job's \"stations\"; docs/hdf5-layout.md): "
+      "each station's x1, the nodes it is read from and its rupture time; or, with --csv, "
+      "every recorded step as CSV in the long format (station_x1, time, slip, slip_rate, "
+      "shear_traction, normal_traction; units in the header comments).",
+      "exit codes: 0 success, 1 the file cannot be read or has no stations, 2 invalid command "
+      "line.");
+  command
+      ->add_option("RESULT.h5", options->result_path,
+                   "a result file of slipfront run or the server")
+      ->required();
+  command
+      ->add_option("--csv", options->csv,
+                   "write every recorded step as CSV to FILE (\"-\": standard output)")
+      ->type_name("FILE");
+  return {command, [options] { return show_stations(*options); }};
+}
+
+namespace {
+
+int show_stations(const StationsOptions& options) {
+  const std::string& csv = options.csv;
+  const std::string& file = options.result_path;
   std::string why;
-  const std::optional<StationRecords> stations = api::read_stations(files[0], why);
+  const std::optional<StationRecords> stations = api::read_stations(file, why);
   if (!stations) {
-    std::cerr << "slipfront stations: " << files[0] << ": " << why << '\n';
+    std::cerr << "slipfront stations: " << file << ": " << why << '\n';
     return exit_code::failure;
   }
   if (stations->empty()) {
-    std::cerr << "slipfront stations: " << files[0]
+    std::cerr << "slipfront stations: " << file
               << " has no stations (its job lists none: \"stations\": {\"x1\": [...]})\n";
     return exit_code::failure;
   }
@@ -90,5 +98,7 @@ int stations_command(const std::vector<std::string>& args) {
   }
   return exit_code::success;
 }
+
+} // namespace
 
 } // namespace slipfront::app

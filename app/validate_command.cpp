@@ -1,42 +1,50 @@
-// `slipfront validate JOB.json [--max-memory SIZE]`
+// `slipfront validate JOB.json [--threads N] [--max-memory SIZE]`: the job checked as `run`
+// would check it, and its mesh and memory estimate.
 #include "app/commands.hpp"
 #include "app/job_input.hpp"
+#include "app/options.hpp"
 
+#include "api/memory_size.hpp"
 #include "solver/mesh_size.hpp"
 #include "solver/simulation.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 namespace slipfront::app {
 
-int validate_command(const std::vector<std::string>& args) {
-  if (wants_help(args)) {
-    print_validate_usage(std::cout);
-    return exit_code::success;
-  }
+namespace {
+
+struct ValidateOptions {
+  std::string job_path;
+  std::optional<int> threads;
   api::ValidationLimits limits;
-  std::vector<std::string> jobs;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--max-memory" && i + 1 < args.size()) {
-      const std::optional<double> bytes = parse_memory_size(args[++i]);
-      if (!bytes) {
-        std::cerr << "slipfront validate: --max-memory needs a size such as 8G or 500M, got \""
-                  << args[i] << "\"\n";
-        return exit_code::bad_input;
-      }
-      limits.max_memory_bytes = *bytes;
-    } else {
-      jobs.push_back(args[i]);
-    }
-  }
-  if (jobs.size() != 1) {
-    std::cerr
-        << "slipfront validate: expects exactly one JOB.json (see slipfront validate --help)\n";
-    return exit_code::bad_input;
-  }
-  const std::optional<api::JobSpec> job = load_job(jobs[0], std::nullopt, limits);
+};
+
+int validate(const ValidateOptions& options);
+
+} // namespace
+
+Command add_validate_command(CLI::App& slipfront) {
+  auto options = std::make_shared<ValidateOptions>();
+  CLI::App* command = add_command(
+      slipfront, "validate",
+      "Check a job without running it, as run would: prints \"ok\", its spec hash, memory "
+      "estimate and mesh, or every error as \"pointer: reason\" on stderr.",
+      "exit codes: 0 valid, 2 invalid job or command line. The job JSON: docs/api-job-spec.md.");
+  add_job_file(*command, options->job_path);
+  add_threads(*command, options->threads);
+  add_max_memory(*command, options->limits.max_memory_bytes, "8G");
+  return {command, [options] { return validate(*options); }};
+}
+
+namespace {
+
+int validate(const ValidateOptions& options) {
+  const std::optional<api::JobSpec> job =
+      load_job("slipfront validate", options.job_path, options.threads, options.limits);
   if (!job) return exit_code::bad_input;
 
   const Geometry& g = job->params.geometry;
@@ -55,7 +63,7 @@ int validate_command(const std::vector<std::string>& args) {
   std::cout << "ok\n"
             << "spec_sha256: " << job->sha256 << '\n'
             << "memory_estimate_bytes: " << std::llround(job->memory_estimate_bytes) << " ("
-            << job->memory_estimate_bytes / 1e6 << " MB)\n"
+            << api::byte_size_text(job->memory_estimate_bytes) << ")\n"
             << "mesh: " << mesh << '\n';
   const LowerSolid& lower = job->params.lower;
   if (lower.elastic() && job->params.method == Method::finite_element) {
@@ -67,5 +75,7 @@ int validate_command(const std::vector<std::string>& args) {
   }
   return exit_code::success;
 }
+
+} // namespace
 
 } // namespace slipfront::app

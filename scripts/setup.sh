@@ -11,6 +11,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake git pkg-config
   libeigen3-dev libboost1.81-all-dev nlohmann-json3-dev libsqlite3-dev sqlite3
+  libcli11-dev   # the command line of slipfront (CLI11, header-only)
   libhdf5-dev hdf5-tools libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-requests python3-pandas
   python3-venv python3-pip python3-setuptools python3-xarray python3-h5netcdf

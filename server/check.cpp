@@ -8,17 +8,14 @@
 
 namespace slipfront::server {
 
-int check_main(const std::vector<std::string>& args) {
-  if (args.size() != 1 || args[0] == "--help" || args[0].empty() || args[0][0] == '-') {
-    std::cerr << "usage: slipfront check DATA_DIR\n"
-                 "  Lists the rows of DATA_DIR/slipfront.db a server cannot read (stored JSON\n"
-                 "  that does not parse) and what PRAGMA quick_check finds; exit 0 if none.\n";
-    return args.size() == 1 && args[0] == "--help" ? 0 : 2;
-  }
-  const std::string path = args[0] + "/slipfront.db";
+int check_main(const std::string& data_dir) {
+  const std::string path = data_dir + "/slipfront.db";
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
-    std::cerr << "slipfront check: " << path << " is not a database file\n";
+    std::cerr << "slipfront check: " << path
+              << (std::filesystem::exists(path, ec) ? ": not a database file"
+                                                    : ": No such file or directory")
+              << '\n';
     return 1;
   }
   try {

@@ -3,12 +3,12 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace slipfront::server {
 
 // Prints "ok" and returns 0 when `PRAGMA quick_check` passes and every stored JSON parses;
-// otherwise prints each problem (one line each) and returns 1; 2 for a usage error.
-int check_main(const std::vector<std::string>& args);
+// otherwise prints each problem (one line each) and returns 1 (also when DATA_DIR holds no
+// database). Its command line: app/check_command.cpp.
+int check_main(const std::string& data_dir);
 
 } // namespace slipfront::server

@@ -64,18 +64,7 @@ private:
 
 } // namespace
 
-int serve_main(int argc, char** argv) {
-  ServerConfig config;
-  try {
-    config = parse_server_args(argc, argv);
-  } catch (const UsageError& e) {
-    if (std::string(e.what()).empty()) {
-      std::cout << usage_text();
-      return 0;
-    }
-    std::cerr << "slipfront serve: " << e.what() << "\n" << usage_text();
-    return 2;
-  }
+int serve_main(const ServerConfig& config) {
   // SIGTERM, SIGINT (stop) and SIGHUP (reload the tokens) are taken by a dedicated thread
   // (sigwait), blocked everywhere else: the threads started below inherit the mask.
   sigset_t signals;

@@ -1,185 +1,182 @@
 #include "server/server_config.hpp"
 
 #include "api/memory_size.hpp"
+#include "api/number_text.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstring>
 #include <fstream>
-#include <functional>
-#include <map>
+#include <optional>
 #include <thread>
 
 namespace slipfront::server {
 
-std::string usage_text() {
-  return "usage: slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR]\n"
-         "         [--workers N] [--queue-limit N] [--max-memory SIZE]\n"
-         "         [--max-body-bytes N] [--max-unsent-bytes N] [--token-file F] [--config F]\n"
-         "         [--io-threads N]\n"
-         "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
-         "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
-         "         [--integrity-check on|off] [--web-dir DIR]\n"
-         "         [--executor local|slurm] [--shared-dir DIR] [--slurm-partition P]\n"
-         "         [--slurm-account A] [--slurm-time-limit T] [--slurm-sbatch-args ARGS]\n"
-         "         [--slurm-binary PATH] [--slurm-max-jobs N] [--slurm-poll-interval-s S]\n"
-         "see docs/server.md\n";
-}
-
 namespace {
 
-template <class T> T parse_number(const std::string& flag, const std::string& text) {
+using Setter = std::function<void(ServerConfig&, const std::string&, const std::string&)>;
+
+template <class T> std::string shown(T value) {
+  if constexpr (std::is_floating_point_v<T>)
+    return api::number_text(value);
+  else
+    return std::to_string(value);
+}
+
+// A number of type T in [min, max] (either bound optional); integers are whole, real numbers
+// finite.
+template <class T>
+T parse_number(const std::string& where, const std::string& text, std::optional<T> min,
+               std::optional<T> max) {
   T value{};
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec == std::errc::result_out_of_range)
+    throw UsageError(where + ": " + text + " is out of range");
   if (ec != std::errc() || end != text.data() + text.size())
-    throw UsageError(flag + ": not a number: \"" + text + "\"");
+    throw UsageError(where + ": not a number: \"" + text + "\"");
+  if constexpr (std::is_floating_point_v<T>)
+    if (!std::isfinite(value)) throw UsageError(where + ": must be finite, got " + text);
+  if (min && max && (value < *min || value > *max))
+    throw UsageError(where + ": must be in [" + shown(*min) + ", " + shown(*max) + "], got " +
+                     text);
+  if (min && value < *min)
+    throw UsageError(where + ": must be >= " + shown(*min) + ", got " + text);
   return value;
 }
 
-double memory_size(const std::string& flag, const std::string& text) {
-  if (text == "0") return 0.0;
-  auto bytes = api::parse_memory_size(text);
-  if (!bytes)
-    throw UsageError(flag + ": needs a size such as 8G or 500M (or 0 = automatic), got \"" + text +
-                     "\"");
-  return *bytes;
+template <class T>
+Setter number(T ServerConfig::*field, std::optional<T> min = std::nullopt,
+              std::optional<T> max = std::nullopt) {
+  return [=](ServerConfig& c, const std::string& where, const std::string& text) {
+    c.*field = parse_number<T>(where, text, min, max);
+  };
 }
 
-using Setter = std::function<void(ServerConfig&, const std::string& flag, const std::string&)>;
+Setter text(std::string ServerConfig::*field) {
+  return [=](ServerConfig& c, const std::string&, const std::string& text) { c.*field = text; };
+}
 
-const std::map<std::string, Setter>& setters() {
-  static const std::
-      map<std::string, Setter>
-          table =
-              {
-                  {"host",
-                   [](ServerConfig& c, const std::string&, const std::string& v) { c.host = v; }},
-                  {"port",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.port = parse_number<int>(f, v);
-                     if (c.port < 0 || c.port > 65535)
-                       throw UsageError(f + ": must be in [0, 65535]");
-                   }},
-                  {"data-dir", [](ServerConfig& c, const std::string&,
-                                  const std::string& v) { c.data_dir = v; }},
-                  {"workers",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.workers = parse_number<int>(f, v);
-                     if (c.workers < 0 || c.workers > 1024)
-                       throw UsageError(f + ": must be in [0, 1024]");
-                   }},
-                  {"queue-limit",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.queue_limit = parse_number<std::size_t>(f, v);
-                   }},
-                  // The name `run` and `validate` use; 0 = 3/4 of RAM / workers.
-                  {"max-memory",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_memory_bytes = memory_size(f, v);
-                   }},
-                  // The old name, kept so that existing unit files and configs still start.
-                  {"max-memory-bytes",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_memory_bytes = memory_size(f, v);
-                   }},
-                  {"max-result-bytes",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_result_bytes = parse_number<double>(f, v);
-                     if (!(c.max_result_bytes > 0)) throw UsageError(f + ": must be > 0");
-                   }},
-                  {"max-body-bytes",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_body_bytes = parse_number<std::uint64_t>(f, v);
-                   }},
-                  {"max-unsent-bytes",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_unsent_bytes = parse_number<std::uint64_t>(f, v);
-                     if (c.max_unsent_bytes < (1u << 20))
-                       throw UsageError(f + ": must be >= 1 MiB");
-                   }},
-                  {"token-file", [](ServerConfig& c, const std::string&,
-                                    const std::string& v) { c.token_file = v; }},
-                  {"io-threads",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.io_threads = parse_number<int>(f, v);
-                     if (c.io_threads < 1 || c.io_threads > 64)
-                       throw UsageError(f + ": must be in [1, 64]");
-                   }},
-                  {"request-timeout-s",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.request_timeout_s = parse_number<int>(f, v);
-                     if (c.request_timeout_s < 1) throw UsageError(f + ": must be >= 1");
-                   }},
-                  {"retry-after-s",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.retry_after_s = parse_number<int>(f, v);
-                   }},
-                  {"db-progress-interval-s",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.db_progress_interval_s = parse_number<double>(f, v);
-                   }},
-                  {"min-free-bytes",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.min_free_bytes = parse_number<double>(f, v);
-                     if (!(c.min_free_bytes >= 0)) throw UsageError(f + ": must be >= 0");
-                   }},
-                  {"max-connections",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.max_connections = parse_number<int>(f, v);
-                     if (c.max_connections < 1) throw UsageError(f + ": must be >= 1");
-                   }},
-                  {"executor",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     if (v != "local" && v != "slurm")
-                       throw UsageError(f + ": must be local or slurm");
-                     c.executor = v;
-                   }},
-                  {"shared-dir", [](ServerConfig& c, const std::string&,
-                                    const std::string& v) { c.shared_dir = v; }},
-                  {"slurm-partition", [](ServerConfig& c, const std::string&,
-                                         const std::string& v) { c.slurm_partition = v; }},
-                  {"slurm-account", [](ServerConfig& c, const std::string&,
-                                       const std::string& v) { c.slurm_account = v; }},
-                  {"slurm-time-limit", [](ServerConfig& c, const std::string&,
-                                          const std::string& v) { c.slurm_time_limit = v; }},
-                  {"slurm-sbatch-args", [](ServerConfig& c, const std::string&,
-                                           const std::string& v) { c.slurm_sbatch_args = v; }},
-                  {"slurm-binary",
-                   [](ServerConfig& c, const std::string&,
-                      const std::string& v) { c.slurm_binary = v; }},
-                  {"slurm-max-jobs",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.slurm_max_jobs = parse_number<int>(f, v);
-                     if (c.slurm_max_jobs < 1) throw UsageError(f + ": must be >= 1");
-                   }},
-                  {"slurm-poll-interval-s",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     c.slurm_poll_interval_s = parse_number<double>(f, v);
-                     if (!(c.slurm_poll_interval_s >= 0.05))
-                       throw UsageError(f + ": must be >= 0.05");
-                   }},
-                  {"web-dir", [](ServerConfig& c, const std::string&,
-                                 const std::string& v) { c.web_dir = v; }},
-                  {"integrity-check",
-                   [](ServerConfig& c, const std::string& f, const std::string& v) {
-                     if (v == "on" || v == "true")
-                       c.integrity_check = true;
-                     else if (v == "off" || v == "false")
-                       c.integrity_check = false;
-                     else
-                       throw UsageError(f + ": must be on or off");
-                   }},
-              };
-  return table;
+// The size that `run` and `validate` take (api/memory_size.hpp); 0 = 3/4 of RAM / workers.
+void set_max_memory(ServerConfig& c, const std::string& where, const std::string& text) {
+  if (text == "0") {
+    c.max_memory_bytes = 0.0;
+    return;
+  }
+  const std::optional<double> bytes = api::parse_memory_size(text);
+  if (!bytes) throw UsageError(where + " " + api::memory_size_expected(text));
+  c.max_memory_bytes = *bytes;
+}
+
+void set_max_result_bytes(ServerConfig& c, const std::string& where, const std::string& text) {
+  c.max_result_bytes = parse_number<double>(where, text, std::nullopt, std::nullopt);
+  if (!(c.max_result_bytes > 0)) throw UsageError(where + ": must be > 0, got " + text);
+}
+
+void set_executor(ServerConfig& c, const std::string& where, const std::string& text) {
+  if (text != "local" && text != "slurm")
+    throw UsageError(where + ": must be local or slurm, got \"" + text + "\"");
+  c.executor = text;
+}
+
+void set_integrity_check(ServerConfig& c, const std::string& where, const std::string& text) {
+  if (text == "on" || text == "true")
+    c.integrity_check = true;
+  else if (text == "off" || text == "false")
+    c.integrity_check = false;
+  else
+    throw UsageError(where + ": must be on or off, got \"" + text + "\"");
 }
 
 } // namespace
 
+// The defaults below are ServerConfig's (server_config.hpp); docs/server.md and
+// docs/cluster.md explain each setting at length.
+const std::vector<ServerSetting>& server_settings() {
+  static const std::vector<ServerSetting> settings = {
+      {"host", "ADDRESS",
+       "address to bind (default 127.0.0.1; keep loopback behind a reverse proxy)",
+       text(&ServerConfig::host)},
+      {"port", "N",
+       "port (default 8080); 0 picks a free one, printed as \"listening on http://HOST:PORT\"",
+       number<int>(&ServerConfig::port, 0, 65535)},
+      {"data-dir", "DIR", "database slipfront.db and results/ (default slipfront-data)",
+       text(&ServerConfig::data_dir)},
+      {"workers", "N", "simulations run at once (default 0: one per core)",
+       number<int>(&ServerConfig::workers, 0, 1024)},
+      {"queue-limit", "N", "queued jobs above which POST /jobs answers 503 (default 1000)",
+       number<std::size_t>(&ServerConfig::queue_limit)},
+      // The flag's definition is the one `run` and `validate` share (app/options.cpp); this
+      // entry is the config file's key and the help of the old name.
+      {"max-memory", "SIZE",
+       "refuse a job whose memory estimate is above SIZE (default 0: 3/4 of the physical "
+       "memory shared by the workers)",
+       set_max_memory, "max-memory-bytes"},
+      {"max-result-bytes", "X",
+       "refuse a job whose result file is estimated above X bytes (default 20e9)",
+       set_max_result_bytes},
+      {"max-body-bytes", "N", "larger request bodies get 413 (default 1 MiB)",
+       number<std::uint64_t>(&ServerConfig::max_body_bytes)},
+      {"max-unsent-bytes", "N",
+       "answers built in memory and not yet read, over all connections (default 256 MiB, at "
+       "least 1 MiB)",
+       number<std::uint64_t>(&ServerConfig::max_unsent_bytes, std::uint64_t{1} << 20)},
+      {"token-file", "F", "bearer tokens to submit and cancel (default none: no authentication)",
+       text(&ServerConfig::token_file)},
+      {"io-threads", "N", "threads answering HTTP (default 2)",
+       number<int>(&ServerConfig::io_threads, 1, 64)},
+      {"request-timeout-s", "S",
+       "a request must arrive within S seconds; idle connections close after it (default 30)",
+       number<int>(&ServerConfig::request_timeout_s, 1)},
+      {"retry-after-s", "S", "Retry-After of 503 answers (default 30)",
+       number<int>(&ServerConfig::retry_after_s, 0)},
+      {"db-progress-interval-s", "S",
+       "how often a running job's progress is written to the database (default 3)",
+       number<double>(&ServerConfig::db_progress_interval_s, 0.0)},
+      {"min-free-bytes", "X",
+       "/healthz is degraded below X bytes free in the data dir (default 64 MiB)",
+       number<double>(&ServerConfig::min_free_bytes, 0.0)},
+      {"max-connections", "N", "connections open at once; more get 503 (default 256)",
+       number<int>(&ServerConfig::max_connections, 1)},
+      {"integrity-check", "on|off", "PRAGMA quick_check of the database at start (default on)",
+       set_integrity_check},
+      {"web-dir", "DIR",
+       "the web view's files (default: share/slipfront/web beside the executable)",
+       text(&ServerConfig::web_dir)},
+      {"executor", "local|slurm",
+       "where jobs run: the worker threads, or one sbatch job per run (docs/cluster.md)",
+       set_executor},
+      {"shared-dir", "DIR",
+       "slurm: directory shared with the compute nodes (default DATA_DIR/slurm)",
+       text(&ServerConfig::shared_dir)},
+      {"slurm-partition", "P", "slurm: sbatch --partition (default: the cluster's)",
+       text(&ServerConfig::slurm_partition)},
+      {"slurm-account", "A", "slurm: sbatch --account (default: the user's)",
+       text(&ServerConfig::slurm_account)},
+      {"slurm-time-limit", "T", "slurm: sbatch --time (default: the partition's)",
+       text(&ServerConfig::slurm_time_limit)},
+      {"slurm-sbatch-args", "ARGS",
+       "slurm: more sbatch options, separated by spaces; give them with '=' when they start "
+       "with '-': --slurm-sbatch-args=\"--qos=long\"",
+       text(&ServerConfig::slurm_sbatch_args)},
+      {"slurm-binary", "PATH", "slurm: slipfront on the compute nodes (default: this executable)",
+       text(&ServerConfig::slurm_binary)},
+      {"slurm-max-jobs", "N", "slurm: jobs kept in SLURM at once (default 100)",
+       number<int>(&ServerConfig::slurm_max_jobs, 1)},
+      {"slurm-poll-interval-s", "S",
+       "slurm: how often squeue and progress files are read (default 2)",
+       number<double>(&ServerConfig::slurm_poll_interval_s, 0.05)},
+  };
+  return settings;
+}
+
 void apply_config_file(const std::string& path, ServerConfig& config) {
   std::ifstream in(path);
-  if (!in) throw UsageError("--config: cannot read " + path);
+  if (!in) throw UsageError("--config: cannot read " + path + ": " + std::strerror(errno));
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(in);
@@ -188,40 +185,16 @@ void apply_config_file(const std::string& path, ServerConfig& config) {
   }
   if (!doc.is_object()) throw UsageError("--config " + path + ": must be a JSON object");
   for (auto& [key, value] : doc.items()) {
-    std::string flag = key;
-    for (char& c : flag)
+    std::string name = key;
+    for (char& c : name)
       if (c == '_') c = '-';
-    auto it = setters().find(flag);
-    if (it == setters().end() || flag == "config")
-      throw UsageError("--config " + path + ": unknown key \"" + key + "\"");
-    std::string text = value.is_string() ? value.get<std::string>() : value.dump();
-    it->second(config, path + ": " + key, text);
+    const ServerSetting* setting = nullptr;
+    for (const ServerSetting& s : server_settings())
+      if (s.name == name || (!s.old_name.empty() && s.old_name == name)) setting = &s;
+    if (setting == nullptr) throw UsageError("--config " + path + ": unknown key \"" + key + "\"");
+    const std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+    setting->set(config, path + ": " + key, text);
   }
-}
-
-ServerConfig parse_server_args(int argc, char** argv) {
-  ServerConfig config;
-  std::vector<std::pair<std::string, std::string>> flags;
-  for (int i = 0; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") throw UsageError("");
-    if (arg.rfind("--", 0) != 0) throw UsageError("unexpected argument \"" + arg + "\"");
-    std::string name = arg.substr(2), value;
-    if (auto eq = name.find('='); eq != std::string::npos) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
-    } else {
-      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-      value = argv[++i];
-    }
-    if (name != "config" && !setters().count(name)) throw UsageError("unknown flag " + arg);
-    flags.emplace_back(name, value);
-  }
-  for (auto& [name, value] : flags)
-    if (name == "config") apply_config_file(value, config);
-  for (auto& [name, value] : flags)
-    if (name != "config") setters().at(name)(config, "--" + name, value);
-  return config;
 }
 
 void resolve_defaults(ServerConfig& config) {

@@ -1,9 +1,14 @@
-// The server's settings: defaults, then a JSON config file (--config), then flags.
+// The server's settings: defaults, then a JSON config file (--config), then flags. Each
+// setting is described once (server_settings()): its name, the help of its flag and how its
+// value is read; `slipfront serve` (app/serve_command.cpp) makes its flags from that table
+// and the config file takes the same keys.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace slipfront::server {
 
@@ -40,13 +45,24 @@ struct ServerConfig {
   std::string web_dir; // the web view's files; "" = beside the executable (docs/web.md)
 };
 
+// A value the server cannot take: the reason names the flag or the config file's key.
 class UsageError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
 
-// Flags of `slipfront serve` (argv after "serve"). Throws UsageError with the reason.
-ServerConfig parse_server_args(int argc, char** argv);
+// One setting: the flag `--NAME` (and the config file's key NAME, with '_' for '-').
+struct ServerSetting {
+  std::string name;       // "port"
+  std::string value_name; // "N", shown in the help: --port N
+  std::string help;       // its line in `slipfront serve --help`, with the default
+  // Reads `text` into the config; throws UsageError naming `where` (the flag or the key).
+  std::function<void(ServerConfig&, const std::string& where, const std::string& text)> set;
+  std::string old_name = ""; // a former name still accepted ("max-memory-bytes")
+};
+
+// Every setting, in the order `slipfront serve --help` lists them.
+const std::vector<ServerSetting>& server_settings();
 
 // Keys of the config file: the flag names with '_' for '-', e.g. {"port": 8080,
 // "data_dir": "/var/lib/slipfront", "workers": 4}. Unknown keys are errors.
@@ -54,7 +70,5 @@ void apply_config_file(const std::string& path, ServerConfig& config);
 
 // Fills the 0 defaults (workers, memory limit) from the machine.
 void resolve_defaults(ServerConfig& config);
-
-std::string usage_text();
 
 } // namespace slipfront::server

@@ -2,10 +2,12 @@
 """Runs one command and checks its exit code and output (the CLI tests of tests/api).
 
 usage: run_cli_case.py --exit N [--stdout REGEX]... [--stderr REGEX]... [--stdin FILE]
+                       [--stdout-lacks REGEX]... [--stderr-lacks REGEX]...
                        [--absent PATH]... -- COMMAND ARGS...
 
-Every --stdout/--stderr regular expression must be found in that stream; every --absent
-path (and any PATH.tmp.*) must not exist after the command.
+Every --stdout/--stderr regular expression must be found in that stream (re.M), and no
+--stdout-lacks/--stderr-lacks one; every --absent path (and any PATH.tmp.*) must not exist
+after the command.
 """
 import argparse
 import glob
@@ -20,6 +22,8 @@ def main():
     parser.add_argument("--exit", type=int, required=True)
     parser.add_argument("--stdout", action="append", default=[])
     parser.add_argument("--stderr", action="append", default=[])
+    parser.add_argument("--stdout-lacks", action="append", default=[])
+    parser.add_argument("--stderr-lacks", action="append", default=[])
     parser.add_argument("--stdin")
     parser.add_argument("--absent", action="append", default=[])
     parser.add_argument("command", nargs=argparse.REMAINDER)
@@ -34,6 +38,9 @@ def main():
     for stream, patterns in (("stdout", args.stdout), ("stderr", args.stderr)):
         text = getattr(run, stream)
         problems += [f"{stream} lacks /{p}/" for p in patterns if not re.search(p, text, re.M)]
+    for stream, patterns in (("stdout", args.stdout_lacks), ("stderr", args.stderr_lacks)):
+        text = getattr(run, stream)
+        problems += [f"{stream} has /{p}/" for p in patterns if re.search(p, text, re.M)]
     for path in args.absent:
         problems += [f"{p} exists" for p in [path] + glob.glob(path + ".tmp.*") if os.path.exists(p)]
     if problems:
