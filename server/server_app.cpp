@@ -53,8 +53,28 @@ ServerApp::~ServerApp() {
   shutdown();
 }
 
+// The address and port first: a server that cannot listen (a port in use, a host that is
+// not an address) says so before it opens the data dir or writes a line of log.
+void ServerApp::listen() {
+  beast::error_code aec;
+  auto address = net::ip::make_address(config_.host, aec);
+  if (aec) throw std::runtime_error("--host " + config_.host + ": " + aec.message());
+  SessionLimits limits;
+  limits.max_body_bytes = config_.max_body_bytes;
+  limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
+  limits.max_connections = connection_cap(config_.max_connections);
+  offload_pool_ = std::make_unique<net::thread_pool>(2);
+  limits.offload_pool = offload_pool_.get();
+  // Answers built in memory and not yet read by their clients, over all connections.
+  limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
+  listener_ = std::make_shared<Listener>(
+      ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
+      stats_, limits);
+}
+
 void ServerApp::start() {
   namespace fs = std::filesystem;
+  listen();
   std::error_code ec;
   fs::create_directories(fs::path(config_.data_dir) / "results", ec);
   if (ec)
@@ -152,21 +172,6 @@ void ServerApp::start() {
     add_static_routes(router_, files);
   }
 
-  beast::error_code aec;
-  auto address = net::ip::make_address(config_.host, aec);
-  if (aec) throw std::runtime_error("--host " + config_.host + ": " + aec.message());
-  SessionLimits limits;
-  limits.max_body_bytes = config_.max_body_bytes;
-  limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
-  limits.max_connections = connection_cap(config_.max_connections);
-  offload_pool_ = std::make_unique<net::thread_pool>(2);
-  limits.offload_pool = offload_pool_.get();
-  // Answers built in memory and not yet read by their clients, over all connections.
-  limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
-  listener_ = std::make_shared<Listener>(
-      ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
-      stats_, limits);
-
   supervisor_->start(); // resumes every study left running
   executor_->start();
   listener_->run();
@@ -190,6 +195,7 @@ void ServerApp::start() {
            " job(s) queued, memory limit per job " +
            std::to_string(static_cast<long long>(config_.max_memory_bytes)) + " bytes" +
            (tokens_ ? ", " + std::to_string(tokens_->size()) + " token(s)" : ", no auth"));
+  started_ = true;
 }
 
 SlurmExecutorOptions
@@ -246,7 +252,10 @@ void ServerApp::shutdown() {
   if (shut_down_) return;
   shut_down_ = true;
   draining_ = true;
-  log_info("shutting down: no new connections; running jobs stop and are queued again");
+  // A start that failed says why (serve.cpp) and nothing else: what it opened is released
+  // quietly.
+  if (started_)
+    log_info("shutting down: no new connections; running jobs stop and are queued again");
   if (listener_) listener_->stop();
   // Local: each running job stops at its next step. SLURM: the jobs stay in SLURM.
   if (executor_) executor_->drain();
@@ -262,7 +271,7 @@ void ServerApp::shutdown() {
   supervisor_.reset();
   study_store_.reset();
   store_.reset(); // checkpoints the WAL and closes the database
-  log_info("stopped");
+  if (started_) log_info("stopped");
 }
 
 } // namespace slipfront::server

@@ -1,11 +1,11 @@
 // The whole server: store, queue, workers, HTTP. serve_main() builds one from the flags;
 // tests may build one with another JobRunner.
 //
-// start(): lock the data dir (DataDirLock: one server per directory), open (and migrate) the
-// database, re-queue jobs a crash left running (with the SLURM executor: those not in SLURM;
-// it re-attaches to the others), queue every queued job, start the executor, bind the
-// listener. shutdown(): stop accepting, stop the running jobs at their next step and put them back
-// to queued, close the database.
+// start(): bind the listener (first: a port in use is the first thing said), lock the data
+// dir (DataDirLock: one server per directory), open (and migrate) the database, re-queue jobs
+// a crash left running (with the SLURM executor: those not in SLURM; it re-attaches to the
+// others), queue every queued job, start the executor, accept. shutdown(): stop accepting, stop the
+// running jobs at their next step and put them back to queued, close the database.
 #pragma once
 
 #include "server/core/server_stats.hpp"
@@ -60,6 +60,7 @@ public:
   const Router& router() const { return router_; }
 
 private:
+  void listen();
   SlurmExecutorOptions slurm_options(std::function<void(const std::string&)> on_finished) const;
 
   ServerConfig config_;
@@ -89,6 +90,7 @@ private:
   std::condition_variable stop_cv_;
   bool stop_requested_ = false;
   bool shut_down_ = false;
+  bool started_ = false; // start() finished: shutdown() logs what it does
 };
 
 } // namespace slipfront::server

@@ -20,6 +20,10 @@ Listener::Listener(net::io_context& ioc, const tcp::endpoint& endpoint, const Ro
   if (!ec) acceptor_.set_option(net::socket_base::reuse_address(true), ec);
   if (!ec) acceptor_.bind(endpoint, ec);
   if (!ec) acceptor_.listen(net::socket_base::max_listen_connections, ec);
+  if (ec == net::error::address_in_use)
+    throw std::runtime_error("cannot listen on " + where + ": " + ec.message() +
+                             " (another server listens there: stop it, or give another --port; "
+                             "--port 0 picks a free one)");
   if (ec) throw std::runtime_error("cannot listen on " + where + ": " + ec.message());
 }
 
