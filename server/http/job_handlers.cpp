@@ -208,8 +208,8 @@ Response job_defaults(RequestContext& rc) {
 } // namespace
 
 void add_job_routes(Router& router, ServerContext& ctx) {
-  router.add(http::verb::post, api_prefix + "/jobs",
-             [&ctx](RequestContext& rc) { return submit(ctx, rc); });
+  router.add_json_body(http::verb::post, api_prefix + "/jobs",
+                       [&ctx](RequestContext& rc) { return submit(ctx, rc); });
   router.add(
       http::verb::get, api_prefix + "/jobs",
       [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); }, true);

@@ -3,6 +3,10 @@
 
 #include "server/core/priority.hpp"
 #include "server/http/handlers.hpp"
+#include "solver/simulation.hpp"
+
+#include <map>
+#include <string>
 
 namespace slipfront::server {
 
@@ -11,10 +15,17 @@ const char* document = R"json({
   "openapi": "3.0.3",
   "info": {
     "title": "slipfront",
-    "version": "1",
-    "description": "Simulation service for frictional interface rupture: submit FE rupture jobs, follow them, fetch metrics, fronts and HDF5 results (docs/server.md)."
+    "version": "the code's: added by openapi_document()",
+    "description": "Simulation service for frictional interface rupture (Kammer et al. 2014) by two methods: the explicit finite-element method of the paper (method \"fe\", one or two elastic blocks) and the spectral boundary-integral method (method \"spectral_bi\", elastic half-spaces). Submit jobs, follow them, fetch their metrics, slip fronts, interface fields and HDF5 results; run studies over L and n_d; start from presets. Every GET also answers HEAD (same status and headers, no body). Request bodies are JSON: another Content-Type is answered 415. A method a path does not take is answered 405 with Allow. Guide: docs/server.md."
   },
   "servers": [{"url": "/"}],
+  "tags": [
+    {"name": "jobs", "description": "Submit, list, search, export and cancel jobs; the job schema and defaults"},
+    {"name": "results", "description": "What a finished job produced: metrics, front, interface fields, stations, the HDF5 file and its XDMF sidecar"},
+    {"name": "studies", "description": "Grids and convergence studies over L and n_d, their maps and critical lengths"},
+    {"name": "presets", "description": "The standard scenes and examples a job may start from"},
+    {"name": "ops", "description": "Health, Prometheus metrics and this document"}
+  ],
   "components": {
     "securitySchemes": {"bearer": {"type": "http", "scheme": "bearer",
       "description": "Needed to submit and cancel when the server runs with --token-file."}},
@@ -274,14 +285,46 @@ nlohmann::json priority_schema() {
   return {{"type", "integer"}, {"minimum", lowest_priority}, {"maximum", highest_priority}};
 }
 
+// The tag of each path (the groups of the API docs page); every path has one.
+const std::map<std::string, std::string>& path_tags() {
+  static const std::map<std::string, std::string> tags = {
+      {"/api/v1/jobs", "jobs"},
+      {"/api/v1/jobs/{id}", "jobs"},
+      {"/api/v1/jobs/{id}/cancel", "jobs"},
+      {"/api/v1/job-defaults", "jobs"},
+      {"/api/v1/schema/job.json", "jobs"},
+      {"/api/v1/jobs/{id}/result.h5", "results"},
+      {"/api/v1/jobs/{id}/result.xdmf", "results"},
+      {"/api/v1/jobs/{id}/metrics", "results"},
+      {"/api/v1/jobs/{id}/front", "results"},
+      {"/api/v1/jobs/{id}/fields/{name}", "results"},
+      {"/api/v1/jobs/{id}/stations.csv", "results"},
+      {"/api/v1/studies", "studies"},
+      {"/api/v1/studies/{id}", "studies"},
+      {"/api/v1/studies/{id}/cancel", "studies"},
+      {"/api/v1/studies/{id}/speed-accuracy", "studies"},
+      {"/api/v1/convergence-map", "studies"},
+      {"/api/v1/presets", "presets"},
+      {"/api/v1/presets/{name}", "presets"},
+      {"/api/v1/openapi.json", "ops"},
+      {"/healthz", "ops"},
+      {"/metrics", "ops"},
+  };
+  return tags;
+}
+
 } // namespace
 
 // What holds for every operation, added here rather than repeated in the text above:
-// - every GET resource also answers HEAD: the same status and headers, no body (router.cpp);
+// - its tag (path_tags);
 // - any request may get a 503 with Retry-After: the connection cap (listener.cpp) answers it
-//   before routing, and a storage error in any handler becomes one (router.cpp).
+//   before routing, and a storage error in any handler becomes one (router.cpp);
+// - an operation with a JSON body answers 415 to another Content-Type (router.cpp).
+// HEAD is not listed beside each GET (it would double every row of the API docs page); the
+// description says that every GET answers it (router.cpp).
 nlohmann::json openapi_document() {
   nlohmann::json doc = nlohmann::json::parse(document);
+  doc["info"]["version"] = code_version(); // what `slipfront --version` prints
   // The job body: the job schema, plus the two submission options the server reads and
   // removes before validation (docs/server.md).
   nlohmann::json job = api::job_json_schema();
@@ -299,16 +342,17 @@ nlohmann::json openapi_document() {
   for (auto& parameter : doc["paths"]["/api/v1/jobs"]["post"]["parameters"])
     if (parameter["name"] == "priority") parameter["schema"] = priority_schema();
   const nlohmann::json unavailable = {{"$ref", "#/components/responses/Unavailable"}};
+  const nlohmann::json unsupported = {
+      {"description", "The body's Content-Type is not application/json (Accept names it)"},
+      {"headers", {{"Accept", {{"schema", {{"type", "string"}}}}}}},
+      {"content",
+       {{"application/problem+json", {{"schema", {{"$ref", "#/components/schemas/Problem"}}}}}}}};
   for (auto& [path, operations] : doc["paths"].items()) {
-    if (operations.contains("get")) {
-      nlohmann::json head = operations["get"];
-      head["summary"] = "The headers of GET " + path + " (no body)";
-      for (auto& [status, response] : head["responses"].items())
-        if (response.is_object()) response.erase("content");
-      operations["head"] = std::move(head);
-    }
-    for (auto& [method, operation] : operations.items())
+    for (auto& [method, operation] : operations.items()) {
+      operation["tags"] = {path_tags().at(path)};
       if (!operation["responses"].contains("503")) operation["responses"]["503"] = unavailable;
+      if (operation.contains("requestBody")) operation["responses"]["415"] = unsupported;
+    }
   }
   return doc;
 }

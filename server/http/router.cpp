@@ -5,6 +5,11 @@
 #include "server/http/query_string.hpp"
 #include "server/http/responses.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <optional>
+#include <string_view>
+
 namespace slipfront::server {
 
 namespace {
@@ -29,6 +34,41 @@ std::vector<std::string> split_path(const std::string& path) {
   return out;
 }
 
+// The media type of a Content-Type value, lower case, without parameters:
+// "Application/JSON; charset=utf-8" -> "application/json".
+std::string media_type(std::string_view content_type) {
+  std::string type(content_type.substr(0, content_type.find(';')));
+  type.erase(0, type.find_first_not_of(" \t"));
+  type.erase(type.find_last_not_of(" \t") + 1);
+  for (char& c : type)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return type;
+}
+
+// 415 for a body the route cannot read: the only media type it takes is application/json
+// (RFC 9110 §15.5.16: Accept names it).
+std::optional<Response> refuse_media_type(const Request& request) {
+  const auto field = request.find(http::field::content_type);
+  if (field == request.end() || media_type(field->value()) == "application/json")
+    return std::nullopt;
+  auto res = problem_response(request, http::status::unsupported_media_type,
+                              "Content-Type \"" + std::string(field->value()) +
+                                  "\" is not accepted here: send the body as application/json");
+  res.set(http::field::accept, "application/json");
+  return Response(std::move(res));
+}
+
+// "GET, HEAD, POST": the methods of the routes of one path, HEAD wherever GET is.
+std::string allow_header(std::vector<std::string> methods) {
+  if (std::find(methods.begin(), methods.end(), "GET") != methods.end()) methods.push_back("HEAD");
+  std::sort(methods.begin(), methods.end());
+  methods.erase(std::unique(methods.begin(), methods.end()), methods.end());
+  std::string allow;
+  for (const std::string& method : methods)
+    allow += (allow.empty() ? "" : ", ") + method;
+  return allow;
+}
+
 bool match(const std::vector<std::string>& pattern, const std::vector<std::string>& path,
            std::map<std::string, std::string>& params) {
   if (pattern.size() != path.size()) return false;
@@ -46,6 +86,11 @@ bool match(const std::vector<std::string>& pattern, const std::vector<std::strin
 void Router::add(http::verb method, const std::string& pattern, Handler handler, bool offload) {
   routes_.push_back({method, pattern, split_path(pattern), std::move(handler),
                      offload || method != http::verb::get});
+}
+
+void Router::add_json_body(http::verb method, const std::string& pattern, Handler handler) {
+  add(method, pattern, std::move(handler));
+  routes_.back().json_body = true;
 }
 
 bool Router::offloaded(const Request& request) const {
@@ -81,16 +126,18 @@ Response Router::answer(const Request& request) const {
                             "malformed request target: give a path (/api/v1/...) or an absolute "
                             "http:// or https:// URL");
   auto segments = split_path(target->path);
-  std::string allow;
+  std::vector<std::string> allowed; // the methods of the path, for a 405
   // HEAD is answered by the GET route, without the body (RFC 9110 §9.3.2).
   const bool head = request.method() == http::verb::head;
   for (const auto& route : routes_) {
     std::map<std::string, std::string> params;
     if (!match(route.segments, segments, params)) continue;
     if (route.method != request.method() && !(head && route.method == http::verb::get)) {
-      allow += (allow.empty() ? "" : ", ") + std::string(http::to_string(route.method));
+      allowed.emplace_back(http::to_string(route.method));
       continue;
     }
+    if (route.json_body)
+      if (auto refusal = refuse_media_type(request)) return std::move(*refusal);
     RequestContext ctx{request, target->path, std::move(params), target->query, {}};
     try {
       return route.handler(ctx);
@@ -113,7 +160,8 @@ Response Router::answer(const Request& request) const {
                               "internal error (the server log has the details)");
     }
   }
-  if (!allow.empty()) {
+  if (!allowed.empty()) {
+    const std::string allow = allow_header(std::move(allowed));
     auto res = problem_response(request, http::status::method_not_allowed,
                                 "method " + std::string(request.method_string()) +
                                     " is not allowed here; allowed: " + allow);

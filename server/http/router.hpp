@@ -1,5 +1,6 @@
 // Maps method + path pattern ("/api/v1/jobs/{id}") to a handler. A path that matches
-// with another method is 405 (with Allow); no match is 404.
+// with another method is 405, with Allow listing every method of the path (HEAD wherever GET
+// is); no match is 404. A route that reads a JSON body answers 415 to another Content-Type.
 #pragma once
 
 #include "server/http/api_prefix.hpp"
@@ -20,6 +21,10 @@ public:
   // quick (docs/server.md, "Threads"). Every route of another method than GET is offloaded
   // whatever the flag: it writes to the database.
   void add(http::verb method, const std::string& pattern, Handler handler, bool offload = false);
+  // A route whose handler reads the body as JSON: a request whose Content-Type is another
+  // media type than application/json is answered 415 (naming the type to send) before the
+  // handler runs. A body without Content-Type is read as JSON.
+  void add_json_body(http::verb method, const std::string& pattern, Handler handler);
   bool offloaded(const Request& request) const;
   // Runs the matching handler; errors it throws become a 500 problem (logged with context),
   // except storage that cannot take writes now (disk full...): 503 with Retry-After.
@@ -33,6 +38,7 @@ public:
     std::vector<std::string> segments;
     Handler handler;
     bool offload = false;
+    bool json_body = false; // add_json_body
   };
   const std::vector<Route>& routes() const { return routes_; }
 

@@ -219,8 +219,8 @@ Response convergence_map(ServerContext& ctx, RequestContext& rc) {
 } // namespace
 
 void add_study_routes(Router& router, ServerContext& ctx) {
-  router.add(http::verb::post, api_prefix + "/studies",
-             [&ctx](RequestContext& rc) { return create_study(ctx, rc); });
+  router.add_json_body(http::verb::post, api_prefix + "/studies",
+                       [&ctx](RequestContext& rc) { return create_study(ctx, rc); });
   router.add(
       http::verb::get, api_prefix + "/studies",
       [&ctx](RequestContext& rc) { return list_studies(ctx, rc); }, true);

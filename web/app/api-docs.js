@@ -1,21 +1,31 @@
 // The OpenAPI document rendered by Swagger UI (vendored from npm, served locally), or, when
 // the build had no Swagger UI, by the small renderer below.
-import { h, clear, fill } from './dom.js';
+import { h, append, clear, fill } from './dom.js';
 
 const URL = '/api/v1/openapi.json';
 
+function endpoint(path, method, op) {
+  const params = (op.parameters || []).map((p) => (p.$ref ? p.$ref.split('/').pop() : `${p.name} (${p.in})`));
+  return h('section', { class: 'card endpoint' },
+    h('h3', {}, h('span', { class: `verb verb-${method}`, text: method.toUpperCase() }), ' ', h('code', { text: path })),
+    h('p', { text: op.summary || '' }), op.description ? h('p', { class: 'muted', text: op.description }) : null,
+    params.length ? h('p', {}, h('strong', { text: 'parameters: ' }), params.join(', ')) : null,
+    h('p', {}, h('strong', { text: 'responses: ' }), Object.keys(op.responses || {}).join(', ')));
+}
+
+// The operations under their tags, in the document's order of tags (as Swagger UI shows them).
 async function fallback(root) {
   const doc = await (await fetch(URL)).json();
   fill(root, h('h1', { text: `${doc.info?.title || 'API'} ${doc.info?.version || ''}` }), h('p', { text: doc.info?.description || '' }));
+  const tags = (doc.tags || []).map((t) => ({ name: t.name, description: t.description || '', ops: [] }));
+  const other = { name: 'other', description: '', ops: [] };
   for (const [path, ops] of Object.entries(doc.paths || {})) {
     for (const [method, op] of Object.entries(ops)) {
-      const params = (op.parameters || []).map((p) => (p.$ref ? p.$ref.split('/').pop() : `${p.name} (${p.in})`));
-      root.append(h('section', { class: 'card endpoint' },
-        h('h3', {}, h('span', { class: `verb verb-${method}`, text: method.toUpperCase() }), ' ', h('code', { text: path })),
-        h('p', { text: op.summary || '' }), op.description ? h('p', { class: 'muted', text: op.description }) : null,
-        params.length ? h('p', {}, h('strong', { text: 'parameters: ' }), params.join(', ')) : null,
-        h('p', {}, h('strong', { text: 'responses: ' }), Object.keys(op.responses || {}).join(', '))));
+      (tags.find((t) => t.name === op.tags?.[0]) || other).ops.push(endpoint(path, method, op));
     }
+  }
+  for (const tag of [...tags, other].filter((t) => t.ops.length)) {
+    append(root, [h('h2', { text: tag.name }), tag.description ? h('p', { class: 'muted', text: tag.description }) : null, tag.ops]);
   }
 }
 
