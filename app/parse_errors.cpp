@@ -3,6 +3,7 @@
 #include "app/commands.hpp"
 #include "app/help_format.hpp"
 
+#include <cctype>
 #include <iostream>
 
 namespace slipfront::app {
@@ -13,7 +14,8 @@ namespace {
 std::string with_article(const std::string& name) {
   const bool vowel_sound =
       !name.empty() &&
-      (std::string("AEIOU").find(name[0]) != std::string::npos ||
+      (std::string("AEIOU").find(static_cast<char>(
+           std::toupper(static_cast<unsigned char>(name[0])))) != std::string::npos ||
        (name.size() == 1 && std::string("FHLMNRSX").find(name[0]) != std::string::npos));
   return (vowel_sound ? "an " : "a ") + name;
 }
