@@ -145,10 +145,6 @@ std::optional<double> finite_number(const std::string& s) {
   return v;
 }
 
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 constexpr long max_slice_points = 4000000;
 
 // GET /jobs/{id}/fields/{name}?x1_min&x1_max&t_min&t_max&max_points
