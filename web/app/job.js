@@ -1,8 +1,10 @@
 // A run: status and progress (live), spec, metrics, cost, convergence status, provenance,
-// the HDF5 download, and the paper's figures drawn from /fields and /front slices.
+// the HDF5 download, the paper's figures drawn from /fields and /front slices, and the
+// on-fault stations of a run that has them (job_stations.js).
 import { h, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
 import { get, getJSON } from './api.js';
 import { drawFigures } from './job_figures.js';
+import { drawStations, hasStations } from './job_stations.js';
 import { cancelJob, jobL, jobNd } from './jobs.js';
 import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
 
@@ -116,6 +118,11 @@ export async function jobPage(view, page, id) {
     if (job.status === 'succeeded' && !drawn) {
       drawn = true;
       await drawFigures(figs, job).catch((e) => figs.append(h('p', { class: 'error', text: `The figures could not be drawn: ${e.message}` })));
+      if (hasStations(job)) { // a run without stations has no card for them
+        const stations = h('section', { class: 'card figures', id: 'job-stations' });
+        figs.after(stations);
+        await drawStations(stations, job).catch((e) => stations.append(h('p', { class: 'error', text: `The stations could not be drawn: ${e.message}` })));
+      }
     } else if (!FINAL.has(job.status)) {
       fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'The figures appear when the run has succeeded.' }));
     } else if (job.status !== 'succeeded') {
