@@ -11,6 +11,7 @@ against `slipfront serve` on loopback (docs/web.md, "Tests"):
 - (c), the rupture speed of the paper's figures, for that run between two solids given by their
   wave speeds: both solids' c_s and c_p named, the axis to 1.1 c_p of the faster one, the
   overstressed patch shaded;
+- the page's header names the run: method, "bimaterial", the law by its scale parameter, n_d;
 - a small run with a station the rupture never reaches: no marker for it, "never" in the
   table and in the caption, times in s (the run lasts 3 s);
 - a run without stations: no stations card, no empty box, the paper's figures as before.
@@ -155,6 +156,24 @@ class WebStations(BrowserCase):
         np.testing.assert_allclose(self.layout("#fig-vr", "yaxis")["range"],
                                    [0, 1.1 * lower["p_wave_speed"]])
         self.assertIn("nucleation patch (-10 to 10 m)", [t["name"] for t in self.traces("#fig-vr")])
+
+    def test_header_names_the_run(self):
+        # The method, what is below the interface, the law by its scale parameter, n_d.
+        self.open_stations(self.runs["preset"]["id"])
+        self.assertTrue(self.css(".pagehead .sub")[0].text.startswith(
+            "spectral BI · bimaterial · L = 0.001 m · n_d = 5 /m · id "))
+        self.open_stations(self.runs["small"]["id"])  # the paper's law on the rigid plane
+        self.assertTrue(self.css(".pagehead .sub")[0].text.startswith("spectral BI · L = "))
+        texts = self.driver.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "import('/app/jobs.js').then(m => done(arguments[0].map(f => m.frictionText({friction: f}))));",
+            [{"law": "coulomb"}, {"law": "coulomb", "regularization": "time_scale", "t_star": 3.5e-4},
+             {"law": "slip_weakening", "D_c": 0.4},
+             {"law": "slip_weakening", "D_c": 7.44e-4, "regularization": "time_scale", "t_star": 3.5e-4},
+             {"law": "slip_weakening", "D_c": 1e-3, "regularization": "slip_scale", "L": 1e-4}])
+        self.assertEqual(texts, ["Coulomb", "t* = 3.50e-4 s", "slip weakening D_c = 0.4 m",
+                                 "slip weakening D_c = 7.44e-4 m, t* = 3.50e-4 s",
+                                 "slip weakening D_c = 0.001 m, L = 1.00e-4 m"])
 
     def test_station_never_reached_is_said(self):
         job = self.runs["small"]

@@ -10,7 +10,8 @@ import { axis, chart, chartMessage, plotly } from './plots.js';
 import { nucleationPatch, signalWindow } from './job_figures.js';
 
 const FRONT = '#3b4756'; // dark grey: the stations' colours run to orange, the patch is orange
-const SAMPLE_BUDGET = 50000; // time samples × stations asked for: a few MB of JSON
+const SAMPLE_BUDGET = 100000; // time samples × stations asked for (about 8 MB of JSON): every
+// step of the presets (a stride could step over the peak of a slip-rate spike a few steps wide)
 const PANEL = 150; // px: the height of one time-series panel
 const GAP = 34; // px between panels
 const SERIES_MARGIN = { l: 80, r: 150, t: 20, b: 50, autoexpand: false }; // r: the legend
@@ -176,8 +177,9 @@ async function drawSeries(box, caption, job, st, time, colours) {
   });
   // The time axis zoomed to the slip (|V| above 1 % of its peak at any station, as (b)).
   const signal = signalWindow(st.x1.map((_, i) => ({ t: st.time, v: st.slip_rate.map((r) => (r[i] === null ? 0 : Math.abs(r[i]))) })));
-  if (signal) Object.assign(layout.xaxis, { range: signal.map((v) => v * time.scale), autorange: false });
+  const zoomed = signal && (signal[0] > st.time[0] || signal[1] < st.time[st.time.length - 1]);
+  if (zoomed) Object.assign(layout.xaxis, { range: signal.map((v) => v * time.scale), autorange: false });
   await chart(box, { data, layout, height, filename: `slipfront-${String(job.id).slice(0, 8)}-stations` });
   caption.textContent = `${st.stride === 1 ? `Every time step of the run (${st.steps})` : `One time step in ${st.stride} of the run's ${st.steps} (the CSV has every step)`} at each station; ` +
-    `σ is negative in compression; slip and slip rate are the upper solid's relative to what is below it.${signal ? ' Time axis zoomed to the slip (|V| above 1 % of its peak); double-click for the whole run.' : ''}`;
+    `σ is negative in compression; slip and slip rate are the upper solid's relative to what is below it.${zoomed ? ' Time axis zoomed to the slip (|V| above 1 % of its peak); double-click for the whole run.' : ''}`;
 }
