@@ -160,8 +160,8 @@ const std::vector<ServerSetting>& server_settings() {
       {"slurm-time-limit", "T", "slurm: sbatch --time (default: the partition's)",
        text(&ServerConfig::slurm_time_limit)},
       {"slurm-sbatch-args", "ARGS",
-       "slurm: more sbatch options, separated by spaces; give them with '=' when they start "
-       "with '-': --slurm-sbatch-args=\"--qos=long\"",
+       "slurm: more sbatch options, separated by spaces: --slurm-sbatch-args \"--qos=long "
+       "--constraint=avx512\"",
        text(&ServerConfig::slurm_sbatch_args)},
       {"slurm-binary", "PATH", "slurm: slipfront on the compute nodes (default: this executable)",
        text(&ServerConfig::slurm_binary)},
