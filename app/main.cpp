@@ -1,4 +1,4 @@
-// The `slipfront` executable: run, validate, schema, stations, serve, check
+// The `slipfront` executable: run, validate, schema, presets, stations, fit-length, serve, check
 // (docs/api-job-spec.md "The CLI", docs/server.md; usage in app/usage.cpp).
 #include "app/commands.hpp"
 
@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   if (command == "schema") return schema_command(args);
   if (command == "presets") return presets_command(args);
   if (command == "stations") return stations_command(args);
+  if (command == "fit-length") return fit_length_command(args);
   if (command == "check") return slipfront::server::check_main(args);
   if (command == "serve") return slipfront::server::serve_main(argc - 2, argv + 2);
   if (command == "--version" || command == "version") {

@@ -90,12 +90,15 @@ usage:
       with NAME its job as JSON. A job may name one: {"preset": NAME, ...} (docs/presets.md).
   slipfront stations RESULT.h5 [--csv FILE]
       The on-fault stations of a result file: rupture times, or every step as CSV.
+  slipfront fit-length RECORD [--json] [--fit-v-star] [--v-star V] [--mu MU] [--station X1]
+      The paper's Sec. 6 on one interface point's record (CSV, a stations CSV, or JSON): the
+      fitted length L_m, f_m, and whether L_m is the physical length (docs/length-fit.md).
   slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [--max-memory SIZE] [...]
       Run the HTTP job server (docs/server.md).
   slipfront check DATA_DIR
       List what a server could not read in DATA_DIR/slipfront.db (rows whose stored JSON
       does not parse, PRAGMA quick_check); exit 0 and "ok" if nothing.
-  slipfront run|validate|presets|stations|serve|check --help   the options of one command
+  slipfront run|validate|presets|stations|fit-length|serve|check --help   the options of one command
   slipfront --version
   slipfront help | --help
 
