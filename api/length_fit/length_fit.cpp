@@ -40,6 +40,10 @@ LengthFitVerdict decide(const LengthFit& r) {
              "sharper event is needed";
   }
   v.reason = numbers;
+  const std::vector<double>& f = r.spectrum.spectrum.frequency;
+  if (!f.empty() && r.critical_frequency > f.back())
+    v.reason += "; f_m lies above the highest frequency the record resolves (" +
+                number_text(f.back(), 3) + " Hz, half its sampling rate)";
   if (v.borderline)
     v.reason += "; borderline: the 95 % interval of L_m [" + number_text(r.fit.L_low, 3) + ", " +
                 number_text(r.fit.L_high, 3) + "] m holds the event's critical length";
