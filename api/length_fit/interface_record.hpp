@@ -22,6 +22,9 @@ const char* column_name(RecordColumn column); // "time", "slip_rate", ...
 inline constexpr std::size_t max_record_bytes = std::size_t{64} << 20;
 inline constexpr std::size_t max_record_rows = 1'000'000;
 inline constexpr std::size_t max_record_points = 200'000;
+// Every value of a record lies within +-1e30 (in its SI unit): sums of squares of a record's
+// stresses stay far from overflow.
+inline constexpr double max_record_magnitude = 1e30;
 // The fewest samples a record must have, and the fewest of them where the interface slips.
 inline constexpr std::size_t min_record_points = 32;
 inline constexpr std::size_t min_slipping_points = 10;

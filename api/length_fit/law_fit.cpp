@@ -21,6 +21,7 @@ namespace slipfront::api {
 namespace {
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
+constexpr double max_scan_decades = 40;
 
 // What the fit varies, as a vector x = [ln L, ln V* (if fitted), mu (if fitted)], and the
 // values of the others. ln L and ln V* are kept inside generous bounds so that a flat misfit
@@ -275,8 +276,9 @@ LawFit fit_prakash_clifton(const InterfaceRecord& record, const SlippingSamples&
   // The lengths a record resolves: the law's rate (|V| + V*)/L is 1000 per shortest step at
   // L_min (tau_s follows mu p within it) and 1/1000 per record at L_max (tau_s frozen).
   const double speed = peak_speed + settings.v_star;
-  fit.L_min = 1e-3 * speed * shortest_step;
   fit.L_max = 1e3 * speed * (record.time.back() - record.time.front());
+  // At most max_scan_decades: a record whose steps span more is scanned at its top.
+  fit.L_min = std::max(1e-3 * speed * shortest_step, fit.L_max * std::pow(10.0, -max_scan_decades));
 
   // 1. The scan, 2. Levenberg-Marquardt from its best.
   const Search search(record, slipping, settings, fit.L_min, fit.L_max);

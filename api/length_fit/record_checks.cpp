@@ -55,11 +55,13 @@ std::vector<RecordError> check_record(const InterfaceRecord& record,
                                         std::to_string(n)));
       return errors;
     }
-    const auto bad =
-        std::find_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); });
+    const auto bad = std::find_if(values.begin(), values.end(),
+                                  [](double v) { return !(std::abs(v) <= max_record_magnitude); });
     if (bad != values.end())
       errors.push_back(error_at(record, column, std::size_t(bad - values.begin()),
-                                "not a finite number: " + number_text(*bad)));
+                                "must be a finite number within +-" +
+                                    number_text(max_record_magnitude) + ", got " +
+                                    number_text(*bad)));
   }
   if (!errors.empty()) return errors;
   for (std::size_t k = 1; k < n; ++k) {

@@ -31,9 +31,9 @@ RecordSpectrum contact_pressure_spectrum(const InterfaceRecord& record) {
       signal.push_back(std::max(0.0, p));
   } else {
     std::nth_element(steps.begin(), steps.begin() + long(steps.size() / 2), steps.end());
-    const std::size_t cap = std::min(max_spectrum_points, 4 * n);
-    std::size_t points = std::size_t(std::floor(duration / steps[steps.size() / 2])) + 1;
-    points = std::clamp<std::size_t>(points, 2, cap);
+    const double cap = double(std::min(max_spectrum_points, 4 * n));
+    const double wanted = std::floor(duration / steps[steps.size() / 2]) + 1; // may be huge
+    const auto points = std::size_t(std::clamp(wanted, 2.0, cap));
     out.sample_interval = duration / double(points - 1);
     out.resampled = true;
     std::size_t k = 0;

@@ -151,6 +151,10 @@ TEST(LengthFitRecord, PhysicalChecksNameTheColumnAndTheSample) {
   EXPECT_NE(describe(check_record(steady, std::nullopt).at(0))
                 .find("/contact_pressure: the pressure never changes"),
             std::string::npos);
+  InterfaceRecord huge = test::synthetic_record({});
+  huge.frictional_stress[7] = 1e31;
+  EXPECT_EQ(describe(check_record(huge, std::nullopt).at(0)),
+            "/frictional_stress/7: must be a finite number within +-1e+30, got 1e+31");
   InterfaceRecord brief = test::synthetic_record({});
   EXPECT_NE(describe(check_record(brief, 0.04999).at(0)).find("/slip_rate: too little slip: "),
             std::string::npos);
