@@ -164,13 +164,18 @@ RecordRead select_station(Rows& rows, const Layout& layout, std::optional<double
 
 } // namespace
 
+std::optional<RecordError> size_error(std::string_view text) {
+  if (text.size() <= max_record_bytes) return std::nullopt;
+  return RecordError{"", -1, 0,
+                     "the record is " + std::to_string(text.size()) +
+                         " bytes, more than the limit of " + std::to_string(max_record_bytes) +
+                         " (docs/length-fit.md \"Bounds\")"};
+}
+
 RecordRead read_record_csv(std::string_view text, std::optional<double> station_x1) {
   RecordRead out;
-  if (text.size() > max_record_bytes) {
-    out.errors.push_back({"", -1, 0,
-                          "the record is " + std::to_string(text.size()) +
-                              " bytes, more than the limit of " + std::to_string(max_record_bytes) +
-                              " (docs/length-fit.md \"Bounds\")"});
+  if (auto too_large = size_error(text)) {
+    out.errors.push_back(*too_large);
     return out;
   }
   Layout layout;

@@ -21,6 +21,9 @@ struct RecordRead {
 // At most this many errors are reported; reading stops at the next one.
 inline constexpr std::size_t max_record_errors = 10;
 
+// The error of a record text larger than max_record_bytes, if it is.
+std::optional<RecordError> size_error(std::string_view text);
+
 // `station_x1`: the station to read from a CSV with a station_x1 column (needed when it holds
 // more than one station). Checks the shape and the numbers (every cell read is a finite
 // number), not the physics (check_record).

@@ -69,11 +69,8 @@ RecordRead read_record_text(std::string_view text, std::optional<double> station
   if (first == std::string_view::npos || text[first] != '{')
     return read_record_csv(text, station_x1);
   RecordRead out;
-  if (text.size() > max_record_bytes) {
-    out.errors.push_back({"", -1, 0,
-                          "the record is " + std::to_string(text.size()) +
-                              " bytes, more than the limit of " + std::to_string(max_record_bytes) +
-                              " (docs/length-fit.md \"Bounds\")"});
+  if (auto too_large = size_error(text)) {
+    out.errors.push_back(*too_large);
     return out;
   }
   const JsonParse parsed = parse_bounded_json(text);
