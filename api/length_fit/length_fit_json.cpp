@@ -29,16 +29,15 @@ const char* source_name(RecordSource::Kind kind) {
 
 nlohmann::json record_json(const InterfaceRecord& record, const LengthFit& r) {
   const RecordSource& s = record.source;
-  return {{"source", source_name(s.kind)},
-          {"station_x1", s.station_x1 ? json_number(*s.station_x1) : nlohmann::json()},
-          {"stations_in_file", s.kind == RecordSource::Kind::json
-                                   ? nlohmann::json()
-                                   : nlohmann::json(s.stations_in_file)},
-          {"samples", record.size()},
-          {"duration", json_number(record.time.back() - record.time.front())},
-          {"slipping_samples", r.slipping.count},
-          {"slip_threshold", json_number(r.slipping.threshold)},
-          {"peak_slip_rate", json_number(r.peak_slip_rate)}};
+  return {
+      {"source", source_name(s.kind)},
+      {"station_x1", s.station_x1 ? json_number(*s.station_x1) : nlohmann::json()},
+      {"stations_in_file", s.station_x1 ? nlohmann::json(s.stations_in_file) : nlohmann::json()},
+      {"samples", record.size()},
+      {"duration", json_number(record.time.back() - record.time.front())},
+      {"slipping_samples", r.slipping.count},
+      {"slip_threshold", json_number(r.slipping.threshold)},
+      {"peak_slip_rate", json_number(r.peak_slip_rate)}};
 }
 
 nlohmann::json fit_json(const LawFit& f) {
