@@ -24,12 +24,13 @@ struct Command {
   std::function<int()> run;
 };
 
-Command add_run_command(CLI::App& slipfront);      // run_command.cpp
-Command add_validate_command(CLI::App& slipfront); // validate_command.cpp
-Command add_schema_command(CLI::App& slipfront);   // schema_command.cpp
-Command add_presets_command(CLI::App& slipfront);  // presets_command.cpp
-Command add_stations_command(CLI::App& slipfront); // stations_command.cpp
-Command add_serve_command(CLI::App& slipfront);    // serve_command.cpp
-Command add_check_command(CLI::App& slipfront);    // check_command.cpp
+Command add_run_command(CLI::App& slipfront);        // run_command.cpp
+Command add_validate_command(CLI::App& slipfront);   // validate_command.cpp
+Command add_schema_command(CLI::App& slipfront);     // schema_command.cpp
+Command add_presets_command(CLI::App& slipfront);    // presets_command.cpp
+Command add_stations_command(CLI::App& slipfront);   // stations_command.cpp
+Command add_fit_length_command(CLI::App& slipfront); // fit_length_command.cpp
+Command add_serve_command(CLI::App& slipfront);      // serve_command.cpp
+Command add_check_command(CLI::App& slipfront);      // check_command.cpp
 
 } // namespace slipfront::app

@@ -1,4 +1,4 @@
-// The `slipfront` executable: run, validate, schema, presets, stations, serve, check
+// The `slipfront` executable: run, validate, schema, presets, stations, fit-length, serve, check
 // (docs/api-job-spec.md "The CLI", docs/server.md). One CLI11 command line: each command
 // defines its arguments and flags in its own file (app/commands.hpp), the flags several
 // commands share in app/options.cpp, the help's look in app/help_format.cpp.
@@ -38,8 +38,9 @@ struct Slipfront {
     top.set_help_flag("-h,--help", "this help");
     top.allow_extras();
     top.add_flag("--version", version, "the code version (as results record it)");
-    for (auto add : {add_run_command, add_validate_command, add_schema_command, add_presets_command,
-                     add_stations_command, add_serve_command, add_check_command}) {
+    for (auto add :
+         {add_run_command, add_validate_command, add_schema_command, add_presets_command,
+          add_stations_command, add_fit_length_command, add_serve_command, add_check_command}) {
       Command command = add(top);
       commands[command.cli] = std::move(command.run);
     }

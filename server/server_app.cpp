@@ -160,6 +160,7 @@ void ServerApp::start() {
   add_ops_routes(router_, *context_);
   add_study_routes(router_, *context_);
   add_preset_routes(router_);
+  add_length_fit_routes(router_);
   {
     const std::string web_dir =
         config_.web_dir.empty() ? StaticFiles::default_dir() : config_.web_dir;

@@ -254,6 +254,13 @@ class Api:
         """The job's stations, every step, as CSV text (docs/hdf5-layout.md "Stations as CSV")."""
         return self.request("GET", f"{API}/jobs/{job_id}/stations.csv").text
 
+    def fit_length(self, body):
+        """POST /length-fits (docs/length-fit.md): `body` is {"record": CSV text or
+        {"time": [...], ...}, and the options}; slipfront_client.length_fit.request_body
+        builds it. Nothing is stored, so a retry is safe."""
+        return self.request("POST", f"{API}/length-fits", json_body=body,
+                            idempotent=True).json()
+
     def create_study(self, study):
         response = self.request("POST", f"{API}/studies", json_body=study, ok=(200, 201, 202),
                                 idempotent=False)

@@ -16,6 +16,7 @@ void add_station_routes(Router& router, ServerContext& ctx); // station_handlers
 void add_ops_routes(Router& router, ServerContext& ctx);     // ops_handlers.cpp
 void add_study_routes(Router& router, ServerContext& ctx);   // study_handlers.cpp
 void add_preset_routes(Router& router);                      // preset_handlers.cpp
+void add_length_fit_routes(Router& router);                  // length_fit_handlers.cpp
 
 // The OpenAPI 3 description of every endpoint (openapi.cpp).
 nlohmann::json openapi_document();

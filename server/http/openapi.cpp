@@ -21,7 +21,7 @@ const char* document = R"json({
   "servers": [{"url": "/"}],
   "tags": [
     {"name": "jobs", "description": "Submit, list, search, export and cancel jobs; the job schema and defaults"},
-    {"name": "results", "description": "What a finished job produced: metrics, front, interface fields, stations, the HDF5 file and its XDMF sidecar"},
+    {"name": "results", "description": "What a finished job produced: metrics, front, interface fields, stations, the HDF5 file and its XDMF sidecar; the length fit of one point's record (paper Sec. 6)"},
     {"name": "studies", "description": "Grids and convergence studies over L and n_d, their maps and critical lengths"},
     {"name": "presets", "description": "The standard scenes and examples a job may start from"},
     {"name": "ops", "description": "Health, Prometheus metrics and this document"}
@@ -72,6 +72,19 @@ const char* document = R"json({
             "n_d": {"type": "array", "items": {"type": "number"}, "default": [10, 20, 40, 80, 160]}, "n_d_max": {"type": "number"}}},
           "preset": {"type": "string", "enum": ["failure_regimes"]},
           "priority": {"description": "server/core/priority.hpp: added by openapi_document()"}, "fresh": {"type": "boolean"}}},
+      "LengthFitRequest": {"type": "object", "required": ["record"], "additionalProperties": false,
+        "description": "docs/length-fit.md. Units: time s, slip_rate m/s, contact_pressure Pa (> 0 in compression), frictional_stress Pa. A record has 32 to 200000 samples (1000000 data rows in a CSV), within the server's body limit.",
+        "properties": {
+          "record": {"description": "an object of four equal-length arrays, or CSV text with a header naming the columns (or the stations CSV of GET /api/v1/jobs/{id}/stations.csv as it is)",
+            "oneOf": [{"type": "object", "required": ["time", "slip_rate", "contact_pressure", "frictional_stress"], "additionalProperties": false,
+              "properties": {"time": {"type": "array", "items": {"type": "number"}}, "slip_rate": {"type": "array", "items": {"type": "number"}},
+                "contact_pressure": {"type": "array", "items": {"type": "number"}}, "frictional_stress": {"type": "array", "items": {"type": "number"}}}},
+              {"type": "string"}]},
+          "v_star": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e6, "default": 1e-4, "description": "V* [m/s]; the start of its fit with fit_v_star"},
+          "fit_v_star": {"type": "boolean", "default": false},
+          "mu": {"type": "number", "exclusiveMinimum": 0, "maximum": 100, "description": "the friction coefficient; fitted when absent"},
+          "station_x1": {"type": "number", "description": "the station of a stations CSV that holds several [m]"},
+          "slip_threshold": {"type": "number", "minimum": 0, "maximum": 1e6, "description": "|V| [m/s] from which a sample slips; 1 % of the peak |V| when absent"}}},
       "StudyRun": {"type": "object", "properties": {"job_id": {"type": "string"}, "regime": {"type": "string"},
         "L": {"type": "number"}, "n_d": {"type": "number"}, "job_status": {"type": "string"},
         "outcome": {"type": "string", "nullable": true}, "cached_from": {"type": "string", "nullable": true},
@@ -254,6 +267,13 @@ const char* document = R"json({
         "parameters": [{"name": "name", "in": "path", "required": true, "schema": {"type": "string"}}],
         "responses": {"200": {"description": "the preset", "content": {"application/json": {}}}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
+    "/api/v1/length-fits": {
+      "post": {"summary": "The experimentalist's procedure of the paper (Sec. 6) on the record of one interface point: the fitted length L_m of the simplified Prakash-Clifton law with its 95 % interval, the measured critical frequency f_m, the contact pressure's spectrum and the verdict (L_m is the physical length, or only an upper bound); nothing is stored, no token is needed (docs/length-fit.md)",
+        "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/LengthFitRequest"}}}},
+        "responses": {"200": {"description": "{law, record, fit, critical_frequency, spectrum, verdict, series} (docs/length-fit.md \"The answer\")", "content": {"application/json": {}}},
+          "400": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},
+          "422": {"$ref": "#/components/responses/Problem"}}}
+    },
     "/api/v1/studies": {
       "post": {"summary": "Create a study: its runs are ordinary jobs (reused when identical results exist); the study and its first runs are stored in one transaction", "security": [{"bearer": []}],
         "parameters": [
@@ -322,6 +342,7 @@ const std::map<std::string, std::string>& path_tags() {
       {"/api/v1/jobs/{id}/fields/{name}", "results"},
       {"/api/v1/jobs/{id}/stations", "results"},
       {"/api/v1/jobs/{id}/stations.csv", "results"},
+      {"/api/v1/length-fits", "results"},
       {"/api/v1/studies", "studies"},
       {"/api/v1/studies/{id}", "studies"},
       {"/api/v1/studies/{id}/cancel", "studies"},

@@ -23,9 +23,15 @@ double filter_critical_length(double frequency, double v_star, double slip_veloc
   return r * (v_star + std::abs(slip_velocity)) / (2.0 * std::numbers::pi * frequency);
 }
 
-double spectral_cutoff_frequency(const std::vector<double>& signal, double dt, double fraction) {
+double filter_critical_frequency(double L, double v_star, double slip_velocity, double ratio) {
+  // r = 2 pi f L / (V* + |V|) is symmetric in f and L: the inverse for f is the same formula.
+  return filter_critical_length(L, v_star, slip_velocity, ratio);
+}
+
+PowerSpectrum detrended_power_spectrum(const std::vector<double>& signal, double dt) {
   const std::size_t n = signal.size();
-  if (n < 16) return std::numeric_limits<double>::quiet_NaN();
+  PowerSpectrum out;
+  if (n < 2) return out;
   // Remove the straight line through the end points (a step would otherwise leak power to
   // every frequency through the periodic extension), then apply a Hann window.
   std::vector<double> x(n);
@@ -39,16 +45,31 @@ double spectral_cutoff_frequency(const std::vector<double>& signal, double dt, d
   std::vector<std::complex<double>> spectrum;
   fft.fwd(spectrum, x);
   const std::size_t half = n / 2;
+  out.frequency.reserve(half);
+  out.power.reserve(half);
+  for (std::size_t k = 1; k <= half; ++k) {
+    out.frequency.push_back(double(k) / (double(n) * dt));
+    out.power.push_back(std::norm(spectrum[k]));
+  }
+  return out;
+}
+
+double cutoff_frequency(const PowerSpectrum& spectrum, double fraction) {
   double total = 0;
-  for (std::size_t k = 1; k <= half; ++k)
-    total += std::norm(spectrum[k]);
+  for (double p : spectrum.power)
+    total += p;
   if (total <= 0) return std::numeric_limits<double>::quiet_NaN();
   double cumulative = 0;
-  for (std::size_t k = 1; k <= half; ++k) {
-    cumulative += std::norm(spectrum[k]);
-    if (cumulative >= fraction * total) return double(k) / (double(n) * dt);
+  for (std::size_t k = 0; k < spectrum.power.size(); ++k) {
+    cumulative += spectrum.power[k];
+    if (cumulative >= fraction * total) return spectrum.frequency[k];
   }
-  return double(half) / (double(n) * dt);
+  return spectrum.frequency.back();
+}
+
+double spectral_cutoff_frequency(const std::vector<double>& signal, double dt, double fraction) {
+  if (signal.size() < 16) return std::numeric_limits<double>::quiet_NaN();
+  return cutoff_frequency(detrended_power_spectrum(signal, dt), fraction);
 }
 
 void derive_spectral_estimate(const SimulationParams& p, const FrontProfile& front,

@@ -11,7 +11,7 @@ import re
 import subprocess
 import sys
 
-COMMANDS = ["run", "validate", "schema", "presets", "stations", "serve", "check"]
+COMMANDS = ["run", "validate", "schema", "presets", "stations", "fit-length", "serve", "check"]
 
 
 def run(*args):
@@ -46,7 +46,7 @@ def documented_flags(source):
     with open(os.path.join(source, "docs", "api-job-spec.md")) as f:
         block = f.read().split("## The CLI", 1)[1].split("```", 2)[1]
     for line in block.splitlines():
-        m = re.match(r"^slipfront ([a-z]+) ", line)
+        m = re.match(r"^slipfront ([a-z-]+) ", line)
         if m and m.group(1) in COMMANDS:
             flags.setdefault(m.group(1), set()).update(re.findall(r"\[(--[a-z-]+)", line))
     for page in ("server.md", "cluster.md"):
@@ -60,7 +60,7 @@ def main(binary, source):
     top = run(binary, "--help")
     if top.returncode != 0 or not re.search(r"^usage:$", top.stdout, re.M):
         sys.exit(f"slipfront --help: exit {top.returncode}\n{top.stdout}{top.stderr}")
-    listed = re.search(r"^  slipfront ([a-z|]+) --help$", top.stdout, re.M)
+    listed = re.search(r"^  slipfront ([a-z|-]+) --help$", top.stdout, re.M)
     if listed is None or listed.group(1).split("|") != COMMANDS:
         problems.append(f"slipfront --help lists {listed and listed.group(1)}, not {COMMANDS}")
 

@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from server_harness import TINY, Server  # noqa: E402
 
 BINARY = None
-JOBS, STUDIES = "/api/v1/jobs", "/api/v1/studies"
+JOBS, STUDIES, FITS = "/api/v1/jobs", "/api/v1/studies", "/api/v1/length-fits"
 STUDY = {"name": "415", "base": TINY, "grid": {"L": [5e-5], "n_d": [5]}}
 TAGS = ["jobs", "results", "studies", "presets", "ops"]
 
@@ -45,7 +45,7 @@ class ApiDetails(unittest.TestCase):
 
     def test_a_body_of_another_type_is_415_naming_json(self):
         before = self.counts()
-        for path, body in ((JOBS, TINY), (STUDIES, STUDY)):
+        for path, body in ((JOBS, TINY), (STUDIES, STUDY), (FITS, {"record": "time,slip_rate"})):
             for content_type in ("text/plain", "application/x-www-form-urlencoded",
                                  "application/xml; charset=utf-8", "multipart/form-data; boundary=b",
                                  "application/jsonx"):
@@ -62,7 +62,7 @@ class ApiDetails(unittest.TestCase):
         self.assertEqual(self.counts(), before, "a refused body created something")
         # The OpenAPI document lists the 415 of both operations.
         doc = self.server.get("/api/v1/openapi.json").json()
-        for path in (JOBS, STUDIES):
+        for path in (JOBS, STUDIES, FITS):
             self.assertIn("415", doc["paths"][path]["post"]["responses"])
 
     def test_json_is_taken_with_parameters_any_case_or_without_a_type(self):

@@ -6,6 +6,7 @@ import { jobsPage } from './jobs.js';
 import { jobPage } from './job.js';
 import { studiesPage, studyPage } from './studies.js';
 import { submitPage } from './submit.js';
+import { lengthFitPage } from './length_fit.js';
 
 const view = document.getElementById('view');
 let current = null; // {stop()}
@@ -33,6 +34,7 @@ function route() {
     jobs: () => (id ? jobPage(view, page, id) : jobsPage(view, page)),
     studies: () => (id ? studyPage(view, page, id) : studiesPage(view, page)),
     submit: () => submitPage(view, page, id),
+    'length-fit': () => lengthFitPage(view),
   }[parts[0]];
   if (!render) {
     view.append(h('p', { text: 'No such page. ' }, h('a', { href: '#/jobs', text: 'Jobs' })));

@@ -6,6 +6,7 @@
 - `convergence`  (d) convergence map in the L–n_d plane (Fig. 3c, 4c)
 - `filter_response` (e) A/A0 of the friction filter against frequency (Fig. 5c, eq. 6)
 - `cost`         (f) wall time against error, one curve per L
+- `length_fit`   the length fit of Sec. 6: measured and fitted stress, spectrum with f_m
 
 Each `plot_*` function returns `(figure, data)`: `data` holds the arrays drawn, so tests
 (and users) can check a figure against its sources.
