@@ -210,9 +210,14 @@ Response job_defaults(RequestContext& rc) {
 void add_job_routes(Router& router, ServerContext& ctx) {
   router.add(http::verb::post, api_prefix + "/jobs",
              [&ctx](RequestContext& rc) { return submit(ctx, rc); });
+  // An export runs on a thread of its own, at most --max-exports at once; a page of jobs
+  // (at most 1000) with the other reads.
   router.add(
       http::verb::get, api_prefix + "/jobs",
-      [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); },
+      [](const auto& query) {
+        return asks_for_export(query) ? Runs::export_pool : Runs::read_pool;
+      });
   router.add(http::verb::get, api_prefix + "/jobs/{id}",
              [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
   router.add(http::verb::post, api_prefix + "/jobs/{id}/cancel",
