@@ -61,11 +61,13 @@ BENCHMARK(fe_step)
     ->Args({20, 0, 4, 20})
     ->Args({20, 1, 4, 20})
     ->Args({20, 2, 4, 20})
+    ->Args({20, 0, 4, 40}) // one block as many nodes as the two: the cost of the state's size
     ->Args({40, 0, 4, 20})
     ->Args({40, 1, 4, 20})
     ->Args({40, 2, 4, 20})
     ->Args({40, 0, 1, 20})
     ->Args({40, 1, 1, 20})
+    ->Args({40, 0, 4, 40})
     ->Args({40, 0, 4, 1}) // low blocks: the interface row's share
     ->Args({40, 1, 4, 1})
     ->Unit(benchmark::kMillisecond)

@@ -41,8 +41,28 @@ const std::vector<Regime>& failure_regimes() {
        {{"friction", {{"mu", 1.2}}}},
        5e-5,
        {10, 20}},
+      {"bimaterial_coulomb",
+       "plain Coulomb friction between two different elastic solids (friction.law = coulomb, "
+       "lower.solid = elastic with young_modulus 3.5: c_s 18 % above the upper solid's, as in "
+       "the bimaterial presets)",
+       "ill-posed between dissimilar solids (Adams 1995; Ranjith & Rice 2001): slip "
+       "perturbations grow at a rate proportional to 1/dx, no mesh convergence",
+       {{"friction", {{"law", "coulomb"}}},
+        {"lower", {{"solid", "elastic"}, {"young_modulus", 3.5}}}},
+       5e-5,
+       {10, 20, 40}},
   };
   return regimes;
+}
+
+nlohmann::json regime_patch(const Regime& regime, const nlohmann::json& base) {
+  nlohmann::json patch = regime.overrides;
+  const bool spectral = base.value("method", "fe") == "spectral_bi";
+  const auto geometry = base.find("geometry");
+  if (patch.contains("lower") && !spectral && geometry != base.end() && geometry->is_object() &&
+      geometry->contains("height"))
+    patch["lower"]["height"] = (*geometry)["height"];
+  return patch;
 }
 
 std::string regime_finding(const std::vector<StudyRun>& runs,

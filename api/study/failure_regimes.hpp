@@ -23,8 +23,14 @@ struct Regime {
 };
 
 // regularised (L = 5e-5, n_d 10/20), coulomb (n_d 10/20/40), explicit_euler (L = 5e-6,
-// n_d 10/20), unstable_time_step (safety factor 1.2, n_d 10/20), mu_1.2 (n_d 10/20).
+// n_d 10/20), unstable_time_step (safety factor 1.2, n_d 10/20), mu_1.2 (n_d 10/20),
+// bimaterial_coulomb (n_d 10/20/40).
 const std::vector<Regime>& failure_regimes();
+
+// The patch a regime's runs apply to the study's base: its overrides, and for a regime with a
+// lower solid run by FE the lower block as high as the base's upper one (the schema's default
+// height would make a small base's runs several times dearer than the others).
+nlohmann::json regime_patch(const Regime& regime, const nlohmann::json& base);
 
 // What the runs of one regime show, in one sentence, from the data only: `statuses` are
 // convergence_statuses(runs), in the same order.

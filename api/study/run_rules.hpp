@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,14 @@ struct Comparison {
   double arrival_change = not_available;
   std::string reason;
 };
+
+// Where both fronts arrived: a station of both runs' metrics with its two rupture times.
+struct StationArrival {
+  double x1 = 0.0;
+  double time = not_available;           // the run's rupture time there
+  double reference_time = not_available; // the reference's
+};
+std::optional<StationArrival> common_station(const StudyRun& run, const StudyRun& reference);
 
 // The convergence criterion (docs/metrics.md "Convergence status") between a run and its
 // reference (the finer mesh, or the smaller L).

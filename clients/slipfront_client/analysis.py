@@ -71,8 +71,29 @@ def _relative_change(value, reference):
     return abs(value - reference) / abs(reference)
 
 
+def _common_station(row, ref):
+    """(x1, time, reference time) at the station both fronts reached that the reference's
+    front reached last, or None (docs/metrics.md "Convergence status")."""
+    def times(r):
+        out = {}
+        for s in ((r.get("metrics") or r).get("stations") or []):
+            t, x = s.get("rupture_time"), s.get("x1")
+            if isinstance(t, (int, float)) and isinstance(x, (int, float)) and math.isfinite(t):
+                out[x] = t
+        return out
+    mine, theirs = times(row), times(ref)
+    best = None
+    for x, t_ref in theirs.items():
+        t = next((t for y, t in mine.items() if _same(y, x)), None)
+        if t is not None and (best is None or t_ref > best[2]):
+            best = (x, t, t_ref)
+    return best
+
+
 def _agree(row, ref):
-    """The convergence criterion (docs/metrics.md "Convergence status") between a run and its partner (the next finer mesh)."""
+    """The convergence criterion (docs/metrics.md "Convergence status") between a run and its
+    partner (the next finer mesh): the arrival time at the probe when both fronts reached it,
+    else at the station both reached last, else distance alone (if neither reached the probe)."""
     mine, theirs = _outcome(row), _outcome(ref)
     if theirs == "diverged" or mine != theirs:
         return False
@@ -83,11 +104,15 @@ def _agree(row, ref):
     if math.isnan(distance):
         return False
     arrived = math.isfinite(_metric(row, "arrival_time_at_probe"))
-    if arrived != math.isfinite(_metric(ref, "arrival_time_at_probe")):
-        return False
-    arrival = _relative_change(_metric(row, "arrival_time_at_probe"),
-                               _metric(ref, "arrival_time_at_probe"))
-    return distance < DISTANCE_TOL and (not arrived or arrival < ARRIVAL_TOL)
+    ref_arrived = math.isfinite(_metric(ref, "arrival_time_at_probe"))
+    if arrived and ref_arrived:
+        arrival = _relative_change(_metric(row, "arrival_time_at_probe"),
+                                   _metric(ref, "arrival_time_at_probe"))
+        return distance < DISTANCE_TOL and arrival < ARRIVAL_TOL
+    station = _common_station(row, ref)
+    if station is not None:
+        return distance < DISTANCE_TOL and _relative_change(station[1], station[2]) < ARRIVAL_TOL
+    return arrived == ref_arrived and distance < DISTANCE_TOL
 
 
 def results_agree(row, ref):

@@ -53,7 +53,7 @@ std::vector<Planned> plan_runs(const StudyRequest& r) {
   case StudyKind::failure_regimes:
     for (const auto& regime : api::failure_regimes())
       for (double n_d : regime.n_d)
-        out.push_back({regime.name, regime.overrides, regime.L, n_d, true});
+        out.push_back({regime.name, api::regime_patch(regime, r.base), regime.L, n_d, true});
     break;
   }
   return out;

@@ -193,7 +193,7 @@ class AnalysisTest(unittest.TestCase):
             rows = [{"id": r["id"], "L": r["L"], "n_d": r["n_d"], "status": r["status"],
                      **{k: (r["metrics"] or {}).get(k) for k in
                         ("outcome", "propagation_distance", "arrival_time_at_probe", "steps",
-                         "simulated_time")}}
+                         "simulated_time", "stations")}}
                     for r in case["runs"]]
             got = {r["id"]: r["convergence"] for r in analysis.convergence_statuses(rows)}
             self.assertEqual(got, case["expected"], case["name"])

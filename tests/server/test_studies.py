@@ -195,7 +195,7 @@ class Studies(unittest.TestCase):
         study = wait_finished(self.server, r.json()["id"])
         regimes = {g["regime"]: g for g in study["regimes"]}
         self.assertEqual(set(regimes), {"regularised", "coulomb", "explicit_euler",
-                                         "unstable_time_step", "mu_1.2"})
+                                         "unstable_time_step", "mu_1.2", "bimaterial_coulomb"})
         for name in ("explicit_euler", "unstable_time_step"):
             g = regimes[name]
             self.assertTrue(g["finding"].startswith("detected: every run diverged"), g["finding"])
@@ -210,10 +210,16 @@ class Studies(unittest.TestCase):
         coulomb = regimes["coulomb"]
         self.assertEqual(sorted(r["n_d"] for r in coulomb["runs"]), [10, 20, 40])
         self.assertNotIn("converged", {r["convergence_status"] for r in coulomb["runs"]})
+        # Coulomb between two different solids: ill-posed, so refinement never settles.
+        bimaterial = regimes["bimaterial_coulomb"]
+        self.assertEqual(sorted(r["n_d"] for r in bimaterial["runs"]), [10, 20, 40])
+        self.assertNotIn("converged", {r["convergence_status"] for r in bimaterial["runs"]})
+        self.assertTrue(bimaterial["finding"].startswith("no mesh convergence"),
+                        bimaterial["finding"])
         self.assertEqual(regimes["explicit_euler"]["runs"][0]["L"], 5e-6)
         # Each regime is its own scene, so its own map.
         scenes = {g["scene_hash"] for g in study["regimes"]}
-        self.assertEqual(len(scenes), 5)
+        self.assertEqual(len(scenes), 6)
         for run in study["runs"]:
             self.assertIn(run["regime"], regimes)
         self.assertEqual(study["convergence_map"], regimes["regularised"]["convergence_map"])
