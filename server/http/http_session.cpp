@@ -118,19 +118,18 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
   if (ec) return reject(http::status::bad_request, "malformed request: " + ec.message());
   Request req = parser_->release();
   const auto& pools = limits_.pools;
-  switch (router_.runs(req)) {
-  case Runs::io_thread:
-    break;
-  case Runs::read_pool:
-    if (pools.reads) return net::post(*pools.reads, handler_task(std::move(req)));
-    break;
-  case Runs::write_pool:
-    if (pools.writes) return net::post(*pools.writes, handler_task(std::move(req)));
-    break;
-  case Runs::export_pool:
-    if (!pools.exports) break;
-    if (pools.exports->try_post(handler_task(req))) return;
-    return send(exports_busy(req, pools.exports->limit()), false);
+  const Runs runs = router_.runs(req);
+  boost::asio::thread_pool* pool = runs == Runs::read_pool    ? pools.reads
+                                   : runs == Runs::write_pool ? pools.writes
+                                                              : nullptr;
+  if (pool) {
+    net::post(*pool, handler_task(std::move(req)));
+    return;
+  }
+  if (runs == Runs::export_pool && pools.exports) {
+    if (!pools.exports->try_post(handler_task(req)))
+      send(exports_busy(req, pools.exports->limit()), false);
+    return;
   }
   Response response = router_.dispatch(req);
   send(std::move(response), false);

@@ -115,7 +115,7 @@ std::optional<std::string> next_link(const JobPage& page,
 }
 
 // format=csv|ndjson: the run table, built one job at a time (RunTableCsv keeps each row as
-// its cells' text), so an export of 100000 rows holds megabytes, not gigabytes.
+// its cells' text): about 4 kB a row at the peak, not the 22 kB of a Job and a JSON row.
 Response export_runs(ServerContext& ctx, RequestContext& rc, const JobFilter& filter,
                      const std::string& format) {
   RunTableCsv csv;
