@@ -7,5 +7,6 @@
 #include "api/study/convergence.hpp"
 #include "api/study/critical_length.hpp"
 #include "api/study/failure_regimes.hpp"
+#include "api/study/l_search.hpp"
 #include "api/study/speed_accuracy.hpp"
 #include "api/study/study_run.hpp"

@@ -136,6 +136,7 @@ void ServerApp::start() {
   });
   add_job_routes(router_, *context_);
   add_result_routes(router_, *context_);
+  add_station_routes(router_, *context_);
   add_ops_routes(router_, *context_);
   add_study_routes(router_, *context_);
   add_preset_routes(router_);

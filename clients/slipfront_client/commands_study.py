@@ -36,7 +36,17 @@ def add_parsers(sub, common):
     c.add_argument("--convergence", action="store_true",
                    help="a convergence study: the server refines each L along the n_d ladder "
                         "until two successive meshes agree (instead of the full grid)")
-    c.add_argument("--n-d-max", type=float, help="with --convergence: cap of the ladder")
+    c.add_argument("--n-d-max", type=float, help="with --convergence or --search: cap of the ladder")
+    c.add_argument("--search", action="store_true",
+                   help="an L search instead of --L: down from --from by --factor until the "
+                        "critical-length rule is met, the mesh cap or --floor stops it")
+    c.add_argument("--from", dest="search_from", type=float, help="with --search: the first L [m] "
+                   "(default 5e-5)")
+    c.add_argument("--factor", type=float, help="with --search: each next L = L / factor (default 2)")
+    c.add_argument("--floor", type=float, help="with --search: the smallest L tried "
+                   "(default from / 1000)")
+    c.add_argument("--confirm", type=int, help="with --search: how many smallest L must agree "
+                   "(default 2)")
     c.add_argument("--name")
     c.add_argument("--tag", dest="tags", action="append", default=[])
     c.add_argument("--wait", action="store_true", help="wait for every run, then summarise")
@@ -64,6 +74,20 @@ def build_body(args):
             raise UsageError("give either a study FILE or --base/--L/--n-d, not both")
         body = jobspec.load_job(args.file)
         return body
+    search_options = {"from": args.search_from, "factor": args.factor, "floor": args.floor,
+                      "confirm": args.confirm}
+    if any(v is not None for v in search_options.values()) and not args.search:
+        raise UsageError("--from, --factor, --floor and --confirm need --search")
+    if args.search:
+        if args.lengths:
+            raise UsageError("give either --L or --search, not both")
+        base = jobspec.build_job(args.base, args.overrides)
+        studies.drop_study_fields(base)
+        densities = (floats(args.densities, "--n-d") if args.densities else [10, 20, 40, 80, 160])
+        return studies.study_request(base, [], densities, args.name, args.tags,
+                                     n_d_max=args.n_d_max,
+                                     search={k: v for k, v in search_options.items()
+                                             if v is not None})
     if args.n_d_max is not None and not args.convergence:
         raise UsageError("--n-d-max needs --convergence")
     if not args.lengths or not (args.densities or args.convergence):

@@ -44,23 +44,76 @@ class Result:
         return (self.spec.get("friction") or {}).get("law", "prakash_clifton")
 
     def label(self):
-        """'L = 5e-05 m, n_d = 40' (or 'Coulomb, n_d = 40')."""
-        n_d = self.n_d
-        nd_text = f"n_d = {n_d:g}" if n_d is not None else "n_d = ?"
-        if self.law == "coulomb":
-            return f"Coulomb, {nd_text}"
-        return f"L = {self.L:g} m, {nd_text}" if self.L is not None else nd_text
+        """What tells this run from others on one figure (run_label): 'FE, L = 5e-05 m,
+        n_d = 40'."""
+        return run_label(self.spec, self.metrics)
 
     def wave_speeds(self):
         """(c_s, c_p) of the run's material (plane strain), in either form of the job's
         `material` (moduli, or wave speeds as given: docs/api-job-spec.md)."""
-        m = self.spec.get("material") or {}
-        if "s_wave_speed" in m and "p_wave_speed" in m:
-            return float(m["s_wave_speed"]), float(m["p_wave_speed"])
-        rho = m.get("density", 1.0)
-        E = m.get("young_modulus", 2.5)
-        nu = m.get("poisson_ratio", 0.25)
-        return wave_speeds(rho, E, nu)
+        return solid_wave_speeds(self.spec.get("material") or {})
+
+
+METHODS = {"fe": "FE", "spectral_bi": "BI"}
+
+
+def _number(value, unit=""):
+    return "?" if value is None else f"{value:g}{unit}"
+
+
+def friction_label(friction):
+    """The friction law of a job's `friction` by the parameter that sets its scale
+    (docs/api-job-spec.md "friction"): 'L = 5e-05 m' (slip-scale regularisation: the paper's
+    Prakash–Clifton), 't* = 0.00035 s' (time scale), 'Coulomb' (constant μ, none), and for slip
+    weakening 'slip weakening D_c = 0.000744 m' followed by its regularisation's parameter."""
+    friction = friction or {}
+    law = friction.get("law", "prakash_clifton")
+    regularization = "slip_scale" if law == "prakash_clifton" else friction.get("regularization", "none")
+    parts = []
+    if law == "slip_weakening":
+        parts.append(f"slip weakening D_c = {_number(friction.get('D_c'), ' m')}")
+    if regularization == "slip_scale":
+        parts.append(f"L = {_number(friction.get('L'), ' m')}")
+    elif regularization == "time_scale":
+        parts.append(f"t* = {_number(friction.get('t_star'), ' s')}")
+    elif law != "slip_weakening":
+        parts.append("Coulomb")
+    return ", ".join(parts)
+
+
+def below_label(spec):
+    """'bimaterial' for an interface between two different elastic solids, 'full space' for
+    two identical ones (the homogeneous mode II problem), '' on the rigid plane (the paper's
+    scene)."""
+    lower = spec.get("lower") or {}
+    if lower.get("solid") != "elastic":
+        return ""
+    upper = spec.get("material") or {}
+    same = np.allclose([upper.get("density", 1.0), *solid_wave_speeds(upper)],
+                       [lower.get("density", 1.0), *solid_wave_speeds(lower)], rtol=1e-12, atol=0)
+    return "full space" if same else "bimaterial"
+
+
+def run_label(spec, metrics=None):
+    """What identifies a run among others of a figure: the method, what is below the interface
+    (when not the rigid plane), the friction law by its scale parameter (friction_label) and
+    n_d: 'FE, L = 5e-05 m, n_d = 40', 'BI, Coulomb, n_d = 20', 'BI, bimaterial, slip weakening
+    D_c = 0.000744 m, t* = 0.00035 s, n_d = 5'."""
+    spec = spec or {}
+    method = spec.get("method") or (metrics or {}).get("method") or "fe"
+    n_d = (spec.get("geometry") or {}).get("nodes_per_meter")
+    parts = [METHODS.get(method, method), below_label(spec), friction_label(spec.get("friction")),
+             f"n_d = {_number(n_d)}"]
+    return ", ".join(p for p in parts if p)
+
+
+def solid_wave_speeds(material):
+    """(c_s, c_p) of a solid of a job (its `material` or `lower`), plane strain, in either form:
+    moduli, or wave speeds as given (docs/api-job-spec.md)."""
+    m = material or {}
+    if "s_wave_speed" in m and "p_wave_speed" in m:
+        return float(m["s_wave_speed"]), float(m["p_wave_speed"])
+    return wave_speeds(m.get("density", 1.0), m.get("young_modulus", 2.5), m.get("poisson_ratio", 0.25))
 
 
 def wave_speeds(density=1.0, young_modulus=2.5, poisson_ratio=0.25):

@@ -34,10 +34,16 @@ def _guard(call):
 
 
 def study_request(base, lengths, densities, name=None, tags=None, convergence=False,
-                  n_d_max=None):
+                  n_d_max=None, search=None):
     """A grid study (every L x n_d), or with `convergence` a refinement study over the
-    n_d ladder `densities` (capped at `n_d_max`)."""
-    if convergence:
+    n_d ladder `densities` (capped at `n_d_max`); with `search` (a dict of from, factor,
+    floor, confirm, each optional) an L search instead of the L list."""
+    if search is not None:
+        plan = {"search": dict(search), "n_d": list(densities)}
+        if n_d_max is not None:
+            plan["n_d_max"] = n_d_max
+        body = {"convergence": plan}
+    elif convergence:
         plan = {"L": list(lengths), "n_d": list(densities)}
         if n_d_max is not None:
             plan["n_d_max"] = n_d_max
@@ -162,7 +168,20 @@ def summary_lines(study):
         lines.append(f"L_c reason: {reason}")
     if "critical_length" in study:
         lines.append(f"verdict: {report.verdict_text(study)}")
+    lines += search_summary(study.get("search"))
     lines += cross_method_summary(study.get("cross_method") or [])
+    return lines
+
+
+def search_summary(search):
+    """The L search's state, the L it tried and each step's comparison."""
+    if not search:
+        return []
+    lines = [f"L search ({search.get('state')}): {search.get('reason')}",
+             "  tried L = " + ", ".join(_fmt(L) for L in search.get("searched_L") or [])]
+    for step in search.get("steps") or []:
+        lines.append(f"  {_fmt(step.get('L'))} vs {_fmt(step.get('smaller_L'))}: "
+                     f"{'agree' if step.get('agree') else 'differ'} ({step.get('reason')})")
     return lines
 
 

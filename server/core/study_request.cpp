@@ -111,14 +111,63 @@ void parse_grid(const json& grid, StudyRequest& r, Errors& errors) {
     errors.push_back({"/grid", "at most " + std::to_string(max_study_runs) + " runs per study"});
 }
 
+// A number member of `object` within [low, high] (`what` says so in the error), or `fallback`.
+double bounded_number(const json& object, const char* key, const std::string& pointer, double low,
+                      double high, const std::string& what, double fallback, Errors& errors) {
+  const auto it = object.find(key);
+  if (it == object.end()) return fallback;
+  if (!it->is_number() || !(it->get<double>() >= low && it->get<double>() <= high)) {
+    errors.push_back({pointer + "/" + key, "must be " + what});
+    return fallback;
+  }
+  return it->get<double>();
+}
+
+// "search": {"from", "factor", "floor", "confirm"} (docs/studies-api.md "L search").
+void parse_search(const json& s, StudyRequest& r, Errors& errors) {
+  const std::string at = "/convergence/search";
+  if (!s.is_object()) {
+    errors.push_back({at, "must be an object {\"from\", \"factor\", \"floor\", \"confirm\"} "
+                          "(each optional)"});
+    return;
+  }
+  reject_unknown(s, at, {"from", "factor", "floor", "confirm"}, errors);
+  api::LSearch search;
+  search.from =
+      bounded_number(s, "from", at, 1e-12, 1.0, "a number in [1e-12, 1] (m)", search.from, errors);
+  search.factor =
+      bounded_number(s, "factor", at, 1.1, 100.0, "a number in [1.1, 100]", search.factor, errors);
+  search.floor = bounded_number(s, "floor", at, 1e-12, 1.0, "a number in [1e-12, 1] (m)",
+                                search.from / 1000.0, errors);
+  const double confirm =
+      bounded_number(s, "confirm", at, 2.0, 5.0, "an integer in [2, 5]", 2.0, errors);
+  if (confirm != std::floor(confirm))
+    errors.push_back({at + "/confirm", "must be an integer in [2, 5]"});
+  search.confirm = static_cast<int>(confirm);
+  if (!(search.floor < search.from))
+    errors.push_back({at + "/floor", "must be below from (" + api::number_text(search.from) + ")"});
+  r.search = search;
+  r.L = api::search_ladder(search, max_study_L);
+  if (errors.empty() && r.L.size() < search.confirm + 1u)
+    errors.push_back({at, "from, factor and floor allow " + std::to_string(r.L.size()) +
+                              " L values; the rule needs at least confirm + 1 = " +
+                              std::to_string(search.confirm + 1)});
+}
+
 void parse_convergence(const json& c, StudyRequest& r, Errors& errors) {
   if (!c.is_object()) {
     errors.push_back({"/convergence", "must be an object {\"L\": [...], \"n_d\": [...], "
                                       "\"n_d_max\": ...}"});
     return;
   }
-  reject_unknown(c, "/convergence", {"L", "n_d", "n_d_max"}, errors);
-  r.L = positive_list(c, "L", "/convergence/L", max_study_L, errors);
+  reject_unknown(c, "/convergence", {"L", "n_d", "n_d_max", "search"}, errors);
+  if (c.contains("L") == c.contains("search"))
+    errors.push_back({"/convergence", "give exactly one of \"L\" (the L values) or \"search\" "
+                                      "(an L search: docs/studies-api.md)"});
+  else if (c.contains("L"))
+    r.L = positive_list(c, "L", "/convergence/L", max_study_L, errors);
+  else
+    parse_search(c["search"], r, errors);
   r.n_d = c.contains("n_d") ? positive_list(c, "n_d", "/convergence/n_d", max_study_n_d, errors)
                             : default_ladder();
   if (!std::is_sorted(r.n_d.begin(), r.n_d.end()))

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "api/job_spec.hpp"
+#include "api/study/l_search.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +26,7 @@ struct StudyRequest {
   std::vector<double> L;                          // grid / convergence
   std::vector<double> n_d;                        // grid: meshes; convergence: the ladder
   double n_d_max = 0.0;                           // convergence: the cap
+  std::optional<api::LSearch> search;             // convergence without L: L holds its whole ladder
   std::optional<int> priority;
   std::optional<bool> fresh;
   nlohmann::json body; // the request as received

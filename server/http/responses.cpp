@@ -4,6 +4,7 @@
 
 #include "server/http/query_string.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 
@@ -19,6 +20,10 @@ http::response<http::string_body> text_response(const Request& req, http::status
   res.body() = std::move(body);
   res.prepare_payload();
   return res;
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 std::string fnv1a_hex(const std::string& bytes) {

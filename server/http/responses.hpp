@@ -17,6 +17,8 @@ http::response<http::string_body> json_response(const Request& req, http::status
                                                 const nlohmann::json& body);
 http::response<http::string_body> text_response(const Request& req, http::status status,
                                                 std::string body, const std::string& content_type);
+// A number, or null for NaN and infinities (which JSON cannot hold).
+nlohmann::json number_or_null(double v);
 // The 64-bit FNV-1a hash of `bytes` as 16 hex digits (the server's entity tags).
 std::string fnv1a_hex(const std::string& bytes);
 

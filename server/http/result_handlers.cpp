@@ -1,109 +1,25 @@
 // GET /jobs/{id}/result.h5 (ETag, Range, If-None-Match), /jobs/{id}/result.xdmf (its XDMF
 // sidecar), /jobs/{id}/metrics, /jobs/{id}/front, /jobs/{id}/fields/{name} (a window of an
-// /interface field as JSON), /jobs/{id}/stations.csv (the stations' records as CSV).
+// /interface field as JSON). The stations: station_handlers.cpp.
 #include "api/result_reader.hpp"
-#include "api/result_stations.hpp"
 #include "api/result_xdmf.hpp"
-#include "api/station_csv.hpp"
-#include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
 #include "server/http/byte_range.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/range_file.hpp"
 #include "server/http/responses.hpp"
+#include "server/http/result_lookup.hpp"
 
 #include <boost/beast/http/basic_file_body.hpp>
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <sstream>
 
 namespace slipfront::server {
 
 namespace {
 
 using RangeFileBody = http::basic_file_body<RangeFile>;
-
-// The job of the path, or the response to send instead (404 for malformed or unknown ids:
-// a malformed id never reaches the store or the file system).
-std::variant<Job, Response> find_job(ServerContext& ctx, RequestContext& rc) {
-  const auto& id = rc.path_params.at("id");
-  if (!is_valid_job_id(id))
-    return Response(problem_response(rc.request, http::status::not_found, "no job with id " + id));
-  auto job = ctx.service.get(id);
-  if (!job)
-    return Response(problem_response(rc.request, http::status::not_found, "no job with id " + id));
-  return *job;
-}
-
-Response not_finished(const Request& req, const Job& job, const std::string& what) {
-  return problem_response(req, http::status::conflict,
-                          "job " + job.id + " is " + to_string(job.status) + "; no " + what +
-                              " yet");
-}
-
-// The answer for a result file that cannot be served as the database describes it. Its words
-// never hold the server's paths (the log has the full story).
-Response result_gone(const Request& req, const Job& job, const OpenedResult& file) {
-  using State = OpenedResult::State;
-  std::string why;
-  switch (file.state) {
-  case State::missing:
-    why = "is no longer on the server (deleted from its data dir)";
-    break;
-  case State::not_regular:
-    why = "is not a regular file on the server";
-    break;
-  case State::damaged:
-    why = "is " + file.reason;
-    break;
-  case State::unreadable:
-    why = "cannot be read on the server (" + file.reason + ")";
-    break;
-  case State::intact:
-    throw std::logic_error("result_gone for an intact file");
-  }
-  log_error("job " + job.id + ": result file " + job.result.path + " " + why + "; answered 410");
-  return problem_response(req, http::status::gone,
-                          "the result file of job " + job.id + " " + why +
-                              "; submit the job again with fresh=true to recompute it");
-}
-
-// A finished job's result file, open and verified (ResultFiles).
-struct ResultOnDisk {
-  Job job;
-  OpenedResult file;
-  std::string path; // absolute, for HDF5: the stored path is relative to the data dir
-};
-
-// The result file of the path's job, or the response to send instead: 404 (unknown job, or
-// a job that ended without a result file), 409 (not finished yet), 410 (file deleted,
-// damaged or not a regular file). Verifying may hash the file: only on the blocking pool.
-std::variant<ResultOnDisk, Response> find_result(ServerContext& ctx, RequestContext& rc) {
-  auto found = find_job(ctx, rc);
-  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
-  Job& job = std::get<Job>(found);
-  const auto& req = rc.request;
-  if (!is_final(job.status)) return not_finished(req, job, "result file");
-  if (job.status != JobStatus::succeeded || job.result.path.empty())
-    return problem_response(req, http::status::not_found,
-                            "job " + job.id + " has no result file (" + to_string(job.status) +
-                                (job.error.empty() ? "" : ": " + job.error) + ")");
-  auto& files = ctx.service.result_files();
-  auto file = files.open(job.result);
-  if (file.state != OpenedResult::State::intact) return result_gone(req, job, file);
-  std::string path = files.absolute_path(job.result);
-  return ResultOnDisk{std::move(job), std::move(file), std::move(path)};
-}
-
-// `text` (an error from the HDF5 reader) without the server's path of the file.
-std::string without_path(std::string text, const std::string& path, const Job& job) {
-  const std::string name = job.id + ".h5";
-  for (auto at = text.find(path); at != std::string::npos; at = text.find(path, at + name.size()))
-    text.replace(at, path.size(), name);
-  return text;
-}
 
 Response download(ServerContext& ctx, RequestContext& rc) {
   auto found = find_result(ctx, rc);
@@ -229,10 +145,6 @@ std::optional<double> finite_number(const std::string& s) {
   return v;
 }
 
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 constexpr long max_slice_points = 4000000;
 
 // GET /jobs/{id}/fields/{name}?x1_min&x1_max&t_min&t_max&max_points
@@ -323,34 +235,6 @@ Response field(ServerContext& ctx, RequestContext& rc) {
   return json_response(req, http::status::ok, body);
 }
 
-// GET /jobs/{id}/stations.csv: every recorded step at the job's stations (api/station_csv.hpp);
-// 404 for a job whose spec lists no stations.
-Response stations_csv(ServerContext& ctx, RequestContext& rc) {
-  auto found = find_result(ctx, rc);
-  if (auto* r = std::get_if<Response>(&found)) return std::move(*r);
-  const Job& job = std::get<ResultOnDisk>(found).job;
-  const std::string& path = std::get<ResultOnDisk>(found).path;
-  const auto& req = rc.request;
-  std::string why;
-  const auto stations = api::read_stations(path, why);
-  if (!stations) {
-    log_error("stations of job " + job.id + ": " + why);
-    return problem_response(req, http::status::internal_server_error,
-                            "the result file of job " + job.id +
-                                " cannot be read: " + without_path(why, path, job));
-  }
-  if (stations->empty())
-    return problem_response(req, http::status::not_found,
-                            "job " + job.id +
-                                " has no stations (its spec lists none: \"stations\": "
-                                "{\"x1\": [...]})");
-  std::ostringstream out;
-  api::write_stations_csv(out, *stations);
-  auto res = text_response(req, http::status::ok, std::move(out).str(), "text/csv; charset=utf-8");
-  res.set(http::field::content_disposition, "attachment; filename=\"" + job.id + "-stations.csv\"");
-  return res;
-}
-
 } // namespace
 
 void add_result_routes(Router& router, ServerContext& ctx) {
@@ -369,9 +253,6 @@ void add_result_routes(Router& router, ServerContext& ctx) {
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/fields/{name}",
       [&ctx](RequestContext& rc) { return field(ctx, rc); }, Runs::read_pool);
-  router.add(
-      http::verb::get, api_prefix + "/jobs/{id}/stations.csv",
-      [&ctx](RequestContext& rc) { return stations_csv(ctx, rc); }, Runs::read_pool);
 }
 
 } // namespace slipfront::server

@@ -33,6 +33,26 @@ struct Planned {
   bool submit_now;
 };
 
+// An L search compares the arrival time where every run's front arrives (docs/metrics.md
+// "Convergence status"): unless the base has stations, its runs get 32 evenly over the domain,
+// their rupture threshold the front's own. Written into the stored request, so a restart and
+// an idempotent replay see the same runs.
+void add_search_stations(StudyRequest& r, JobService& jobs) {
+  if (!r.search || r.base.contains("stations")) return;
+  auto base = jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], 10));
+  if (!base.spec) return; // its errors are reported by check_run
+  const json& canonical = base.spec->canonical;
+  const double x_min = canonical["geometry"]["x_min"].get<double>();
+  const double width = canonical["geometry"]["width"].get<double>();
+  constexpr int count = 32;
+  json x1 = json::array();
+  for (int k = 0; k < count; ++k)
+    x1.push_back(x_min + (k + 0.5) * width / count);
+  const json stations = {{"x1", x1}, {"rupture_threshold", canonical["probe"]["front_threshold"]}};
+  r.base["stations"] = stations;
+  r.body["base"]["stations"] = stations;
+}
+
 // Every run the study may submit: for a convergence study the whole ladder up to the cap
 // (checked now, so that a later mesh is not refused), submitted: the first two meshes.
 std::vector<Planned> plan_runs(const StudyRequest& r) {
@@ -44,10 +64,12 @@ std::vector<Planned> plan_runs(const StudyRequest& r) {
         out.push_back({"", json::object(), L, n_d, true});
     break;
   case StudyKind::convergence:
+    // An L search starts with its first L only; the supervisor adds the next ones.
     for (double L : r.L) {
       int first = 0;
+      const bool started = !r.search || L == r.L.front();
       for (double n_d : r.n_d)
-        if (n_d <= r.n_d_max) out.push_back({"", json::object(), L, n_d, first++ < 2});
+        if (n_d <= r.n_d_max) out.push_back({"", json::object(), L, n_d, started && first++ < 2});
     }
     break;
   case StudyKind::failure_regimes:
@@ -118,6 +140,7 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
     out.errors = std::move(parsed.errors);
     return out;
   }
+  add_search_stations(*parsed.request, jobs_);
   const StudyRequest& request = *parsed.request;
   const auto planned = plan_runs(request);
   std::set<std::string> seen;

@@ -4,7 +4,10 @@
 #include "server/core/log.hpp"
 #include "server/services/study_progress.hpp"
 
+#include "api/json_number.hpp"
 #include "api/number_text.hpp"
+#include "api/study/l_search.hpp"
+#include "api/study/run_rules.hpp"
 
 namespace slipfront::server {
 
@@ -133,7 +136,54 @@ std::vector<api::StudyRun> study_runs(const std::vector<StudyRunRow>& rows) {
   return runs;
 }
 
+// How many L of an L search's ladder have runs: they are started in the ladder's order.
+std::size_t started_L(const std::vector<double>& ladder, const std::vector<StudyRunRow>& rows) {
+  std::size_t started = 1;
+  for (std::size_t i = 0; i < ladder.size(); ++i)
+    for (const auto& row : rows)
+      if (row.regime.empty() && api::study_rules::same_value(row.L, ladder[i]))
+        started = std::max(started, i + 1);
+  return started;
+}
+
+// The search's state for the reader (docs/studies-api.md "L search").
+json search_json(const api::LSearch& search, const std::vector<double>& ladder, std::size_t active,
+                 bool settled, const std::vector<api::StudyRun>& runs) {
+  const auto v = api::search_verdict(search, ladder, active, settled, runs);
+  return {{"state", api::to_string(v.state)},
+          {"reason", v.reason},
+          {"L_c", api::json_number(v.L_c)},
+          {"next_L", api::json_number(v.next_L)},
+          {"searched_L", std::vector<double>(ladder.begin(), ladder.begin() + active)},
+          {"steps", v.steps},
+          {"from", search.from},
+          {"factor", search.factor},
+          {"floor", search.floor},
+          {"confirm", search.confirm}};
+}
+
 } // namespace
+
+// The first two meshes (up to the cap) of the next L of a search; whether one was submitted.
+bool StudySupervisor::start_L(const StudyRecord& study, const StudyRequest& request, double L) {
+  bool submitted = false;
+  int count = 0;
+  for (double n_d : request.n_d) {
+    if (n_d > request.n_d_max || count++ >= 2) break;
+    auto r = submit_study_run(jobs_, studies_, study, request, json::object(), "", L, n_d, true);
+    if (r.job) {
+      submitted = true;
+      log_info("study " + study.id + ": L = " + number_text(L) +
+               ": submitted n_d = " + number_text(n_d) + " as job " + r.job->id);
+    } else {
+      log_error("study " + study.id + ": L = " + number_text(L) + ", n_d = " + number_text(n_d) +
+                " refused: " +
+                (r.errors.empty() ? std::string("queue")
+                                  : r.errors[0].pointer + " " + r.errors[0].reason));
+    }
+  }
+  return submitted;
+}
 
 void StudySupervisor::step_locked(const std::string& study_id) {
   auto study = studies_.get(study_id);
@@ -146,18 +196,22 @@ void StudySupervisor::step_locked(const std::string& study_id) {
   const StudyRequest& request = *parsed.request;
   auto rows = studies_.runs(study_id);
   json refinement = nullptr;
+  json search = nullptr;
   bool plans_open = false;
   if (study->kind == "convergence" && study->status == api::StudyStatus::cancelled) {
     refinement = cancelled_refinement(study->result);
   } else if (study->kind == "convergence") {
-    // Each pass submits at most one mesh per L; a reused result can settle a plan at once,
-    // so repeat (bounded by the ladder's length).
-    for (std::size_t pass = 0; pass <= request.n_d.size(); ++pass) {
+    // Each pass submits at most one mesh per L (and an L search at most its next L); a reused
+    // result can settle a plan at once, so repeat (bounded by the meshes and L it may submit).
+    std::size_t active = request.search ? started_L(request.L, rows) : request.L.size();
+    const std::size_t passes = (request.n_d.size() + 1) * (request.L.size() + 1);
+    for (std::size_t pass = 0; pass < passes; ++pass) {
       refinement = json::object();
       plans_open = false;
       bool submitted = false;
       const auto runs = study_runs(rows);
-      for (double L : request.L) {
+      for (std::size_t i = 0; i < active; ++i) {
+        const double L = request.L[i];
         auto plan = api::refinement_plan(L, runs, request.n_d, request.n_d_max);
         json entry = {{"L", L},
                       {"state", api::to_string(plan.state)},
@@ -187,11 +241,22 @@ void StudySupervisor::step_locked(const std::string& study_id) {
         }
         refinement[json(L).dump()] = entry;
       }
+      if (!submitted && !plans_open && request.search) {
+        const auto verdict = api::search_verdict(*request.search, request.L, active, true, runs);
+        if (verdict.state == api::SearchVerdict::State::next_L) {
+          submitted = start_L(*study, request, verdict.next_L);
+          ++active;
+          log_info("study " + study_id + ": L search: " + verdict.reason);
+        }
+      }
       if (!submitted) break;
       rows = studies_.runs(study_id);
     }
+    if (request.search)
+      search = search_json(*request.search, request.L, active, !plans_open, study_runs(rows));
   }
   analyse_study(*study, rows, refinement, plans_open, now_iso8601());
+  if (!search.is_null()) study->result["search"] = search;
   studies_.save_analysis(*study, rows);
   if (study->status == api::StudyStatus::finished && !study->finished_at.empty())
     log_info("study " + study_id + ": " + std::to_string(study->runs_total) + " run(s) finished");

@@ -62,6 +62,7 @@ public:
 
 private:
   void loop();
+  bool start_L(const StudyRecord& study, const StudyRequest& request, double L);
 
   StudyStore& studies_;
   JobService& jobs_;

@@ -212,6 +212,22 @@ class EndToEnd(unittest.TestCase):
         finest = [c for c in study["convergence_map"]["cells"] if c["n_d"] == 10]
         self.assertTrue(all(c["status"] == "unknown" for c in finest), finest)
 
+    def test_l_search_study(self):
+        # No L list: the server walks down from --from; on the tiny scene no L mesh-converges,
+        # so the search stops at the mesh cap after two L and says so.
+        r = self.client("study", "create", "--base", self.job_file, "--search", "--from", "1e-4",
+                        "--factor", "2", "--n-d", "5,10", "--wait", "--wait-timeout", "60")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("L search (mesh_cap): stopped at the mesh cap", r.stdout)
+        self.assertIn("tried L = 0.0001, 5e-05", r.stdout)
+        r = self.client("study", "create", "--base", self.job_file, "--search", "--L", "1e-4")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("either --L or --search", r.stderr)
+        r = self.client("study", "create", "--base", self.job_file, "--L", "1e-4", "--factor", "3",
+                        "--n-d", "5,10")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("need --search", r.stderr)
+
     def test_bi_study_and_both_methods(self):
         bi_base = os.path.join(self.tmp, "bi_base.json")
         base = json.loads(json.dumps(TINY))

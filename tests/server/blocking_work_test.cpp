@@ -70,7 +70,7 @@ std::string request_text(const std::string& method, const std::string& target) {
 }
 
 // A router with POST /slow, whose handler blocks until release() (a route of another method
-// than GET: offloaded without asking), and GET /healthz, answered at once. A listener on an
+// than GET: on the write pool without asking), and GET /healthz, answered at once. A listener on an
 // ephemeral loopback port served by one I/O thread.
 class SlowAndCheapServer {
 public:

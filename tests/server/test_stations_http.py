@@ -1,9 +1,11 @@
-"""GET /api/v1/jobs/{id}/stations.csv over real HTTP on loopback (docs/server.md,
+"""GET /api/v1/jobs/{id}/stations.csv and /stations over real HTTP on loopback (docs/server.md,
 docs/hdf5-layout.md "Stations as CSV"): a `slipfront serve` on an ephemeral port runs small
 FE and spectral BI jobs with stations; the CSV holds every step of /stations of the job's own
 result file, value for value, with its units and rupture times in the header comments, and the
-rupture times of the metrics; a job without stations is a 404 that says so, an unfinished job
-a 409; the OpenAPI document lists the route.
+rupture times of the metrics; the JSON holds the same values (every step within its budget,
+else every k-th step from the first, k = ceil(steps / max_samples), still the file's values);
+a bad max_samples or an unknown parameter is a 400 naming it; a job without stations is a 404
+that says so, an unfinished job a 409; the OpenAPI document lists both routes.
 
     /usr/bin/python3 tests/server/test_stations_http.py --binary build/slipfront
 """
@@ -109,6 +111,28 @@ class StationsCsv(unittest.TestCase):
         # The rupture passes the first two stations, in order, and not the far one.
         self.assertLess(rupture[0], rupture[1])
         self.assertTrue(math.isnan(rupture[2]), rupture)
+        self.check_json(job["id"], time, series, rupture)
+
+    def check_json(self, job_id, time, series, rupture):
+        """GET /stations: the file's values, every step; then every k-th within a budget."""
+        m = time.size
+        for budget, stride in ((None, 1), (m, 1), (7, -(-m // 7)), (1, m)):
+            params = {} if budget is None else {"max_samples": budget}
+            r = self.server.get(f"{JOBS}/{job_id}/stations", params=params)
+            self.assertEqual(r.status_code, 200, r.text)
+            body = r.json()
+            self.assertEqual(body["x1"], STATIONS)
+            self.assertEqual(body["rupture_threshold"], 1e-4)
+            self.assertEqual(body["units"]["slip_rate"], "m/s")
+            self.assertEqual(body["units"]["normal_traction"], "Pa")
+            self.assertEqual([None if math.isnan(t) else t for t in rupture],
+                             body["rupture_time"])
+            self.assertEqual((body["steps"], body["stride"]), (m, stride), budget)
+            self.assertTrue(np.array_equal(body["time"], time[::stride]))
+            self.assertLessEqual(len(body["time"]), budget or m)
+            for name, values in series.items():
+                self.assertTrue(np.array_equal(np.array(body[name]), values[::stride]),
+                                f"{name}, max_samples {budget}")
 
     def test_fe_job_csv_is_its_result_files_stations(self):
         self.check_method("fe")
@@ -121,9 +145,10 @@ class StationsCsv(unittest.TestCase):
         del spec["stations"]
         job = self.finished(spec)
         self.assertNotIn("stations", job["metrics"])
-        r = self.server.get(f"{JOBS}/{job['id']}/stations.csv")
-        self.assertEqual(r.status_code, 404, r.text)
-        self.assertIn("has no stations", r.json()["detail"])
+        for route in ("stations.csv", "stations"):
+            r = self.server.get(f"{JOBS}/{job['id']}/{route}")
+            self.assertEqual(r.status_code, 404, r.text)
+            self.assertIn("has no stations", r.json()["detail"])
 
     def test_unfinished_job_is_409(self):
         spec = long_job("stations-unfinished")
@@ -132,6 +157,7 @@ class StationsCsv(unittest.TestCase):
         self.assertEqual(r.status_code, 201, r.text)
         job_id = r.json()["id"]
         self.assertEqual(self.server.get(f"{JOBS}/{job_id}/stations.csv").status_code, 409)
+        self.assertEqual(self.server.get(f"{JOBS}/{job_id}/stations").status_code, 409)
         self.server.post(f"{JOBS}/{job_id}/cancel")
         self.server.wait_status(job_id, TERMINAL, timeout=30)
 
@@ -146,11 +172,26 @@ class StationsCsv(unittest.TestCase):
             pointers = [e["pointer"] for e in r.json()["errors"]]
             self.assertIn(pointer, pointers)
 
-    def test_openapi_lists_the_route(self):
+    def test_bad_query_is_400_naming_the_parameter(self):
+        job = self.finished(scene("spectral_bi"))
+        for params, pointer in (({"max_samples": 0}, "/query/max_samples"),
+                                ({"max_samples": "ten"}, "/query/max_samples"),
+                                ({"max_samples": 1000001}, "/query/max_samples"),
+                                ({"max_samples": "99999999999999999999"}, "/query/max_samples"),
+                                ({"stride": 2}, "/query/stride")):
+            r = self.server.get(f"{JOBS}/{job['id']}/stations", params=params)
+            self.assertEqual(r.status_code, 400, r.text)
+            self.assertEqual([e["pointer"] for e in r.json()["errors"]], [pointer], params)
+
+    def test_openapi_lists_the_routes(self):
         doc = self.server.get("/api/v1/openapi.json").json()
         operation = doc["paths"]["/api/v1/jobs/{id}/stations.csv"]["get"]
         self.assertIn("text/csv", operation["responses"]["200"]["content"])
         self.assertIn("404", operation["responses"])
+        operation = doc["paths"]["/api/v1/jobs/{id}/stations"]["get"]
+        self.assertIn("application/json", operation["responses"]["200"]["content"])
+        self.assertEqual([p.get("name") for p in operation["parameters"]][1:], ["max_samples"])
+        self.assertIn("400", operation["responses"])
 
 
 if __name__ == "__main__":

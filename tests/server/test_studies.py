@@ -151,6 +151,26 @@ class Studies(unittest.TestCase):
         self.assertEqual(meshes, [5, 10, 20], study["refinement"])
         self.assertIn(plan["state"], {"converged", "not_converged_at_cap"})
 
+    def test_l_search_stops_where_the_meshes_stop(self):
+        # On the tiny scene every run is still slipping at the end, so no L mesh-converges:
+        # the search tries the first L and the next, and stops at the mesh cap.
+        r = self.create({"name": "search", "base": base(),
+                         "convergence": {"search": {"from": 1e-4, "factor": 2}, "n_d": [5, 10]}})
+        created = r.json()
+        self.assertEqual(sorted(run["L"] for run in created["runs"]), [1e-4, 1e-4])
+        study = wait_finished(self.server, created["id"])
+        search = study["search"]
+        self.assertEqual(search["state"], "mesh_cap", search)
+        self.assertEqual(search["searched_L"], [1e-4, 5e-5])
+        self.assertEqual(sorted({run["L"] for run in study["runs"]}), [5e-5, 1e-4])
+        self.assertIn("stopped at the mesh cap", search["reason"])
+        self.assertIsNone(study["L_c"])
+        # Its runs carry the stations the rule measures the arrival time at (docs/metrics.md).
+        job = self.server.get(f"/api/v1/jobs/{study['runs'][0]['job_id']}").json()
+        stations = job["spec"]["stations"]
+        self.assertEqual(len(stations["x1"]), 32)
+        self.assertAlmostEqual(stations["x1"][0], -1 + 12 / 64)
+
     def test_errors(self):
         cases = [
             ({"grid": {"L": [1e-5, 2e-5, -1], "n_d": [5]}}, "/grid/L/2", "must be > 0"),
@@ -164,6 +184,16 @@ class Studies(unittest.TestCase):
             ({"preset": "nope"}, "/preset", None),
             ({"convergence": {"L": [1e-5], "n_d": [20, 10]}}, "/convergence/n_d", None),
             ({"grid": {"L": [1e-5], "n_d": [5]}, "priority": 1000}, "/priority", None),
+            ({"convergence": {"L": [1e-5], "search": {}}}, "/convergence", None),
+            ({"convergence": {"search": {"from": 1e-5, "floor": 1e-5}}},
+             "/convergence/search/floor", None),
+            ({"convergence": {"search": {"confirm": 2.5}}}, "/convergence/search/confirm", None),
+            ({"convergence": {"search": {"factor": 1.0}}}, "/convergence/search/factor",
+             "must be a number in [1.1, 100]"),
+            ({"convergence": {"search": {"from": 1e-5, "floor": 5e-6, "factor": 2}}},
+             "/convergence/search", None),  # two L only: the rule needs three
+            ({"convergence": {"search": {"bogus": 1}}}, "/convergence/search/bogus",
+             "unknown field"),
             ({"grid": {"L": [1e-5], "n_d": [5]}, "priority": 18446744073709551615}, "/priority",
              "must be an integer in [-100, 100]"),
         ]

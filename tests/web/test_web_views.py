@@ -231,6 +231,31 @@ class WebViews(BrowserCase):
         self.assertNotIn("unknown", " ".join(self.texts("#study-runs .badge")))
         self.assert_no_console_errors("study")
 
+    def test_l_search_panel_shows_the_verdict_and_each_step(self):
+        # An L search on the paper's scene by BI (docs/studies-api.md "L search"), started
+        # near its L_c so that it ends in three L: 1.6e-6 differs from 8e-7, which agrees with 4e-7.
+        r = self.server.post("/api/v1/studies", json={
+            "name": "L search", "base": {"method": "spectral_bi"},
+            "convergence": {"search": {"from": 1.6e-6, "factor": 2}}})
+        self.assertEqual(r.status_code, 201, r.text)
+        study = wait_study(self.server, r.json()["id"], timeout=300)
+        search = study["search"]
+        self.assertEqual(search["state"], "found", search)
+        self.open(f"/#/studies/{study['id']}")
+        self.wait(lambda d: self.css("#search-steps tbody tr"), message="the search's steps")
+        self.assertEqual(self.texts("#search-state"), ["L_c found"])
+        self.assertEqual(self.texts("#search-reason"), [search["reason"]])
+        rows = self.js("return [...document.querySelectorAll('#search-steps tbody tr')]"
+                       ".map(tr => [tr.className, tr.cells[0].textContent, tr.cells[3].textContent])")
+        self.assertEqual(len(rows), len(search["steps"]))
+        for row, step in zip(rows, search["steps"]):
+            self.assertEqual(row[2], "agree" if step["agree"] else "differ")
+            self.assertEqual(row[0], "agree" if step["agree"] else "differ")
+        lc = self.texts("#lc-value")[0]
+        self.assertTrue(lc.endswith(" m") and "not determined" not in lc, lc)
+        self.shot("study-l-search")
+        self.assert_no_console_errors("study with an L search")
+
     def test_speed_accuracy_joins_runs_only_along_refinements(self):
         sa = self.server.get(f"/api/v1/studies/{self.study_id}/speed-accuracy").json()
         entries = {e["id"]: e for e in sa["across_methods"]["runs"]}

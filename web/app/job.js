@@ -1,9 +1,11 @@
 // A run: status and progress (live), spec, metrics, cost, convergence status, provenance,
-// the HDF5 download, and the paper's figures drawn from /fields and /front slices.
+// the HDF5 download, the paper's figures drawn from /fields and /front slices, and the
+// on-fault stations of a run that has them (job_stations.js).
 import { h, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
 import { get, getJSON } from './api.js';
-import { drawFigures } from './job_figures.js';
-import { cancelJob, jobL, jobNd } from './jobs.js';
+import { drawFigures, lowerWaveSpeeds, waveSpeeds } from './job_figures.js';
+import { drawStations, hasStations } from './job_stations.js';
+import { cancelJob, frictionText, jobNd } from './jobs.js';
 import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
 
 const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
@@ -12,6 +14,15 @@ const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
 function meshText(mesh) {
   const known = Object.entries(mesh || {}).filter(([, v]) => v !== null && v !== undefined);
   return known.length ? known.map(([k, v]) => `${k} = ${typeof v === 'number' && !Number.isInteger(v) ? fmt(v, 6) : v}`).join(', ') : '—';
+}
+
+// What is below the interface when it is not the rigid plane (as the CLI's run labels):
+// 'bimaterial' for two different elastic solids, 'full space' for two identical ones.
+function belowText(spec) {
+  const lower = lowerWaveSpeeds(spec), upper = waveSpeeds(spec);
+  if (!lower) return '';
+  const same = upper && lower.cs === upper.cs && lower.cp === upper.cp && (spec.lower.density ?? 1) === (spec.material?.density ?? 1);
+  return same ? 'full space' : 'bimaterial';
 }
 
 export async function jobPage(view, page, id) {
@@ -25,7 +36,7 @@ export async function jobPage(view, page, id) {
   const renderHead = () => {
     fill(head, 
       h('h1', {}, job.name || `job ${shortId(job.id)}`, ' ', badge(job.status)),
-      h('div', { class: 'sub muted' }, `${job.method === 'spectral_bi' ? 'spectral BI' : 'FE'} · L = ${fmt(jobL(job))} m · n_d = ${fmt(jobNd(job))} /m · id `, h('code', { text: job.id }),
+      h('div', { class: 'sub muted' }, [job.method === 'spectral_bi' ? 'spectral BI' : 'FE', belowText(job.spec), frictionText(job.spec), `n_d = ${fmt(jobNd(job))} /m`, 'id '].filter(Boolean).join(' · '), h('code', { text: job.id }),
         job.study_id ? h('span', {}, ' · ', link(`#/studies/${job.study_id}`, 'its study')) : null));
   };
 
@@ -116,6 +127,11 @@ export async function jobPage(view, page, id) {
     if (job.status === 'succeeded' && !drawn) {
       drawn = true;
       await drawFigures(figs, job).catch((e) => figs.append(h('p', { class: 'error', text: `The figures could not be drawn: ${e.message}` })));
+      if (hasStations(job)) { // a run without stations has no card for them
+        const stations = h('section', { class: 'card figures', id: 'job-stations' });
+        figs.after(stations);
+        await drawStations(stations, job).catch((e) => stations.append(h('p', { class: 'error', text: `The stations could not be drawn: ${e.message}` })));
+      }
     } else if (!FINAL.has(job.status)) {
       fill(figs, h('h2', { text: 'Figures' }), h('p', { class: 'muted', text: 'The figures appear when the run has succeeded.' }));
     } else if (job.status !== 'succeeded') {

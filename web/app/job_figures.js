@@ -28,21 +28,35 @@ const COLOURS = {
   viridis: 'Viridis',
 };
 
-// Shear and P wave speeds of the block, plane strain (as the CLI's results.wave_speeds).
-export function waveSpeeds(spec) {
-  const m = spec?.material || {};
-  const E = m.young_modulus, nu = m.poisson_ratio, rho = m.density;
+// Shear and P wave speeds of a solid (the job's `material`, or its `lower` solid), plane
+// strain, in either form of the job (moduli, or wave speeds as given: docs/api-job-spec.md;
+// as the CLI's results.wave_speeds); null for a rigid or incomplete one.
+export function solidWaveSpeeds(m) {
+  if (m?.s_wave_speed > 0 && m?.p_wave_speed > 0) return { cs: m.s_wave_speed, cp: m.p_wave_speed };
+  const E = m?.young_modulus, nu = m?.poisson_ratio, rho = m?.density;
   if (!(E > 0 && nu > 0 && nu < 0.5 && rho > 0)) return null;
   const mu = E / (2 * (1 + nu));
   const lambda = (E * nu) / ((1 + nu) * (1 - 2 * nu));
   return { cs: Math.sqrt(mu / rho), cp: Math.sqrt((lambda + 2 * mu) / rho) };
 }
 
-// The x1 interval the nucleation ellipse covers, 0 to sqrt(a^2 + b^2) (solver/nucleation.cpp),
-// or null when the run has none.
-function nucleationPatch(spec) {
+// The upper solid's wave speeds (the block of the paper's scene).
+export function waveSpeeds(spec) {
+  return solidWaveSpeeds(spec?.material);
+}
+
+// The lower solid's, when the interface is between two elastic solids; else null.
+export function lowerWaveSpeeds(spec) {
+  return spec?.lower?.solid === 'elastic' ? solidWaveSpeeds(spec.lower) : null;
+}
+
+// The x1 interval of the nucleation, or null when the run has none: the moving ellipse covers
+// 0 to sqrt(a^2 + b^2) (solver/nucleation.cpp), the overstressed patch [x1_min, x1_max].
+export function nucleationPatch(spec) {
   const n = spec?.nucleation;
-  if (!n || n.enabled === false || !(n.a > 0) || !(n.b > 0)) return null;
+  if (!n || n.enabled === false) return null;
+  if (n.type === 'overstressed_patch') return Number.isFinite(n.x1_min) && Number.isFinite(n.x1_max) ? [n.x1_min, n.x1_max] : null;
+  if (!(n.a > 0) || !(n.b > 0)) return null;
   return [0, Math.hypot(n.a, n.b)];
 }
 
@@ -68,8 +82,8 @@ function colourRange(values, scale) {
 }
 
 // (t0, t1) covering every series' |V| above 1 % of the largest, padded by 15 % of the width
-// (the CLI's signal_window); null without signal.
-function signalWindow(series) {
+// (the CLI's signal_window); null without signal. series: [{t, v: |V|}].
+export function signalWindow(series) {
   const peak = Math.max(0, ...series.flatMap((s) => s.v.filter(Number.isFinite)));
   if (!(peak > 0)) return null;
   let t0 = Infinity, t1 = -Infinity;
@@ -201,35 +215,39 @@ export async function drawFigures(figs, job) {
   await drawVt();
 }
 
-// (c) V_r(x1) from the front, with c_s, c_p and the nucleation patch (as the CLI's
-// plot_speed): the y axis stops at 1.1 c_p.
+// (c) V_r(x1) from the front, with c_s, c_p (of each solid when there are two) and the
+// nucleation patch (as the CLI's plot_speed): the y axis stops at 1.1 c_p (of the faster one).
 async function drawVr(box, caption, job, front, xRange, stem) {
   if (!front) { chartMessage(box, 'No front stored for this run.'); return; }
   const speeds = waveSpeeds(job.spec);
+  const lower = lowerWaveSpeeds(job.spec);
   const patch = nucleationPatch(job.spec);
   const vr = front.rupture_speed.filter((v) => v !== null && Number.isFinite(v));
   const top = Math.max(0, ...vr);
+  const fastest = Math.max(speeds?.cp ?? 0, lower?.cp ?? 0); // the axis stops at 1.1 of it
   const shapes = [];
   const notes = [];
   if (patch) shapes.push({ type: 'rect', xref: 'x', yref: 'y domain', x0: patch[0], x1: patch[1], y0: 0, y1: 1, fillcolor: 'rgba(255,127,14,0.15)', line: { width: 0 }, layer: 'below' });
-  if (speeds) {
-    for (const [name, v, dash] of [['c_s', speeds.cs, 'dash'], ['c_p', speeds.cp, 'dashdot']]) {
-      shapes.push({ type: 'line', xref: 'x domain', yref: 'y', x0: 0, x1: 1, y0: v, y1: v, line: { color: '#6b7785', width: 1, dash } });
-      notes.push({ xref: 'x domain', yref: 'y', x: 1, y: v, xanchor: 'right', yanchor: 'bottom', showarrow: false, text: `${name} = ${fmt(v)} m/s`, font: { color: '#6b7785', size: 11 } });
-    }
+  const lines = speeds ? [['c_s', speeds.cs, 'dash'], ['c_p', speeds.cp, 'dashdot']] : [];
+  if (speeds && lower && (lower.cs !== speeds.cs || lower.cp !== speeds.cp)) { // two different solids: each one's
+    lines.splice(0, 2, ['c_s upper', speeds.cs, 'dash'], ['c_p upper', speeds.cp, 'dashdot'], ['c_s lower', lower.cs, 'dot'], ['c_p lower', lower.cp, 'longdashdot']);
+  }
+  for (const [name, v, dash] of lines) {
+    shapes.push({ type: 'line', xref: 'x domain', yref: 'y', x0: 0, x1: 1, y0: v, y1: v, line: { color: '#6b7785', width: 1, dash } });
+    notes.push({ xref: 'x domain', yref: 'y', x: 1, y: v, xanchor: 'right', yanchor: 'bottom', showarrow: false, text: `${name} = ${fmt(v)} m/s`, font: { color: '#6b7785', size: 11 } });
   }
   await chart(box, {
     data: [{ type: 'scatter', mode: 'lines+markers', x: front.x1, y: front.rupture_speed, name: 'V_r from the front arrival times', marker: { size: 3 }, line: { color: '#1f77b4', width: 1.4 }, hovertemplate: 'x1 = %{x:.3f} m<br>V_r = %{y:.4g} m/s<extra></extra>' },
-      ...(patch ? [{ type: 'scatter', mode: 'lines', x: [null], y: [null], name: `nucleation patch (0 to ${fmt(patch[1])} m)`, line: { color: 'rgba(255,127,14,0.5)', width: 8 }, hoverinfo: 'skip' }] : [])],
+      ...(patch ? [{ type: 'scatter', mode: 'lines', x: [null], y: [null], name: `nucleation patch (${fmt(patch[0])} to ${fmt(patch[1])} m)`, line: { color: 'rgba(255,127,14,0.5)', width: 8 }, hoverinfo: 'skip' }] : [])],
     height: 260, filename: `${stem}-rupture-speed`,
     layout: {
       margin: MARGIN, shapes, annotations: notes, showlegend: true,
       xaxis: axis('x1 [m]', { range: [...xRange], autorange: false, domain: X_DOMAIN }),
-      yaxis: axis('V_r [m/s]', speeds ? { range: [0, 1.1 * speeds.cp], autorange: false } : { rangemode: 'tozero' }),
+      yaxis: axis('V_r [m/s]', fastest > 0 ? { range: [0, 1.1 * fastest], autorange: false } : { rangemode: 'tozero' }),
       legend: { x: 0.01, xanchor: 'left', y: 0.02, yanchor: 'bottom' },
     },
   });
-  caption.textContent = speeds && top > 1.1 * speeds.cp
-    ? `Axis cut at 1.1 c_p (as the CLI); V_r reaches ${fmt(top)} m/s where the front arrives almost at once (inside the nucleation patch).`
+  caption.textContent = fastest > 0 && top > 1.1 * fastest
+    ? `Axis cut at 1.1 c_p${lower ? ' of the faster solid' : ''} (as the CLI); V_r reaches ${fmt(top)} m/s where the front arrives almost at once (inside the nucleation patch).`
     : '';
 }

@@ -5,6 +5,7 @@ import { h, fill, fmt, fmtTime, badge, progressBar, kvTable, link, notFound, sho
 import { get, getJSON, post } from './api.js';
 import { convergenceGrid, mapIsFinal, statusBadge } from './convergence_grid.js';
 import { METRICS, drawSpeedChart } from './speed_chart.js';
+import { searchSection } from './study_search.js';
 
 export function studiesPage(view, page) {
   const table = h('table', { class: 'grid', id: 'studies-table' });
@@ -72,7 +73,8 @@ export async function studyPage(view, page, id) {
       ]),
       study.status === 'running' ? h('div', { class: 'actions' }, h('button', { onclick: async () => {
         try { await post(`/api/v1/studies/${study.id}/cancel`); out.textContent = 'cancelled'; out.className = 'ok'; } catch (e) { out.textContent = e.message; out.className = 'error'; }
-      }, text: 'Cancel study' }), out) : null);
+      }, text: 'Cancel study' }), out) : null,
+      searchSection(study.search));
     fill(mapCard, h('h2', { text: 'Convergence map (this study)' }),
       h('p', { class: 'muted', text: 'Each cell is a run at (L, n_d): converged when it agrees with the next finer mesh (propagation distance within 0.5 %, arrival time at the probe within 0.1 %). Cells fill in as runs finish; hover a cell for the reason.' }),
       convergenceGrid(study.convergence_map, study.runs, 'study-cmap', { tolerances: cl.tolerances, finished: study.status !== 'running' }));

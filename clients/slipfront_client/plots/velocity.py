@@ -1,5 +1,6 @@
 """(b) Slip velocity |V| against time at given positions x1 (paper Fig. 2b, 3a, 4a),
-several runs overlaid and labelled by L and n_d. Each panel's time axis is zoomed to the
+several runs overlaid, each labelled by what identifies it (results.run_label: method, friction
+law and its scale parameter, n_d). Each panel's time axis is zoomed to the
 signal: from a little before the first run's |V| exceeds 1 % of the panel's peak to a little
 after the last run's falls below it (`zoom=False` shows the whole run)."""
 

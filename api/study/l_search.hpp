@@ -1,0 +1,46 @@
+// An L search (docs/studies-api.md "L search"): a convergence study that is not given its L
+// values but walks down from a first L by a factor, refining n_d for each L as any convergence
+// study does, until the critical-length rule is met, or a floor, or the mesh cap stops it.
+// Pure functions: the server's supervisor asks what to do next.
+#pragma once
+
+#include "api/study/study_run.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace slipfront::api {
+
+struct LSearch {
+  double from = 5e-5;  // the first L (m)
+  double factor = 2.0; // each next L is the previous one / factor
+  double floor = 1e-8; // no L below this one is tried (m)
+  int confirm = 2;     // how many smallest L must agree (the paper: L_c and one L below it)
+};
+
+// from, from / factor, ... while >= floor (up to round-off), at most max_count values.
+std::vector<double> search_ladder(const LSearch& search, std::size_t max_count);
+
+struct SearchVerdict {
+  enum class State { refining, next_L, found, floor, mesh_cap, all_agree };
+  State state = State::refining;
+  double next_L = not_available;                  // next_L: the L to add
+  double L_c = not_available;                     // found: the critical length
+  std::string reason;                             // one paragraph for the reader, with the numbers
+  nlohmann::json steps = nlohmann::json::array(); // each searched L against the next smaller
+};
+
+std::string to_string(SearchVerdict::State state);
+
+// What the search does next. `ladder` is search_ladder(), `active` how many of its L have
+// been started, `settled` whether every started L's mesh refinement has ended (converged or
+// not at the cap); `runs` the study's runs. The rule (docs/metrics.md "Critical length"):
+// the `confirm` smallest mesh-converged L agree pairwise and a larger one disagrees with
+// them: L_c is the largest L of the agreeing group.
+SearchVerdict search_verdict(const LSearch& search, const std::vector<double>& ladder,
+                             std::size_t active, bool settled, const std::vector<StudyRun>& runs,
+                             const ConvergenceTolerances& tol = {});
+
+} // namespace slipfront::api
