@@ -18,7 +18,7 @@ std::string usage_text() {
   return "usage: slipfront serve [--host 127.0.0.1] [--port 8080] [--data-dir DIR]\n"
          "         [--workers N] [--queue-limit N] [--max-memory SIZE]\n"
          "         [--max-body-bytes N] [--max-unsent-bytes N] [--token-file F] [--config F]\n"
-         "         [--io-threads N]\n"
+         "         [--io-threads N] [--max-exports N]\n"
          "         [--request-timeout-s S] [--retry-after-s S] [--db-progress-interval-s S]\n"
          "         [--min-free-bytes X] [--max-connections N] [--max-result-bytes X]\n"
          "         [--integrity-check on|off] [--web-dir DIR]\n"
@@ -98,6 +98,12 @@ const std::map<std::string, Setter>& setters() {
                      c.max_unsent_bytes = parse_number<std::uint64_t>(f, v);
                      if (c.max_unsent_bytes < (1u << 20))
                        throw UsageError(f + ": must be >= 1 MiB");
+                   }},
+                  {"max-exports",
+                   [](ServerConfig& c, const std::string& f, const std::string& v) {
+                     c.max_exports = parse_number<int>(f, v);
+                     if (c.max_exports < 1 || c.max_exports > 64)
+                       throw UsageError(f + ": must be in [1, 64]");
                    }},
                   {"token-file", [](ServerConfig& c, const std::string&,
                                     const std::string& v) { c.token_file = v; }},
