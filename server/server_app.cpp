@@ -63,8 +63,10 @@ void ServerApp::listen() {
   limits.max_body_bytes = config_.max_body_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
   limits.max_connections = connection_cap(config_.max_connections);
-  offload_pool_ = std::make_unique<net::thread_pool>(2);
-  limits.offload_pool = offload_pool_.get();
+  read_pool_ = std::make_unique<net::thread_pool>(2);
+  write_pool_ = std::make_unique<net::thread_pool>(2);
+  export_pool_ = std::make_unique<BoundedPool>(config_.max_exports);
+  limits.pools = {read_pool_.get(), write_pool_.get(), export_pool_.get()};
   // Answers built in memory and not yet read by their clients, over all connections.
   limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
   listener_ = std::make_shared<Listener>(
@@ -267,7 +269,10 @@ void ServerApp::shutdown() {
   for (auto& t : io_threads_)
     if (t.joinable()) t.join();
   io_threads_.clear();
-  if (offload_pool_) offload_pool_->join(); // handlers in flight finish; their answers are dropped
+  // Handlers in flight finish; their answers are dropped.
+  if (read_pool_) read_pool_->join();
+  if (write_pool_) write_pool_->join();
+  if (export_pool_) export_pool_->join();
   executor_.reset();
   studies_.reset();
   supervisor_.reset();

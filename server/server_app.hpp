@@ -84,8 +84,11 @@ private:
   std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> work_;
   std::shared_ptr<Listener> listener_;
   std::vector<std::thread> io_threads_;
-  // Blocking work of the routes (Router::offloaded): writes, listings, HDF5 reads.
-  std::unique_ptr<boost::asio::thread_pool> offload_pool_;
+  // The handlers that may block (Router::runs): reads over many rows or an HDF5 file,
+  // database writes, and exports (at most --max-exports at once).
+  std::unique_ptr<boost::asio::thread_pool> read_pool_;
+  std::unique_ptr<boost::asio::thread_pool> write_pool_;
+  std::unique_ptr<BoundedPool> export_pool_;
   std::mutex stop_mutex_;
   std::condition_variable stop_cv_;
   bool stop_requested_ = false;

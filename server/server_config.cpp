@@ -125,6 +125,9 @@ const std::vector<ServerSetting>& server_settings() {
        "answers built in memory and not yet read, over all connections (default 256 MiB, at "
        "least 1 MiB)",
        number<std::uint64_t>(&ServerConfig::max_unsent_bytes, std::uint64_t{1} << 20)},
+      {"max-exports", "N",
+       "run-table exports (GET /jobs?format=csv|ndjson) at once; more get 503 (default 2)",
+       number<int>(&ServerConfig::max_exports, 1, 64)},
       {"token-file", "F", "bearer tokens to submit and cancel (default none: no authentication)",
        text(&ServerConfig::token_file)},
       {"io-threads", "N", "threads answering HTTP (default 2)",

@@ -23,6 +23,8 @@ struct ServerConfig {
   std::uint64_t max_body_bytes = 1 << 20;
   // Answers built in memory and not yet read by their clients, over all connections.
   std::uint64_t max_unsent_bytes = std::uint64_t{256} << 20;
+  // Run-table exports (GET /jobs?format=csv|ndjson) at once; more are answered 503.
+  int max_exports = 2;
   std::string token_file;     // "" = no authentication
   int io_threads = 2;         // threads answering HTTP
   int request_timeout_s = 30; // to receive a request; idle keep-alive connections

@@ -222,34 +222,46 @@ std::vector<Job> JobStore::queued_jobs() {
   return jobs;
 }
 
-JobPage JobStore::list(const JobFilter& f) {
+JobPage JobStore::scan(const JobFilter& f, const EachJob& each) {
   const ListQuery q = list_query(f);
   const int limit = std::max(1, f.limit);
-  auto db = db_.lock();
-  auto s = db->prepare(q.sql);
-  bind_all(s, q.params);
-  JobPage page;
-  int rows = 0;              // read or skipped: the offset of a sorted listing counts both
-  std::int64_t last_seq = 0; // of the last row, read or skipped
-  while (s.step()) {
-    if (rows == limit) {
-      if (f.sort.empty())
-        page.next_cursor = last_seq;
-      else
-        page.next_offset = f.offset + limit;
-      break;
+  return db_.read([&](Database& db) {
+    auto s = db.prepare(q.sql);
+    bind_all(s, q.params);
+    auto status = db.prepare("SELECT convergence_status FROM study_runs WHERE job_id = ?1 "
+                             "ORDER BY rowid DESC LIMIT 1");
+    JobPage page;
+    int rows = 0;              // read or skipped: the offset of a sorted listing counts both
+    std::int64_t last_seq = 0; // of the last row, read or skipped
+    while (s.step()) {
+      if (rows == limit) {
+        if (f.sort.empty())
+          page.next_cursor = last_seq;
+        else
+          page.next_offset = f.offset + limit;
+        break;
+      }
+      ++rows;
+      last_seq = s.integer("seq");
+      auto job = read_job_or_skip(s, page.skipped);
+      if (!job) continue;
+      status.reset();
+      status.bind(1, job->id);
+      each(std::move(*job), status.step() ? status.text(0) : std::string());
     }
-    ++rows;
-    last_seq = s.integer("seq");
-    if (auto job = read_job_or_skip(s, page.skipped)) page.jobs.push_back(std::move(*job));
-  }
-  auto status = db->prepare("SELECT convergence_status FROM study_runs WHERE job_id = ?1 "
-                            "ORDER BY rowid DESC LIMIT 1");
-  for (const auto& job : page.jobs) {
-    status.reset();
-    status.bind(1, job.id);
-    if (status.step()) page.convergence_status[job.id] = status.text(0);
-  }
+    return page;
+  });
+}
+
+JobPage JobStore::list(const JobFilter& f) {
+  std::vector<Job> jobs;
+  std::map<std::string, std::string> statuses;
+  JobPage page = scan(f, [&](Job&& job, const std::string& convergence_status) {
+    if (!convergence_status.empty()) statuses[job.id] = convergence_status;
+    jobs.push_back(std::move(job));
+  });
+  page.jobs = std::move(jobs);
+  page.convergence_status = std::move(statuses);
   return page;
 }
 

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -71,6 +72,11 @@ public:
   std::vector<Job> queued_jobs();
 
   JobPage list(const JobFilter& filter);
+  // The same jobs one at a time, none kept: each(job, its convergence status in its study,
+  // "" if none). Returns the page without its jobs (the cursor, the skipped rows). For the
+  // exports of up to 100000 rows (server/http/run_table.hpp).
+  using EachJob = std::function<void(Job&& job, const std::string& convergence_status)>;
+  JobPage scan(const JobFilter& filter, const EachJob& each);
   std::map<std::string, std::int64_t> count_by_status();
   // Rows whose stored JSON does not parse (slipfront check, the start-up log).
   std::vector<MalformedRow> malformed_rows();

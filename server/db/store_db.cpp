@@ -53,11 +53,41 @@ StoreDb::StoreDb(const std::string& path, bool integrity_check) : db_(refuse_emp
 }
 
 StoreDb::~StoreDb() {
+  {
+    std::lock_guard readers(readers_mutex_);
+    idle_readers_.clear(); // no read may run any more: the owner is going
+  }
   std::lock_guard lock(mutex_);
   try {
     db_.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   } catch (const std::exception&) { // the data is safe in the WAL; the next open replays it
   }
+}
+
+StoreDb::ReadConnection::ReadConnection(StoreDb& owner) : owner_(owner) {
+  {
+    std::lock_guard lock(owner_.readers_mutex_);
+    if (!owner_.idle_readers_.empty()) {
+      db_ = std::move(owner_.idle_readers_.back());
+      owner_.idle_readers_.pop_back();
+    }
+  }
+  if (!db_) {
+    db_ = std::make_unique<Database>(owner_.db_.path());
+    db_->exec("PRAGMA busy_timeout = 5000");
+    db_->exec("PRAGMA query_only = ON");
+  }
+  db_->exec("BEGIN"); // one snapshot for every statement of the read
+}
+
+StoreDb::ReadConnection::~ReadConnection() {
+  try {
+    db_->exec("ROLLBACK"); // nothing was written: ends the read transaction
+  } catch (const std::exception&) {
+    return; // a connection in an unknown state is closed, not kept
+  }
+  std::lock_guard lock(owner_.readers_mutex_);
+  owner_.idle_readers_.push_back(std::move(db_));
 }
 
 std::int64_t StoreDb::user_version() {

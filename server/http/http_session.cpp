@@ -10,6 +10,18 @@ namespace slipfront::server {
 
 namespace net = boost::asio;
 
+namespace {
+// Every export thread is taken (--max-exports): come back in a second rather than wait here.
+Response exports_busy(const Request& req, int limit) {
+  auto res = problem_response(req, http::status::service_unavailable,
+                              std::to_string(limit) + " export" + (limit == 1 ? " is" : "s are") +
+                                  " running, the most this server runs at once "
+                                  "(--max-exports); retry later");
+  res.set(http::field::retry_after, "1");
+  return res;
+}
+} // namespace
+
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, ServerStats& stats,
                          SessionLimits limits, std::shared_ptr<std::atomic<int>> open_count)
     : stream_(std::move(socket)), read_deadline_(stream_.get_executor()), router_(router),
@@ -105,18 +117,31 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
     return close();
   if (ec) return reject(http::status::bad_request, "malformed request: " + ec.message());
   Request req = parser_->release();
-  if (limits_.offload_pool && router_.offloaded(req)) {
-    // A handler that may block: the I/O thread goes back to other connections meanwhile;
-    // the answer is sent from the session's strand.
-    net::post(*limits_.offload_pool, [self = shared_from_this(), req = std::move(req)] {
-      auto response = std::make_shared<Response>(self->router_.dispatch(req));
-      net::post(self->stream_.get_executor(),
-                [self, response] { self->send(std::move(*response), false); });
-    });
+  const auto& pools = limits_.pools;
+  const Runs runs = router_.runs(req);
+  boost::asio::thread_pool* pool = runs == Runs::read_pool    ? pools.reads
+                                   : runs == Runs::write_pool ? pools.writes
+                                                              : nullptr;
+  if (pool) {
+    net::post(*pool, handler_task(std::move(req)));
+    return;
+  }
+  if (runs == Runs::export_pool && pools.exports) {
+    if (!pools.exports->try_post(handler_task(req)))
+      send(exports_busy(req, pools.exports->limit()), false);
     return;
   }
   Response response = router_.dispatch(req);
   send(std::move(response), false);
+}
+
+std::function<void()> HttpSession::handler_task(Request req) {
+  // A handler that may block: the I/O thread goes back to other connections meanwhile.
+  return [self = shared_from_this(), req = std::move(req)] {
+    auto response = std::make_shared<Response>(self->router_.dispatch(req));
+    net::post(self->stream_.get_executor(),
+              [self, response] { self->send(std::move(*response), false); });
+  };
 }
 
 bool UnsentBytes::reserve(std::uint64_t n) {

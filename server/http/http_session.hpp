@@ -6,13 +6,14 @@
 
 #include "server/core/server_stats.hpp"
 #include "server/http/router.hpp"
+#include "server/http/work_pools.hpp"
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/asio/thread_pool.hpp>
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -44,8 +45,8 @@ struct SessionLimits {
   int max_connections = 256; // open at once; more are answered 503 and closed at once
   // Shared by every session; null = no bound.
   std::shared_ptr<UnsentBytes> unsent;
-  // Where offloaded routes (Router::offloaded) run; null = on the I/O thread.
-  boost::asio::thread_pool* offload_pool = nullptr;
+  // Where the routes that may block run (Router::runs); a null pool = on the I/O thread.
+  WorkPools pools;
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
@@ -63,6 +64,8 @@ private:
   void on_header(beast::error_code ec, std::size_t bytes);
   void read_body();
   void on_body(beast::error_code ec, std::size_t bytes);
+  // Dispatches `req` on a thread of a pool; the answer is sent from the session's strand.
+  std::function<void()> handler_task(Request req);
   void send(Response response, bool close_after);
   void on_write(bool keep_alive, beast::error_code ec, std::size_t bytes);
   void reject(http::status status, const std::string& detail); // 4xx, then close

@@ -38,6 +38,11 @@ std::vector<std::string> split_commas(const std::string& s) {
   return out;
 }
 
+bool asks_for_export(const std::map<std::string, std::string>& query) {
+  auto it = query.find("format");
+  return it != query.end() && (it->second == "csv" || it->second == "ndjson");
+}
+
 JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& q) {
   JobFilterQuery result;
   JobFilter& f = result.filter;
@@ -82,7 +87,7 @@ JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& q) {
     if (format != "json" && format != "csv" && format != "ndjson")
       errors.push_back({"/query/format", "must be json, csv or ndjson, got '" + format + "'"});
   }
-  const bool table = format == "csv" || format == "ndjson";
+  const bool table = asks_for_export(q);
   const long max_limit = table ? 100000 : 1000;
   if (table) f.limit = 10000;
   if (auto it = q.find("limit"); it != q.end()) {

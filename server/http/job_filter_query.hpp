@@ -29,6 +29,10 @@ struct JobFilterQuery {
   std::vector<api::FieldError> errors;
 };
 
+// format=csv or format=ndjson: the query asks for the run table (an export, up to 100000
+// rows), not a page of jobs.
+bool asks_for_export(const std::map<std::string, std::string>& query);
+
 JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& query);
 
 } // namespace slipfront::server

@@ -96,54 +96,67 @@ Response get_job(ServerContext& ctx, RequestContext& rc) {
   return json_response(rc.request, http::status::ok, job_to_json(*job, fields));
 }
 
+// The cursor of the next page ("123", "o50" for a sorted listing); nullopt on the last page.
+std::optional<std::string> next_cursor(const JobPage& page) {
+  if (page.next_offset) return std::string("o").append(std::to_string(*page.next_offset));
+  if (page.next_cursor) return std::to_string(*page.next_cursor);
+  return std::nullopt;
+}
+
+// The `next` link of a listing whose page is full: the same query with the next cursor.
+std::optional<std::string> next_link(const JobPage& page,
+                                     const std::map<std::string, std::string>& query) {
+  auto cursor = next_cursor(page);
+  if (!cursor) return std::nullopt;
+  std::string next = api_prefix + "/jobs?";
+  for (const auto& [key, value] : query)
+    if (key != "cursor") next += percent_encode(key) + "=" + percent_encode(value) + "&";
+  return next + "cursor=" + *cursor;
+}
+
+// format=csv|ndjson: the run table, built one job at a time (RunTableCsv keeps each row as
+// its cells' text): about 4 kB a row at the peak, not the 22 kB of a Job and a JSON row.
+Response export_runs(ServerContext& ctx, RequestContext& rc, const JobFilter& filter,
+                     const std::string& format) {
+  RunTableCsv csv;
+  std::string ndjson;
+  JobPage page = ctx.service.scan(filter, [&](Job&& job, const std::string& convergence_status) {
+    auto row = run_row(job, convergence_status);
+    if (format == "csv")
+      csv.add(row);
+    else
+      ndjson += row.dump() + "\n";
+  });
+  auto response =
+      format == "csv"
+          ? text_response(rc.request, http::status::ok, csv.text(), "text/csv; charset=utf-8")
+          : text_response(rc.request, http::status::ok, std::move(ndjson), "application/x-ndjson");
+  if (auto next = next_link(page, rc.query))
+    response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
+  if (!page.skipped.empty())
+    response.set("Skipped-Rows", std::to_string(page.skipped.size()) +
+                                     " unreadable row(s) left out, the first: " +
+                                     page.skipped.front().substr(0, 200));
+  return response;
+}
+
 Response list_jobs(ServerContext& ctx, RequestContext& rc) {
-  const auto& q = rc.query;
-  auto [f, fields, format, errors] = parse_job_filter(q);
-  const bool table = format == "csv" || format == "ndjson";
+  auto [f, fields, format, errors] = parse_job_filter(rc.query);
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
                             errors);
+  if (asks_for_export(rc.query)) return export_runs(ctx, rc, f, format);
   JobPage page = ctx.service.list(f);
-  std::optional<std::string> next_cursor;
-  if (page.next_cursor) next_cursor = std::to_string(*page.next_cursor);
-  if (page.next_offset) next_cursor = "o" + std::to_string(*page.next_offset);
-  std::optional<std::string> next;
-  if (next_cursor) {
-    next = api_prefix + "/jobs?";
-    for (const auto& [key, value] : q)
-      if (key != "cursor") *next += percent_encode(key) + "=" + percent_encode(value) + "&";
-    *next += "cursor=" + *next_cursor;
-  }
-  if (table) {
-    std::vector<nlohmann::ordered_json> rows;
-    for (const auto& job : page.jobs) {
-      auto it = page.convergence_status.find(job.id);
-      rows.push_back(run_row(job, it == page.convergence_status.end() ? "" : it->second));
-    }
-    auto response = format == "csv" ? text_response(rc.request, http::status::ok, runs_csv(rows),
-                                                    "text/csv; charset=utf-8")
-                                    : text_response(rc.request, http::status::ok, runs_ndjson(rows),
-                                                    "application/x-ndjson");
-    if (next) response.set(http::field::link, "<" + *next + ">; rel=\"next\"");
-    if (!page.skipped.empty())
-      response.set("Skipped-Rows", std::to_string(page.skipped.size()) +
-                                       " unreadable row(s) left out, the first: " +
-                                       page.skipped.front().substr(0, 200));
-    return response;
-  }
   nlohmann::json body;
   body["jobs"] = nlohmann::json::array();
   for (const auto& job : page.jobs)
     body["jobs"].push_back(job_to_json(job, fields));
   body["count"] = page.jobs.size();
   if (!page.skipped.empty()) body["skipped"] = page.skipped; // unreadable rows left out
-  if (next_cursor) {
-    body["next_cursor"] = *next_cursor;
-    body["next"] = *next;
-  } else {
-    body["next_cursor"] = nullptr;
-    body["next"] = nullptr;
-  }
+  const auto cursor = next_cursor(page);
+  const auto next = next_link(page, rc.query);
+  body["next_cursor"] = cursor ? nlohmann::json(*cursor) : nlohmann::json(nullptr);
+  body["next"] = next ? nlohmann::json(*next) : nlohmann::json(nullptr);
   return json_response(rc.request, http::status::ok, body);
 }
 
@@ -210,9 +223,14 @@ Response job_defaults(RequestContext& rc) {
 void add_job_routes(Router& router, ServerContext& ctx) {
   router.add_json_body(http::verb::post, api_prefix + "/jobs",
                        [&ctx](RequestContext& rc) { return submit(ctx, rc); });
+  // An export runs on a thread of its own, at most --max-exports at once; a page of jobs
+  // (at most 1000) with the other reads.
   router.add(
       http::verb::get, api_prefix + "/jobs",
-      [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return list_jobs(ctx, rc); },
+      [](const auto& query) {
+        return asks_for_export(query) ? Runs::export_pool : Runs::read_pool;
+      });
   router.add(http::verb::get, api_prefix + "/jobs/{id}",
              [&ctx](RequestContext& rc) { return get_job(ctx, rc); });
   router.add(http::verb::post, api_prefix + "/jobs/{id}/cancel",

@@ -241,18 +241,18 @@ void add_result_routes(Router& router, ServerContext& ctx) {
   // On the blocking pool: the file is opened and may be hashed (ResultFiles).
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/result.h5",
-      [&ctx](RequestContext& rc) { return download(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return download(ctx, rc); }, Runs::read_pool);
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/result.xdmf",
-      [&ctx](RequestContext& rc) { return xdmf(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return xdmf(ctx, rc); }, Runs::read_pool);
   router.add(http::verb::get, api_prefix + "/jobs/{id}/metrics",
              [&ctx](RequestContext& rc) { return metrics(ctx, rc); });
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/front",
-      [&ctx](RequestContext& rc) { return front(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return front(ctx, rc); }, Runs::read_pool);
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/fields/{name}",
-      [&ctx](RequestContext& rc) { return field(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return field(ctx, rc); }, Runs::read_pool);
 }
 
 } // namespace slipfront::server

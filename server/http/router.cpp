@@ -83,9 +83,14 @@ bool match(const std::vector<std::string>& pattern, const std::vector<std::strin
 }
 } // namespace
 
-void Router::add(http::verb method, const std::string& pattern, Handler handler, bool offload) {
-  routes_.push_back({method, pattern, split_path(pattern), std::move(handler),
-                     offload || method != http::verb::get});
+void Router::add(http::verb method, const std::string& pattern, Handler handler, Runs runs) {
+  add(method, pattern, std::move(handler), [runs](const auto&) { return runs; });
+}
+
+void Router::add(http::verb method, const std::string& pattern, Handler handler, RunsFor runs_for) {
+  if (method != http::verb::get) runs_for = [](const auto&) { return Runs::write_pool; };
+  routes_.push_back(
+      {method, pattern, split_path(pattern), std::move(handler), std::move(runs_for)});
 }
 
 void Router::add_json_body(http::verb method, const std::string& pattern, Handler handler) {
@@ -93,18 +98,18 @@ void Router::add_json_body(http::verb method, const std::string& pattern, Handle
   routes_.back().json_body = true;
 }
 
-bool Router::offloaded(const Request& request) const {
+Runs Router::runs(const Request& request) const {
   auto target = parse_target(request.target());
-  if (!target) return false;
+  if (!target) return Runs::io_thread;
   auto segments = split_path(target->path);
   const bool head = request.method() == http::verb::head;
   for (const auto& route : routes_) {
     std::map<std::string, std::string> params;
-    if (route.offload && match(route.segments, segments, params) &&
+    if (match(route.segments, segments, params) &&
         (route.method == request.method() || (head && route.method == http::verb::get)))
-      return true;
+      return route.runs_for(target->query);
   }
-  return false;
+  return Runs::io_thread;
 }
 
 void Router::on_storage_unavailable(int retry_after_s,

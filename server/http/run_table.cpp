@@ -3,7 +3,6 @@
 #include "api/json_number.hpp"
 
 #include <algorithm>
-#include <set>
 #include <string_view>
 
 namespace slipfront::server {
@@ -77,42 +76,54 @@ nlohmann::ordered_json run_row(const Job& job, const std::string& convergence_st
   return row;
 }
 
-std::string runs_csv(const std::vector<nlohmann::ordered_json>& rows) {
-  std::vector<std::string> header;
-  std::set<std::string> seen;
-  for (const auto& row : rows)
-    for (const auto& [key, value] : row.items())
-      if (seen.insert(key).second) header.push_back(key);
-  // Job columns first (in row order), then spec.* and metrics.*, each sorted.
+void RunTableCsv::add(const nlohmann::ordered_json& row) {
+  Row kept;
+  for (const auto& [key, value] : row.items()) {
+    auto [it, added] = column_index_.try_emplace(key, columns_.size());
+    if (added) columns_.push_back(key);
+    kept.cells += csv_cell(value);
+    kept.ends.emplace_back(it->second, kept.cells.size());
+  }
+  rows_.push_back(std::move(kept));
+}
+
+std::string RunTableCsv::text() const {
+  // Job columns first (in first-seen order), then spec.* and metrics.*, each sorted.
   auto group = [](const std::string& key) {
     return key.rfind("spec.", 0) == 0 ? 1 : key.rfind("metrics.", 0) == 0 ? 2 : 0;
   };
-  std::stable_sort(header.begin(), header.end(), [&](const std::string& a, const std::string& b) {
-    int ga = group(a), gb = group(b);
+  std::vector<std::size_t> order(columns_.size()); // header position -> column
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    int ga = group(columns_[a]), gb = group(columns_[b]);
     if (ga != gb) return ga < gb;
-    return ga != 0 && a < b;
+    return ga != 0 && columns_[a] < columns_[b];
   });
+  std::vector<std::size_t> position(columns_.size()); // column -> header position
+  for (std::size_t i = 0; i < order.size(); ++i)
+    position[order[i]] = i;
+
   std::string out;
-  for (std::size_t i = 0; i < header.size(); ++i) {
+  for (std::size_t i = 0; i < order.size(); ++i) {
     if (i) out += ',';
-    out += csv_cell(header[i]);
+    out += csv_cell(columns_[order[i]]);
   }
   out += "\r\n";
-  for (const auto& row : rows) {
-    for (std::size_t i = 0; i < header.size(); ++i) {
+  std::vector<std::string_view> line(columns_.size());
+  for (const auto& row : rows_) {
+    std::fill(line.begin(), line.end(), std::string_view());
+    std::size_t begin = 0;
+    for (const auto& [column, end] : row.ends) {
+      line[position[column]] = std::string_view(row.cells).substr(begin, end - begin);
+      begin = end;
+    }
+    for (std::size_t i = 0; i < line.size(); ++i) {
       if (i) out += ',';
-      auto it = row.find(header[i]);
-      if (it != row.end()) out += csv_cell(*it);
+      out += line[i];
     }
     out += "\r\n";
   }
-  return out;
-}
-
-std::string runs_ndjson(const std::vector<nlohmann::ordered_json>& rows) {
-  std::string out;
-  for (const auto& row : rows)
-    out += row.dump() + "\n";
   return out;
 }
 

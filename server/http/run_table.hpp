@@ -7,7 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slipfront::server {
@@ -15,11 +17,23 @@ namespace slipfront::server {
 // One flat row; keys keep the order: job columns, spec.*, metrics.* (arrays left out).
 nlohmann::ordered_json run_row(const Job& job, const std::string& convergence_status);
 
-// RFC 4180 CSV: a header (the union of the rows' keys, in first-seen order) and one line per
-// row; empty cells for null or missing values; CRLF line ends.
-std::string runs_csv(const std::vector<nlohmann::ordered_json>& rows);
+// The RFC 4180 CSV of run rows, built one row at a time: a header (the union of the rows'
+// keys: the job columns in first-seen order, then spec.* and metrics.*, each sorted) and one
+// line per row; empty cells for null or missing values; CRLF line ends. A row is kept as the
+// text of its cells, about 1 kB, not as JSON (about 20 kB), until the header is known.
+class RunTableCsv {
+public:
+  void add(const nlohmann::ordered_json& row);
+  std::string text() const;
 
-// One JSON object per line.
-std::string runs_ndjson(const std::vector<nlohmann::ordered_json>& rows);
+private:
+  struct Row {
+    std::string cells;                                     // the cells' text, one after another
+    std::vector<std::pair<std::size_t, std::size_t>> ends; // (column, end of its cell in cells)
+  };
+  std::vector<std::string> columns_; // first-seen order
+  std::map<std::string, std::size_t, std::less<>> column_index_;
+  std::vector<Row> rows_;
+};
 
 } // namespace slipfront::server

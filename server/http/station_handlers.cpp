@@ -136,10 +136,10 @@ void add_station_routes(Router& router, ServerContext& ctx) {
   // On the blocking pool: the file is opened and may be hashed (ResultFiles).
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/stations",
-      [&ctx](RequestContext& rc) { return stations_json(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return stations_json(ctx, rc); }, Runs::read_pool);
   router.add(
       http::verb::get, api_prefix + "/jobs/{id}/stations.csv",
-      [&ctx](RequestContext& rc) { return stations_csv(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return stations_csv(ctx, rc); }, Runs::read_pool);
 }
 
 } // namespace slipfront::server

@@ -223,17 +223,17 @@ void add_study_routes(Router& router, ServerContext& ctx) {
                        [&ctx](RequestContext& rc) { return create_study(ctx, rc); });
   router.add(
       http::verb::get, api_prefix + "/studies",
-      [&ctx](RequestContext& rc) { return list_studies(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return list_studies(ctx, rc); }, Runs::read_pool);
   router.add(http::verb::get, api_prefix + "/studies/{id}",
              [&ctx](RequestContext& rc) { return get_study(ctx, rc); });
   router.add(http::verb::post, api_prefix + "/studies/{id}/cancel",
              [&ctx](RequestContext& rc) { return cancel_study(ctx, rc); });
   router.add(
       http::verb::get, api_prefix + "/studies/{id}/speed-accuracy",
-      [&ctx](RequestContext& rc) { return speed_accuracy(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return speed_accuracy(ctx, rc); }, Runs::read_pool);
   router.add(
       http::verb::get, api_prefix + "/convergence-map",
-      [&ctx](RequestContext& rc) { return convergence_map(ctx, rc); }, true);
+      [&ctx](RequestContext& rc) { return convergence_map(ctx, rc); }, Runs::read_pool);
 }
 
 } // namespace slipfront::server

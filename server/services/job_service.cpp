@@ -204,6 +204,14 @@ JobPage JobService::list(const JobFilter& filter) {
   return page;
 }
 
+JobPage JobService::scan(const JobFilter& filter, const JobStore::EachJob& each) {
+  return store_.scan(filter, [&](Job&& job, const std::string& convergence_status) {
+    if (job.status == JobStatus::running)
+      if (auto live = running_.progress(job.id)) job.progress = *live;
+    each(std::move(job), convergence_status);
+  });
+}
+
 CancelResult JobService::cancel(const std::string& id, const std::string& user) {
   auto job = store_.get(id);
   if (!job) return {CancelResult::Kind::not_found, std::nullopt};

@@ -88,6 +88,8 @@ public:
   api::ParseResult validate(nlohmann::json doc) const;
   std::optional<Job> get(const std::string& id); // with live progress if running
   JobPage list(const JobFilter& filter);
+  // The jobs of list(filter) one at a time, none kept (JobStore::scan): for exports.
+  JobPage scan(const JobFilter& filter, const JobStore::EachJob& each);
   CancelResult cancel(const std::string& id, const std::string& user);
   // The stored rupture front of a job (null json if none); nullopt for an unknown job.
   std::optional<nlohmann::json> front(const std::string& id) { return store_.front(id); }
