@@ -63,6 +63,7 @@ def build_parser():
     commands_jobs.add_parsers(sub, common)
     commands_fit.add_parsers(sub, common)
     commands_study.add_parsers(sub, common)
+    commands_study.add_accuracy_parser(sub, common)
     commands_plot.add_parsers(sub, common)
     return parser
 
