@@ -71,7 +71,7 @@ export async function drawCompareFigures(box, runs, rows) {
   scatterControls(scatterTools, scatterBox, runs, rows);
 }
 
-// One panel per position, stacked on one time axis; one trace per run in every panel, one
+// One panel per position, stacked; one trace per run in every panel, one
 // legend entry per run (legendgroup: a click hides the run in every panel).
 async function drawVelocity(box, runs, positions, message) {
   const series = await Promise.all(runs.map((r) => Promise.all(positions.map(async (x) => {
@@ -82,7 +82,6 @@ async function drawVelocity(box, runs, positions, message) {
   const missing = positions.filter((_, k) => series.some((perRun) => !perRun[k]));
   if (missing.length) message.textContent = `outside the domain of some runs (no curve there): x1 = ${missing.join(', ')} m`;
   const count = positions.length;
-  const signal = signalWindow(series.flat().filter(Boolean));
   const top = margin(runs);
   const plotHeight = count * PANEL + (count - 1) * GAP;
   const layout = { margin: top, showlegend: true, legend: legendTop, hovermode: 'closest', annotations: [] };
@@ -91,8 +90,9 @@ async function drawVelocity(box, runs, positions, message) {
     const suffix = k ? String(k + 1) : '';
     const upper = 1 - (k * (PANEL + GAP)) / plotHeight;
     layout[`yaxis${suffix}`] = axis('|V| [mm/s]', { domain: [upper - PANEL / plotHeight, upper], anchor: `x${suffix}`, rangemode: 'tozero' });
-    const title = signal ? 't [s] (zoomed to the signal; double-click: the whole runs)' : 't [s]';
-    layout[`xaxis${suffix}`] = axis(k === count - 1 ? title : '', { anchor: `y${suffix}`, ...(k ? { matches: 'x' } : signal ? { range: signal, autorange: false } : {}) });
+    // Each panel zoomed to its own signal (the front reaches each x1 at another time).
+    const signal = signalWindow(series.map((perRun) => perRun[k]).filter(Boolean));
+    layout[`xaxis${suffix}`] = axis(k === count - 1 ? 't [s] (each panel zoomed to its signal; double-click: the whole runs)' : '', { anchor: `y${suffix}`, ...(signal ? { range: signal, autorange: false } : {}) });
     layout.annotations.push({ xref: `x${suffix} domain`, yref: `y${suffix} domain`, x: 0, y: 1, xanchor: 'left', yanchor: 'bottom', showarrow: false, text: `x1 = ${fmt(x, 4)} m`, font: { size: 12 } });
     runs.forEach((r, i) => {
       const s = series[i][k];
@@ -112,6 +112,15 @@ function sharedScene(runs) {
   const patches = runs.map((r) => nucleationPatch(r.job.spec));
   const one = (list) => (list.every((v) => JSON.stringify(v) === JSON.stringify(list[0])) ? list[0] : null);
   return { speeds: one(speeds), patch: one(patches) };
+}
+
+// The x1 range where any run's values are known (V_r, the front's arrival), padded: the
+// rupture's extent, not the whole domain.
+function knownRange(runs, valuesOf) {
+  const xs = runs.flatMap((r) => r.front.x1.filter((_, i) => Number.isFinite(valuesOf(r.front)[i])));
+  if (!xs.length) return {};
+  const lo = Math.min(...xs), hi = Math.max(...xs), pad = 0.04 * Math.max(hi - lo, 1e-9);
+  return { range: [lo - pad, hi + pad], autorange: false };
 }
 
 async function drawSpeed(box, runs) {
@@ -134,7 +143,7 @@ async function drawSpeed(box, runs) {
     data, height: 300 + top.t, filename: 'slipfront-compare-rupture-speed',
     layout: {
       margin: top, shapes, annotations: notes, showlegend: true, legend: legendTop,
-      xaxis: axis('x1 [m]'), yaxis: axis('V_r [m/s]', speeds ? { range: [0, 1.1 * speeds.cp], autorange: false } : { rangemode: 'tozero' }),
+      xaxis: axis('x1 [m]', knownRange(runs, (f) => f.rupture_speed)), yaxis: axis('V_r [m/s]', speeds ? { range: [0, 1.1 * speeds.cp], autorange: false } : { rangemode: 'tozero' }),
     },
   });
 }
@@ -150,7 +159,7 @@ async function drawFront(box, runs) {
   const top = margin(runs);
   await chart(box, {
     data, height: 300 + top.t, filename: 'slipfront-compare-front',
-    layout: { margin: top, showlegend: true, legend: legendTop, xaxis: axis('x1 [m]'), yaxis: axis('arrival time of the front [s]', { rangemode: 'tozero' }) },
+    layout: { margin: top, showlegend: true, legend: legendTop, xaxis: axis('x1 [m]', knownRange(runs, (f) => f.arrival_time)), yaxis: axis('arrival time of the front [s]', { rangemode: 'tozero' }) },
   });
 }
 
