@@ -98,15 +98,15 @@ def figure_paths(args, formats):
     return paths
 
 
-def draw_figures(api, jobs, labels, rows, args, paths, quiet):
+def draw_figures(api, jobs, labels, axes, args, paths, quiet):
+    """The four figures of the runs, written to `paths`; `axes`: the scatter's two rows."""
     common = importlib.import_module(".plots.common", __package__)
     velocity = importlib.import_module(".plots.velocity", __package__)
     speed = importlib.import_module(".plots.speed", __package__)
     compared = importlib.import_module(".plots.compare", __package__)
     results = importlib.import_module(".results", __package__)
     positions = _floats(args.x1, "--x1")
-    x_row = _field(rows, args.scatter_x or compare.scatter_defaults(rows)[0], "spec", True)
-    y_row = _field(rows, args.scatter_y or compare.scatter_defaults(rows)[1], "metrics", False)
+    x_row, y_row = axes
     done = [i for i, j in enumerate(jobs) if j.get("status") == "succeeded" and j.get("result")]
     if len(done) < len(jobs) and not quiet:
         left = [j["id"][:8] for i, j in enumerate(jobs) if i not in done]
@@ -154,11 +154,14 @@ def cmd_compare(args, ctx):
         jobs = jobs[:MAX_RUNS]
     rows = compare.compare_rows(jobs)
     labels = compare.compare_labels(jobs, rows)
+    x_default, y_default = compare.scatter_defaults(rows)
+    axes = (_field(rows, args.scatter_x or x_default, "spec", True),
+            _field(rows, args.scatter_y or y_default, "metrics", False))
     paths = None
     if not args.no_figures:
         common = importlib.import_module(".plots.common", __package__)
         paths = figure_paths(args, common.parse_formats(args.format))
-    written = draw_figures(api, jobs, labels, rows, args, paths, args.quiet) if paths else []
+    written = draw_figures(api, jobs, labels, axes, args, paths, args.quiet) if paths else []
     if args.json:
         print_json({**compare.as_json(jobs, rows, labels), "figures": written})
         return 0
