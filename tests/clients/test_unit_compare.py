@@ -7,11 +7,13 @@ ones but the key fields unless asked.
     /usr/bin/python3 -m unittest discover -s tests/clients -p 'test_unit*.py'
 """
 
+import os
+import sys
 import unittest
 
-import harness  # noqa: F401  (puts the client on sys.path)
-from slipfront_client.compare import (MISSING, compare_labels, compare_rows, flatten,
-                                      scatter_defaults, table_lines)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "clients"))
+from slipfront_client.compare import (MISSING, compare_labels, compare_rows,  # noqa: E402
+                                      flatten, scatter_defaults, table_lines)
 
 
 def job(job_id, method="fe", L=1e-4, n_d=10, duration=16.0, distance=15.0, **spec):

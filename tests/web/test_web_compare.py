@@ -72,7 +72,7 @@ class WebCompare(BrowserCase):
 
     def test_jobs_list_to_the_compare_view(self):
         fe, bi = self.open_compare_from_the_jobs_list()
-        self.assertIn(f"#/compare?ids=", self.driver.current_url)
+        self.assertIn("#/compare?ids=", self.driver.current_url)
         self.assertEqual(set(self.driver.current_url.split("ids=")[1].split(",")), {fe, bi})
         # The table: the method differs (highlighted), L and n_d do not.
         method = self.css("#compare-table tr[data-field='spec.method']")[0]
