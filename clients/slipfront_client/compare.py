@@ -6,6 +6,7 @@ field that differs. The web view's compare page (web/app/run_labels.js) follows 
 """
 
 import json
+import math
 
 from .results import run_label
 
@@ -46,17 +47,33 @@ def _same(a, b):
     return json.dumps(canon(a), sort_keys=True) == json.dumps(canon(b), sort_keys=True)
 
 
+def spread(values):
+    """(max - min) / max |v| of a row's numbers when every run has a number and they are not
+    all zero; else None."""
+    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                             and math.isfinite(v) for v in values):
+        return None
+    top = max(abs(v) for v in values)
+    return (max(values) - min(values)) / top if top > 0 else None
+
+
 def compare_rows(jobs):
-    """[{group, key, values (one per job; MISSING where a job has no such field), differs}]:
-    the run fields, then the spec fields and the metrics in the order the jobs first have
-    them."""
+    """[{group, key, values (one per job; MISSING where a job has no such field), differs,
+    partial (some job has no such field), spread}]: the run fields, the spec fields, the
+    metrics; in each group the fields every job has and that differ first, then those only
+    some jobs have (a method's own settings), then the identical ones, each in the order the
+    jobs first have them."""
     rows = []
 
     def add(group, keys, maps):
+        made = []
         for key in keys:
             values = [m.get(key, MISSING) for m in maps]
-            rows.append({"group": group, "key": key, "values": values,
-                         "differs": any(not _same(v, values[0]) for v in values)})
+            differs = any(not _same(v, values[0]) for v in values)
+            made.append({"group": group, "key": key, "values": values, "differs": differs,
+                         "partial": any(v is MISSING for v in values), "spread": spread(values)})
+        rows.extend(sorted(made, key=lambda r: 0 if r["differs"] and not r["partial"]
+                           else 1 if r["differs"] else 2))
 
     def keys_of(maps):
         return list(dict.fromkeys(k for m in maps for k in m))
@@ -89,8 +106,8 @@ def compare_labels(jobs, rows=None):
     has and that differs ('time.duration = 3'); a text still shared by two jobs gets the short
     id, so that no two legend entries read the same."""
     rows = compare_rows(jobs) if rows is None else rows
-    extra = [r for r in rows if r["group"] == "spec" and r["differs"]
-             and r["key"] not in IN_RUN_LABEL and all(v is not MISSING for v in r["values"])]
+    extra = [r for r in rows if r["group"] == "spec" and r["differs"] and not r["partial"]
+             and r["key"] not in IN_RUN_LABEL]
     labels = [", ".join([run_label(j.get("spec") or {}, j.get("metrics"))]
                         + [f"{r['key']} = {cell(r['values'][i])}" for r in extra])
               for i, j in enumerate(jobs)]
@@ -100,11 +117,13 @@ def compare_labels(jobs, rows=None):
 
 def table_lines(jobs, rows, labels, show_all=False, width=28):
     """The comparison as text: a key of the runs (number, id, legend text), then one line per
-    field, '*' before the fields that differ; identical fields other than the key ones are
-    counted, not shown, unless `show_all`."""
+    field, '*' before the fields that differ, and the spread of the numbers that differ;
+    identical fields other than the key ones are counted, not shown, unless `show_all`."""
     lines = [f"run {i + 1}: {j['id']}  {label}" for i, (j, label) in enumerate(zip(jobs, labels))]
-    differing = sum(r["differs"] for r in rows)
-    lines.append(f"{differing} field{'s' if differing != 1 else ''} differ (marked *)")
+    differing = sum(r["differs"] and not r["partial"] for r in rows)
+    partial = sum(r["partial"] for r in rows)
+    lines.append(f"{differing} field{'s' if differing != 1 else ''} differ (marked *)"
+                 + (f", {partial} more only some runs have (marked * too)" if partial else ""))
 
     def clip(text):
         return text if len(text) <= width else text[:width - 3] + "..."
@@ -116,13 +135,21 @@ def table_lines(jobs, rows, labels, show_all=False, width=28):
         hidden = len(in_group) - len(shown)
         note = f" ({hidden} identical not shown; --all shows them)" if hidden else ""
         cells = [[("* " if r["differs"] else "  ") + r["key"]]
-                 + [clip(cell(v)) for v in r["values"]] for r in shown]
-        head = ["  field"] + [f"run {i + 1}" for i in range(len(jobs))]
+                 + [clip(cell(v)) for v in r["values"]] + [_spread_text(r, group)]
+                 for r in shown]
+        head = ["  field"] + [f"run {i + 1}" for i in range(len(jobs))] + ["spread"]
         widths = [max(len(c[k]) for c in cells + [head]) for k in range(len(head))]
         lines += ["", title + note]
         lines.extend("  ".join(c.ljust(w) for c, w in zip(c_row, widths)).rstrip()
                      for c_row in [head] + cells)
     return lines
+
+
+def _spread_text(row, group):
+    """'2.6 %' for a row of numbers that differ (not the run's own fields), else ''."""
+    if group == "run" or not row["differs"] or row["spread"] is None:
+        return ""
+    return f"{100 * row['spread']:.3g} %"
 
 
 def as_json(jobs, rows, labels):
@@ -132,7 +159,8 @@ def as_json(jobs, rows, labels):
         return None if v is MISSING else v
     return {"runs": [{"id": j["id"], "label": label} for j, label in zip(jobs, labels)],
             "fields": [{"group": r["group"], "field": r["key"], "differs": r["differs"],
-                        "values": [plain(v) for v in r["values"]]} for r in rows]}
+                        "values": [plain(v) for v in r["values"]], "spread": r["spread"]}
+                       for r in rows]}
 
 
 def plottable(rows, group, text=False):

@@ -3,8 +3,9 @@ temporary data dir), with an FE and a BI run of the paper's scene (L = 1e-4 m, n
 about a second each) and a two-mesh BI study:
 
 - the table names each run by its legend text (the method first), marks `method` and the
-  fields only one method has with '*', leaves L and n_d unmarked, hides identical fields
-  unless --all; --json gives every field with its values and whether it differs;
+  fields only one method has with '*', leaves L and n_d unmarked, gives the spread of the
+  numbers that differ, hides identical fields unless --all; --json gives every field with its
+  values and whether it differs;
 - four PNGs (velocity at x1 = 6 and 10 m, rupture speed, fronts, scatter) that are real
   pictures, not blank; a second run refuses to replace them, naming them, unless --force;
 - the |V| histories drawn are the server's /fields values at the nodes (result_from_json);
@@ -129,7 +130,8 @@ class ClientCompare(unittest.TestCase):
         lines = r.stdout.splitlines()
         self.assertTrue(lines[0].endswith("BI, L = 0.0001 m, n_d = 5"), lines[0])
         self.assertTrue(lines[1].endswith("BI, L = 0.0001 m, n_d = 10"), lines[1])
-        self.assertIn(["*", "geometry.nodes_per_meter", "5", "10"], [line.split() for line in lines])
+        self.assertIn(["*", "geometry.nodes_per_meter", "5", "10", "50", "%"],  # (10 - 5) / 10
+                      [line.split() for line in lines])
 
     def test_usage_errors_name_what_is_wrong(self):
         bad = os.path.join(self.tmp, "bad")

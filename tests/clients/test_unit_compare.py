@@ -1,5 +1,6 @@
 """What tells compared runs apart (slipfront_client.compare): the fields flattened and the ones
-that differ, a field only one method has counted as differing, the legend texts (the run
+that differ (first, then those only some runs have, then the identical ones), a field only one
+method has counted as differing, the spread of the numbers, the legend texts (the run
 label, then every other spec field that differs and every run has; a repeated run named by
 its short id), and the table marking the differing fields with '*' and hiding the identical
 ones but the key fields unless asked.
@@ -38,7 +39,18 @@ class Compare(unittest.TestCase):
         self.assertEqual(only_bi["values"], [MISSING, 1])
         self.assertTrue(only_bi["differs"])
         self.assertNotIn(("spec", "name"), rows)  # the job's name is a run field
+        self.assertFalse(rows["spec", "method"]["partial"])
+        self.assertTrue(only_bi["partial"])
+        self.assertIsNone(only_bi["spread"])
         self.assertEqual(rows["metrics", "rupture_speed.max"]["values"], [1.5, 1.5])
+
+    def test_real_differences_come_first(self):
+        keys = [r["key"] for r in compare_rows(
+            [job("a"), job("b", method="spectral_bi", spectral_bi={"corrector_passes": 1})])
+                if r["group"] == "spec"]
+        self.assertEqual(keys[:2], ["method", "spectral_bi.corrector_passes"])
+        self.assertEqual(keys[2:], ["friction.law", "friction.L", "geometry.nodes_per_meter",
+                                    "time.duration"])
 
     def test_labels_say_the_method_and_every_other_difference(self):
         labels = compare_labels([job("a"), job("b", method="spectral_bi")])
@@ -65,7 +77,9 @@ class Compare(unittest.TestCase):
         self.assertTrue(method.startswith("* method"), method)
         self.assertEqual(method.split()[2:], ["fe", "spectral_bi"])
         self.assertTrue(any(line.split() == ["friction.L", "0.0001", "0.0001"] for line in lines))
-        self.assertTrue(any(line.split() == ["*", "propagation_distance", "15.4", "15"] for line in lines))
+        # The spread of the numbers that differ: (15.4 - 15) / 15.4.
+        self.assertTrue(any(line.split() == ["*", "propagation_distance", "15.4", "15", "2.6", "%"]
+                            for line in lines))
         self.assertFalse(any("time.duration" in line for line in lines))  # identical: hidden
         self.assertTrue(any("identical not shown" in line for line in lines))
         every = table_lines(jobs, rows, compare_labels(jobs, rows), show_all=True)

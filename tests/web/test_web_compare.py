@@ -3,8 +3,9 @@ loopback (docs/web.md "Compare runs"), as a researcher meets it:
 
 - an FE and a BI run of the paper's scene (L = 1e-4 m, n_d = 10: about a second each), ticked
   in the jobs list, "Compare selected" opens #/compare?ids=FE,BI;
-- the table marks the `method` row (and the other method's fields) as differing and leaves
-  L and n_d unmarked; a check box shows the identical fields too;
+- the table marks the `method` row (and, lighter, the fields one method has) as differing,
+  first, and leaves L and n_d unmarked; the spread of the numbers that differ; a check box
+  shows the identical fields too;
 - the legends of the overlaid curves say the method ("FE, …", "BI, …"), FE solid lines and
   circles, BI dashed lines and squares; |V|(t) at the paper's x1 = 6 and 10 m holds each run's
   /fields values in mm/s, V_r and the front each run's /front;
@@ -77,17 +78,28 @@ class WebCompare(BrowserCase):
         # The table: the method differs (highlighted), L and n_d do not.
         method = self.css("#compare-table tr[data-field='spec.method']")[0]
         self.assertIn("differs", method.get_attribute("class"))
-        self.assertEqual(self.texts("#compare-table tr[data-field='spec.method'] td"), ["fe", "spectral_bi"])
+        self.assertEqual(self.texts("#compare-table tr[data-field='spec.method'] td:not(.spread)"), ["fe", "spectral_bi"])
         for field in ("spec.friction.L", "spec.geometry.nodes_per_meter"):
             row = self.css(f"#compare-table tr[data-field='{field}']")[0]
             self.assertNotIn("differs", row.get_attribute("class") or "", field)
-        self.assertIn("differs", self.css("#compare-table tr[data-field='spec.spectral_bi.memory_periods']")[0]
-                      .get_attribute("class"))  # a field only BI has: "—" for the FE run
+        self.assertRegex(self.css("#compare-count")[0].text, r"^\d+ fields differ \(highlighted, ≠\), \d+ only some runs have")
+        only_bi = self.css("#compare-table tr[data-field='spec.spectral_bi.memory_periods']")[0]
+        self.assertEqual(only_bi.get_attribute("class"), "differs partial")  # "—" for the FE run
+        # The real differences first, then the fields one method has, then the identical ones.
+        order = self.js("return [...document.querySelectorAll('#compare-table tr[data-field^=\"spec.\"]')]"
+                        ".map(r => r.dataset.field)")
+        self.assertEqual(order[0], "spec.method")
+        self.assertLess(order.index("spec.spectral_bi.memory_periods"), order.index("spec.friction.L"))
+        # The spread of the numbers that differ: (max - min) / max |v|, in percent.
+        d = [self.runs[m]["metrics"]["propagation_distance"] for m in ("fe", "spectral_bi")]
+        spread = self.texts("#compare-table tr[data-field='metrics.propagation_distance'] td.spread")[0]
+        self.assertAlmostEqual(float(spread.rstrip(" %")), 100 * (max(d) - min(d)) / max(d), delta=0.01)
+        self.assertEqual(self.texts("#compare-table tr[data-field='spec.friction.L'] td.spread"), [""])
         # Identical fields are hidden until asked for.
         self.assertEqual(self.css("#compare-table tr[data-field='spec.material.density']"), [])
         self.css("#compare-all")[0].click()
         self.wait(lambda d: len(self.css("#compare-table tr[data-field='spec.material.density']")) == 1)
-        self.assertEqual(self.texts("#compare-table tr[data-field='spec.material.density'] td"), ["1", "1"])
+        self.assertEqual(self.texts("#compare-table tr[data-field='spec.material.density'] td"), ["1", "1", ""])
         self.assert_no_console_errors("compare view")
 
     def test_legends_tell_the_methods_apart(self):

@@ -3,7 +3,7 @@
 // spec and metrics with the fields that differ highlighted, then their figures overlaid
 // (compare_figures.js), each run in its colour and its method's line style, named by what
 // tells it from the others (run_labels.js).
-import { h, fill, badge, link, shortId } from './dom.js';
+import { h, fill, fmt, badge, link, shortId } from './dom.js';
 import { get, qs } from './api.js';
 import { PALETTE } from './plots.js';
 import { cellText, compareLabels, compareRows, methodStyle } from './run_labels.js';
@@ -74,16 +74,19 @@ function valueCell(row, v) {
 
 function compareTable(runs, rows, showAll) {
   const head = h('tr', {}, h('th', { text: 'field' }), runs.map((r) => h('th', { class: 'run' },
-    swatch(r), ' ', link(`#/jobs/${r.job.id}`, r.job.name || shortId(r.job.id)), h('div', { class: 'muted label', text: r.label }))));
+    swatch(r), ' ', link(`#/jobs/${r.job.id}`, r.job.name || shortId(r.job.id)), h('div', { class: 'muted label', text: r.label }))),
+  h('th', { class: 'num', title: '(max − min) / max |value| of the runs', text: 'spread' }));
   const body = h('tbody');
   for (const group of Object.keys(GROUPS)) {
     const shown = rows.filter((r) => r.group === group && (showAll || r.differs || KEY_ROWS.has(`${group}.${r.key}`)));
     const hidden = rows.filter((r) => r.group === group).length - shown.length;
-    body.append(h('tr', { class: 'group' }, h('th', { colspan: runs.length + 1, text: `${GROUPS[group]}${hidden ? ` — ${hidden} identical field${hidden === 1 ? '' : 's'} hidden` : ''}` })));
+    body.append(h('tr', { class: 'group' }, h('th', { colspan: runs.length + 2, text: `${GROUPS[group]}${hidden ? ` — ${hidden} identical field${hidden === 1 ? '' : 's'} hidden` : ''}` })));
     for (const row of shown) {
-      body.append(h('tr', { class: row.differs ? 'differs' : null, dataset: { field: `${group}.${row.key}` }, title: row.differs ? 'differs between the runs' : null },
+      const note = row.partial ? 'only some of the runs have this field' : 'differs between the runs';
+      body.append(h('tr', { class: row.differs ? `differs${row.partial ? ' partial' : ''}` : null, dataset: { field: `${group}.${row.key}` }, title: row.differs ? note : null },
         h('th', {}, row.differs ? h('span', { class: 'ne', text: '≠ ' }) : null, h('code', { text: row.key })),
-        row.values.map((v) => valueCell(row, v))));
+        row.values.map((v) => valueCell(row, v)),
+        h('td', { class: 'num spread', text: row.differs && row.spread !== null && group !== 'run' ? `${fmt(100 * row.spread, 3)} %` : '' })));
     }
   }
   return h('div', { class: 'tablewrap' }, h('table', { class: 'grid compare', id: 'compare-table' }, h('thead', {}, head), body));
@@ -102,7 +105,8 @@ export async function comparePage(view, page, params) {
   const rows = compareRows(shown);
   const labels = compareLabels(shown, rows);
   const runs = shown.map((job, i) => ({ job, label: labels[i], color: PALETTE[i % PALETTE.length], style: methodStyle(job.method || job.spec?.method) }));
-  const differing = rows.filter((r) => r.differs).length;
+  const differing = rows.filter((r) => r.differs && !r.partial).length;
+  const partial = rows.filter((r) => r.partial).length;
   view.querySelector('.pagehead').append(h('div', { class: 'sub muted', id: 'compare-source' },
     `${shown.length} run${shown.length === 1 ? '' : 's'}: ${source}${jobs.length > shown.length ? ` (the first ${MAX_RUNS} of ${jobs.length}; narrow the search to see others)` : ''}`,
     study ? h('span', {}, ' · ', link(`#/studies/${study}`, 'the study')) : null));
@@ -112,7 +116,7 @@ export async function comparePage(view, page, params) {
   const renderTable = () => fill(tableBox, compareTable(runs, rows, all.checked));
   all.addEventListener('change', renderTable);
   view.append(h('section', { class: 'card', id: 'compare-fields' }, h('h2', { text: 'Parameters and metrics' }),
-    h('div', { class: 'toolbar' }, h('span', { class: 'differs-key', text: `${differing} field${differing === 1 ? '' : 's'} differ (highlighted, ≠)` }),
+    h('div', { class: 'toolbar' }, h('span', { class: 'differs-key', id: 'compare-count', text: `${differing} field${differing === 1 ? '' : 's'} differ (highlighted, ≠)${partial ? `, ${partial} only some runs have (lighter)` : ''}` }),
       h('label', {}, all, ' show the identical fields too'),
       h('span', { class: 'muted', text: 'Legends name each run by its method, law, n_d and every other parameter that differs; FE solid lines and circles, BI dashed lines and squares.' })),
     tableBox));

@@ -56,16 +56,29 @@ function same(a, b) {
   return JSON.stringify(a ?? null) === JSON.stringify(b ?? null);
 }
 
+// The relative spread of a row's numbers, (max − min) / max |v|, when every run has a number
+// and they are not all zero; else null.
+export function spread(values) {
+  if (!values.length || !values.every((v) => typeof v === 'number' && Number.isFinite(v))) return null;
+  const top = Math.max(...values.map(Math.abs));
+  return top > 0 ? (Math.max(...values) - Math.min(...values)) / top : null;
+}
+
 // The rows of the comparison table: [{group: 'run'|'spec'|'metrics', key, values (one per job,
-// undefined where a job has no such field), differs}], spec fields in the order of the first
-// job that has them.
+// undefined where a job has no such field), differs, partial (some job has no such field),
+// spread}]. In each group the fields every job has and that differ come first, then those
+// only some jobs have (a method's own settings), then the identical ones, each in the order
+// of the first job that has them.
 export function compareRows(jobs) {
   const rows = [];
   const add = (group, keys, valueOf) => {
-    for (const key of keys) {
+    const made = keys.map((key) => {
       const values = jobs.map((j) => valueOf(j, key));
-      rows.push({ group, key, values, differs: values.some((v) => !same(v, values[0])) });
-    }
+      const partial = values.some((v) => v === undefined);
+      return { group, key, values, differs: values.some((v) => !same(v, values[0])), partial, spread: spread(values) };
+    });
+    const rank = (r) => (r.differs ? (r.partial ? 1 : 0) : 2);
+    rows.push(...made.map((r, i) => [r, i]).sort((a, b) => rank(a[0]) - rank(b[0]) || a[1] - b[1]).map(([r]) => r));
   };
   add('run', RUN_FIELDS, (j, k) => j[k] ?? undefined);
   const specs = jobs.map((j) => flatten(j.spec || {}));
@@ -83,7 +96,7 @@ const IN_BASE_LABEL = new Set(['method', 'geometry.nodes_per_meter', 'friction.l
 // every run has and that differs between them ('time.duration = 3'); a run whose text is
 // still another's gets its short id, so that no two legend entries read the same.
 export function compareLabels(jobs, rows = compareRows(jobs)) {
-  const extra = rows.filter((r) => r.group === 'spec' && r.differs && !IN_BASE_LABEL.has(r.key) && r.values.every((v) => v !== undefined));
+  const extra = rows.filter((r) => r.group === 'spec' && r.differs && !r.partial && !IN_BASE_LABEL.has(r.key));
   const labels = jobs.map((j, i) => [...runLabelParts(j), ...extra.map((r) => `${r.key} = ${cellText(r.values[i])}`)].join(', '));
   return labels.map((text, i) => (labels.indexOf(text) !== i || labels.lastIndexOf(text) !== i ? `${text} (${String(jobs[i].id).slice(0, 8)})` : text));
 }
