@@ -109,6 +109,7 @@ export function jobsPage(view, page) {
     counter.textContent = `${rows.length} of ${state.jobs.length} shown`;
     compare.textContent = `Compare selected (${state.picked.size})`;
     compare.disabled = state.picked.size < 2;
+    compare.title = compare.disabled ? 'tick two runs or more (the boxes at the left) to compare them' : 'open the picked runs side by side';
   };
 
   const load = async () => {
