@@ -6,13 +6,16 @@
     /usr/bin/python3 clients/reproduce_paper.py --server http://127.0.0.1:8080
     /usr/bin/python3 clients/reproduce_paper.py --quick              # CI-short, asserts the maps
 
-Starts `slipfront serve` in a temporary data dir (or uses --server), submits two
-convergence studies of the same scene and L (POST /api/v1/studies: L x the n_d ladder,
-refined by the server until two successive meshes agree or the cap is reached), one by FE
-and one by the spectral boundary integral (`"base": {"method": "spectral_bi"}`), waits with
-progress, downloads the result files it draws, and writes a Markdown report (default
-docs/reproduction.md) that leads with each method's L_c verdict and the cross-method table,
-with figures (slipfront_client.plots) under <report dir>/figures/reproduction/.
+Starts `slipfront serve` in a temporary data dir (or uses --server), submits three studies
+of the same scene: two convergence studies over the paper's L (POST /api/v1/studies: L x the
+n_d ladder, refined by the server until two successive meshes agree or the cap is reached), one
+by FE and one by the spectral boundary integral (`"base": {"method": "spectral_bi"}`), and a BI
+L search (`"convergence": {"search": {"from": 3.2e-6, "factor": 2}}`, docs/studies-api.md
+"L search") that finds L_c without an L list. It waits with progress, downloads the result
+files it draws, and writes a Markdown report (default docs/reproduction.md) that leads with the
+answer by each method (BI from the L search, FE from its convergence study), the paper's L_c
+beside ours with the measured reason they differ, then every figure of the paper (Fig. 2-6)
+from our runs under <report dir>/figures/reproduction/.
 
 Every number in the report is computed from the studies' runs. With --quick the scene is
 small and coarse, and the script checks the shape of both maps; it exits 1 when a check
@@ -34,8 +37,9 @@ REPO = os.path.dirname(HERE)
 from slipfront_client.api import Api  # noqa: E402
 from slipfront_client.local_server import Server, default_binary, log  # noqa: E402
 from slipfront_client.reproduction import (  # noqa: E402
-    BI_LADDER, FULL_L, FULL_LADDER, QUICK_BASE, QUICK_BI_LADDER, QUICK_L, QUICK_LADDER, loadavg,
-    progress_line, report, study_body, study_wall, wait_study)
+    BI_LADDER, FULL_L, FULL_LADDER, QUICK_BASE, QUICK_BI_LADDER, QUICK_L, QUICK_LADDER,
+    QUICK_SEARCH, SEARCH, loadavg, progress_line, report, search_body, study_body, study_wall,
+    wait_study)
 
 
 def parse_args(argv):
@@ -48,6 +52,8 @@ def parse_args(argv):
     p.add_argument("--data-dir", help="server data dir when starting one (default: temporary)")
     p.add_argument("--study-id", help="report on this existing FE study instead of creating one")
     p.add_argument("--bi-study-id", help="report on this existing BI study instead of creating one")
+    p.add_argument("--search-study-id", help="report on this existing BI L search instead of "
+                   "creating one")
     p.add_argument("--quick", action="store_true", help="CI-short version with shape checks")
     p.add_argument("--n-d-max", type=int, default=None, help="cap of the FE n_d ladder (default 160; quick 10)")
     p.add_argument("--bi-n-d-max", type=int, default=None,
@@ -58,13 +64,13 @@ def parse_args(argv):
     p.add_argument("--timeout", type=float, help="give up waiting after this many seconds")
     args = p.parse_args(argv)
     if args.quick:
-        args.L, args.ladder, args.base = QUICK_L, QUICK_LADDER, QUICK_BASE
+        args.L, args.ladder, args.base, args.search = QUICK_L, QUICK_LADDER, QUICK_BASE, QUICK_SEARCH
         args.n_d_max = args.n_d_max or max(QUICK_LADDER)
         args.bi_ladder, args.bi_n_d_max = QUICK_BI_LADDER, args.bi_n_d_max or max(QUICK_BI_LADDER)
         args.out = args.out or os.path.join(tempfile.mkdtemp(prefix="slipfront-repro-"),
                                             "reproduction_quick.md")
     else:
-        args.L, args.ladder, args.base = FULL_L, FULL_LADDER, None
+        args.L, args.ladder, args.base, args.search = FULL_L, FULL_LADDER, None, SEARCH
         args.n_d_max = args.n_d_max or 160
         args.bi_ladder, args.bi_n_d_max = BI_LADDER, args.bi_n_d_max or max(BI_LADDER)
         args.out = args.out or os.path.join(REPO, "docs", "reproduction.md")
@@ -73,6 +79,7 @@ def parse_args(argv):
 
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
+    args.script_t0 = time.time()
     server = None
     tmp = None
     try:
@@ -89,17 +96,18 @@ def main(argv=None):
             log(f"server {url} (pid {server.proc.pid}, data {data_dir})")
         api = Api(url, token=args.token, timeout=60)
         studies = {}
-        for method, given in (("fe", args.study_id), ("spectral_bi", args.bi_study_id)):
+        for kind, given in (("fe", args.study_id), ("spectral_bi", args.bi_study_id),
+                            ("search", args.search_study_id)):
             if given:
-                studies[method] = api.study(given)
-                log(f"using {method} study {given}")
+                studies[kind] = api.study(given)
+                log(f"using {kind} study {given}")
             else:
-                studies[method] = api.create_study(study_body(args, method))
-                log(f"created {method} study {studies[method]['id']}: "
-                    f"{progress_line(studies[method])}")
+                body = search_body(args) if kind == "search" else study_body(args, kind)
+                studies[kind] = api.create_study(body)
+                log(f"created {kind} study {studies[kind]['id']}: {progress_line(studies[kind])}")
         t0 = time.time()
-        for method, s in studies.items():
-            studies[method] = wait_study(api, s["id"], args.timeout)
+        for kind, s in studies.items():
+            studies[kind] = wait_study(api, s["id"], args.timeout)
         wall = time.time() - t0
         # again: the cross-method table holds every run of both scenes, now all final
         study, bi_study = api.study(studies["fe"]["id"]), studies["spectral_bi"]
@@ -108,7 +116,8 @@ def main(argv=None):
                         else loadavg())
         speed = [api.get_json(f"/api/v1/studies/{s['id']}/speed-accuracy") for s in (study, bi_study)]
         bi = {"study": bi_study, "speed_acc": speed[1], "wall": study_wall(bi_study)}
-        return report(args, api, study, speed[0], wall, server, bi)
+        search = {"study": studies["search"], "wall": study_wall(studies["search"])}
+        return report(args, api, study, speed[0], wall, server, bi, search)
     finally:
         if server:
             server.stop()

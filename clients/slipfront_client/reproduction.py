@@ -2,9 +2,11 @@
 clients/reproduce_paper.py).
 
 Two convergence studies of the same scene, one per method (FE and the spectral boundary
-integral, `"base": {"method": "spectral_bi"}`), over the same L; the report leads with each
-method's L_c verdict and the cross-method table (report.py), then our numbers beside the
-paper's (docs/physics.md), the FE convergence map, figures (slipfront_client.plots) and every run.
+integral, `"base": {"method": "spectral_bi"}`), over the same L, and a BI L search; the report
+leads with the answer by each method and the paper's L_c beside ours (reproduction_story.py),
+then each method's verdict and the cross-method table (report.py), our numbers beside the
+paper's (docs/physics.md), the convergence maps, every figure of the paper
+(reproduction_figures.py, slipfront_client.plots) and every run.
 With `quick` the scene is small and coarse and `check_shape` asserts the maps' shape.
 """
 
@@ -20,13 +22,16 @@ from .local_server import log
 from .reproduction_measures import chosen_run, figure2_run, runs_by_L
 from .reproduction_plan import (
     BI_LADDER, FE_ONLY, FINAL_JOB, FULL_L, FULL_LADDER, QUICK_BASE, QUICK_BI_LADDER, QUICK_L,
-    QUICK_LADDER, bi_base, study_body)
-from .reproduction_report import check_shape, cost_rows, make_figures, write_report
+    QUICK_LADDER, QUICK_SEARCH, SEARCH, bi_base, search_body, study_body)
+from .reproduction_figures import MESH_L, loader, make_paper_figures
+from .reproduction_report import check_search, check_shape, cost_rows, make_figures, write_report
+from .plots import common
 
 # What clients/reproduce_paper.py and the tests use (the plan's names are re-exported).
 __all__ = ["BI_LADDER", "FE_ONLY", "FINAL_JOB", "FULL_L", "FULL_LADDER", "QUICK_BASE",
-           "QUICK_BI_LADDER", "QUICK_L", "QUICK_LADDER", "bi_base", "cost_rows", "loadavg",
-           "progress_line", "report", "study_body", "study_wall", "wait_study"]
+           "QUICK_BI_LADDER", "QUICK_L", "QUICK_LADDER", "QUICK_SEARCH", "SEARCH", "bi_base",
+           "cost_rows", "loadavg", "progress_line", "report", "search_body", "study_body",
+           "study_wall", "wait_study"]
 
 
 def progress_line(study):
@@ -96,12 +101,15 @@ def job_metrics(api, study):
     return metrics
 
 
-def report(args, api, study, speed_acc, wall, server, bi=None):
-    """Write the report of the FE `study` and the BI study `bi` = {"study", "speed_acc",
-    "wall"}; in quick mode check the maps' shape. Returns the exit code."""
+def report(args, api, study, speed_acc, wall, server, bi=None, search=None):
+    """Write the report of the FE `study`, the BI study `bi` = {"study", "speed_acc",
+    "wall"} and the BI L search `search` = {"study", "wall"}; in quick mode check the maps'
+    shape, the search and the figures. Returns the exit code."""
     metrics = job_metrics(api, study)
     bi = dict(bi or {})
     bi["metrics"] = job_metrics(api, bi.get("study"))
+    search = dict(search or {})
+    search["metrics"] = job_metrics(api, search.get("study"))
     bi["run_sum"] = sum(float(m.get("wall_time_s") or 0) for m in bi["metrics"].values())
     rows, bi["rows_source"] = cost_rows(speed_acc, bi.get("speed_acc"))
     out = os.path.abspath(args.out)
@@ -128,6 +136,17 @@ def report(args, api, study, speed_acc, wall, server, bi=None):
                     results_mod.resolve_source(fig2_run["job_id"], lambda: api, cache, log)))
     formats = [f.strip() for f in args.format.split(",") if f.strip()]
     figures = make_figures(study, bi.get("study"), rows, chosen, results, fig_dir, formats, log)
+    captions = {}
+
+    def save(fig, stem, caption):
+        figures[stem] = common.save_figure(fig, fig_dir, stem, formats)[0]
+        captions[stem] = caption
+        log(f"figure {figures[stem]}")
+    all_metrics = {**metrics, **bi["metrics"], **search["metrics"]}
+    notes = make_paper_figures(study, bi.get("study"), search.get("study"), all_metrics,
+                               loader(api, cache, log), save,
+                               mesh_L=QUICK_L[-1] if args.quick else MESH_L)
+    search.update(captions=captions, notes=notes)
     timing_load = getattr(args, "loadavg", loadavg())
     run_sum = sum(float(m.get("wall_time_s") or 0) for m in metrics.values())
     cmd = "/usr/bin/python3 clients/reproduce_paper.py" + (" --quick" if args.quick else "") + (
@@ -137,16 +156,19 @@ def report(args, api, study, speed_acc, wall, server, bi=None):
               "nproc": len(os.sched_getaffinity(0)), "loadavg": timing_load, "cpu": cpu_model(),
               "workers": args.workers if server else "(external server)",
               "finished_utc": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"),
-              "command": cmd}
-    write_report(out, args, study, bi, chosen, results, metrics, figures, timing, fig2)
+              "command": cmd, "script_wall": time.time() - getattr(args, "script_t0", time.time())}
+    write_report(out, args, study, bi, chosen, results, metrics, figures, timing, fig2, search)
     log(f"wrote {out}")
     log(f"study wall {wall:.1f} s; sum of run wall times {run_sum:.1f} s; L_c {study.get('L_c')}; "
         f"spectral {study.get('spectral_critical_length')}")
     for s in (study, bi.get("study")):
         if s:
             log(f"{report_mod.method_of(s)}: {report_mod.verdict_text(s)}")
+    s = (search.get("study") or {}).get("search") or {}
+    log(f"L search: {s.get('state')}, L_c {s.get('L_c')}: {s.get('reason')}")
     if args.quick:
         fails = check_shape(study, out, figures, bi.get("study"))
+        fails += check_search(search.get("study"), out, figures)
         methods = {r["method"] for r in rows if r.get("error") is not None}
         if bi["rows_source"] != "across_methods" or methods != {"fe", "spectral_bi"}:
             fails.append(f"speed-accuracy: rows from {bi['rows_source']} with errors for "

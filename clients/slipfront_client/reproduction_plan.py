@@ -11,6 +11,10 @@ QUICK_L = [1e-3, 5e-5]
 QUICK_LADDER = [5, 10]
 QUICK_BI_LADDER = [10, 20, 40]
 QUICK_BASE = {"geometry": {"width": 20, "x_min": -5, "height": 8}, "time": {"duration": 10}}
+# The BI L search (docs/studies-api.md "L search"): from below the paper's smallest L, halving;
+# quick: the small scene from 5e-5 m by 4 down to a floor, a few seconds.
+SEARCH = {"from": 3.2e-6, "factor": 2}
+QUICK_SEARCH = {"from": 5e-5, "factor": 4, "floor": 1e-6}
 # FE-only fields: an error in a spectral_bi spec (docs/spectral-bi.md, Options).
 FE_ONLY = {"geometry": ("height", "top_boundary"), "time": ("safety_factor",)}
 FINAL_JOB = ("succeeded", "failed", "cancelled")
@@ -39,6 +43,19 @@ def study_body(args, method="fe"):
     base = bi_base(args.base) if bi else args.base
     if base:
         body["base"] = base
+    if args.fresh:
+        body["fresh"] = True
+    return body
+
+
+def search_body(args):
+    """The BI L search of the same scene: no L list, `args.search` (from, factor, floor), the
+    BI ladder and cap."""
+    body = {"name": "reproduction L search" + (" (quick)" if args.quick else ""),
+            "tags": ["reproduction"] + (["quick"] if args.quick else []),
+            "base": bi_base(args.base),
+            "convergence": {"search": dict(args.search), "n_d": args.bi_ladder,
+                            "n_d_max": args.bi_n_d_max}}
     if args.fresh:
         body["fresh"] = True
     return body

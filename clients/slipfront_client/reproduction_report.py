@@ -9,6 +9,7 @@ from .analysis import merge_rows, rows_from_speed_accuracy, has_across_methods
 from .report import converged_n_d, fmt
 from .reproduction_measures import comparison_rows, differences, runs_by_L, runs_table
 from .reproduction_plan import QUICK_L, QUICK_LADDER, study_body
+from .reproduction_story import fe_lines, paper_lines, search_lines
 
 
 # -- report -------------------------------------------------------------------------------
@@ -90,8 +91,10 @@ def map_table_lines(study):
 
 
 def write_report(path, args, study, bi, chosen, results, metrics, figures, timing,
-                 fig2=(None, None)):
-    """`bi`: {"study", "metrics", "wall", "rows_source"} of the spectral BI study (or None)."""
+                 fig2=(None, None), search=None):
+    """`bi`: {"study", "metrics", "wall", "rows_source"} of the spectral BI study (or None);
+    `search`: {"study", "metrics", "wall", "captions", "notes"} of the BI L search and the
+    paper figures drawn from the studies (or None)."""
     rel = os.path.relpath
     out_dir = os.path.dirname(os.path.abspath(path))
     by_L = runs_by_L(study)
@@ -115,6 +118,23 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
             f"n_d ∈ {{{', '.join(str(n) for n in args.ladder)}}} (BI: {{{', '.join(str(n) for n in args.bi_ladder)}}}). "
             "Its numbers are **not** comparable with the paper's; it checks that the pipeline "
             "works and the maps have the expected shape.\n")
+
+    search = search or {}
+    if not args.quick and args.n_d_max < 160:
+        add(f"> **FE capped at n_d = {args.n_d_max}** (`--n-d-max {args.n_d_max}`, the paper's "
+            f"ladder goes to 120 and ours to 160), BI in full (cap {args.bi_n_d_max}). Whole "
+            f"script: **{fmt(timing.get('script_wall'))} s** wall on {timing['nproc']} cores at "
+            f"load {timing['loadavg']}. Command: `{timing['command']}`. Run it without "
+            "`--n-d-max` on an idle machine for the whole FE ladder.\n")
+    add("## The answer, by method\n")
+    lines.extend(search_lines(search.get("study"), search.get("wall"),
+                              len(search.get("metrics") or {})))
+    lines.extend(fe_lines(study, metrics, args.n_d_max))
+    if bi_study:
+        add(f"- **BI, convergence study over the paper's L: {report_mod.verdict_text(bi_study)}** "
+            f"(study `{bi_study.get('id')}`): its L stop at {min(runs_by_L(bi_study)):g} m, above "
+            "the L search's answer.\n")
+    lines.extend(paper_lines(study, bi_study, search.get("study")))
 
     add("## L_c verdict, by method\n")
     add("- " + "; ".join(f"**{report_mod.SHORT.get(report_mod.method_of(s), '?')}: "
@@ -210,8 +230,10 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
 
     add("## Figures\n")
     captions = {
-        "velocity": "Slip velocity |V| at x1 = 6 and 10 m, the drawn run of each L (paper Fig. 2b, 3a, 4a).",
-        "speed": "Rupture speed against x1, the drawn run of each L, with c_s and c_p (paper Fig. 2c, 3b, 4b).",
+        "velocity": "Paper Fig. 2b: slip velocity |V| at x1 = 6 and 10 m of the FE run drawn "
+                    "for each L (the coarsest mesh-converged, else the finest); the paper's "
+                    "Fig. 2 is the L = 5e-5 m line.",
+        "speed": "Paper Fig. 2c: rupture speed against x1 of the same FE runs, with c_s and c_p.",
         "map": "|V| in the x1–t plane with the slip front (paper Fig. 2a).",
         "filter": "Friction filter A/A0 (eq. 6) for the study's L, with the meshes' highest "
                   "eigenfrequencies 1/(π dt_stable) from the runs' `stable_dt` (paper Fig. 5c).",
@@ -224,9 +246,23 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
                    "`across_methods` yet)")
                 + "; a reference run (error 0) is not drawn.",
     }
-    for stem in ("velocity", "speed", "map", "filter", "cost"):
-        if stem in figures:
+    captions.update(search.get("captions") or {})
+    order = (("Fig. 2: one slip event", ("map", "velocity", "speed")),
+             ("Fig. 3: mesh convergence", ("mesh_convergence",)),
+             ("Fig. 4: convergence with L", ("length_convergence",)),
+             ("Fig. 5: the frictional strength and the friction filter",
+              ("strength_spectrum", "filter")),
+             ("Fig. 6: the critical length against the event's frequency",
+              ("critical_frequency",)),
+             ("Cost", ("cost",)))
+    for heading, stems in order:
+        drawn = [stem for stem in stems if stem in figures]
+        if drawn:
+            add(f"### {heading}\n")
+        for stem in drawn:
             add(f"{captions[stem]}\n\n![{stem}]({rel(figures[stem], out_dir)})\n")
+    for note in search.get("notes") or []:
+        add(f"Not drawn: {note}\n")
     if "cost" not in figures:
         add("No speed–accuracy chart: no run has a reference to be compared with "
             "(an L needs a mesh-converged run).\n")
@@ -335,3 +371,45 @@ def check_shape(study, report_path, figures, bi_study=None):
     return fails
 
 
+
+
+PAPER_FIGURES = ("mesh_convergence", "length_convergence", "strength_spectrum",
+                 "critical_frequency")
+SEARCH_STATES = ("found", "meets_coulomb", "mesh_cap", "floor", "all_agree")
+
+
+def figure_is_blank(path):
+    """True when the PNG has a single colour (nothing drawn)."""
+    import matplotlib.image as mpimg
+    pixels = mpimg.imread(path)
+    return float(pixels.std()) == 0.0
+
+
+def check_search(search_study, report_path, figures):
+    """The quick L search: finished with a final state, a reason and its steps; the report
+    leads with the answer by method and the paper's L_c beside ours; every new figure of the
+    paper is written, non-blank and linked."""
+    fails = []
+    s = (search_study or {}).get("search") or {}
+    if (search_study or {}).get("status") != "finished":
+        fails.append(f"L search status {(search_study or {}).get('status')!r}, expected finished")
+    if s.get("state") not in SEARCH_STATES or not s.get("reason"):
+        fails.append(f"L search state {s.get('state')!r} / reason {s.get('reason')!r}")
+    if len(s.get("searched_L") or []) < 2 or not s.get("steps"):
+        fails.append(f"L search tried {s.get('searched_L')} with steps {s.get('steps')}")
+    text = open(report_path, encoding="utf-8").read() if os.path.isfile(report_path) else ""
+    for needle in ("## The answer, by method", "**BI, L search:", "**FE, convergence study:",
+                   "## The paper's L_c beside ours", "Why they differ"):
+        if needle not in text:
+            fails.append(f"report lacks {needle!r}")
+    if not (0 <= text.find("## The answer, by method") < text.find("## L_c verdict")):
+        fails.append("report does not lead with the answer by method")
+    for stem in PAPER_FIGURES:
+        path = figures.get(stem)
+        if not path or not os.path.isfile(path):
+            fails.append(f"figure {stem} missing")
+        elif figure_is_blank(path):
+            fails.append(f"figure {stem} is blank")
+        elif os.path.relpath(path, os.path.dirname(os.path.abspath(report_path))) not in text:
+            fails.append(f"report does not link figure {stem}")
+    return fails

@@ -1,0 +1,75 @@
+"""The frictional strength and its spectrum (paper Fig. 5a, 5c, with the record's spectrum
+in place of the paper's periodic test signal 5b): (a) tau_s at x1 = 6 m of the mesh-converged
+run of each L; (b) its power spectrum, computed as the spectral estimate of docs/metrics.md
+does (end-point line removed, Hann window); (c) the friction filter A/A0 of eq. 6 for each L,
+with the meshes' highest eigenfrequencies as dashed vertical lines."""
+
+import numpy as np
+import matplotlib.pyplot as plt
+
+from .common import colours
+from .filter_response import amplitude_ratio
+
+
+def strength_at(result, x1):
+    """(time, tau_s) at the interface node nearest `x1`."""
+    node = int(np.argmin(np.abs(result.x1 - x1)))
+    return result.time, result.strength[:, node]
+
+
+def power_spectrum(t, signal):
+    """(f, power) of a uniformly sampled record: the straight line through its end points
+    removed and a Hann window applied (docs/metrics.md "Spectral estimate")."""
+    y = np.asarray(signal, float)
+    y = y - np.linspace(y[0], y[-1], y.size)
+    y = y * np.hanning(y.size)
+    dt = float(t[1] - t[0])
+    return np.fft.rfftfreq(y.size, dt), np.abs(np.fft.rfft(y)) ** 2
+
+
+def plot_strength_spectrum(results, meshes, x1=6.0, v_star=1e-4, slip_velocity=3e-3, title=None):
+    """`results`: {L: Result}; `meshes`: {label: highest frequency [Hz]}."""
+    Ls = sorted(results, reverse=True)
+    palette = colours(len(Ls), "viridis_r")
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(13.5, 3.9), constrained_layout=True)
+    data = {"spectra": {}, "f_max": dict(meshes)}
+    f_hi = 1.0
+    for L, colour in zip(Ls, palette):
+        r = results[L]
+        if r.strength.size == 0 or r.time.size < 4:
+            continue
+        t, s = strength_at(r, x1)
+        if not np.ptp(s) > 0:
+            continue  # no event at x1 (no rupture): nothing to analyse
+        a.plot(t, s * 1e3, color=colour, lw=1.0, label=f"L = {L:g} m")
+        f, p = power_spectrum(t, s)
+        data["spectra"][L] = (f, p)
+        keep = f > 0
+        b.loglog(f[keep], p[keep] / p[keep].max(), color=colour, lw=1.0, label=f"L = {L:g} m")
+        f_hi = max(f_hi, float(f[-1]))
+    a.set_title(f"(a) strength τ_s at x1 = {x1:g} m", fontsize="medium")
+    a.set_xlabel("t [s]")
+    a.set_ylabel(r"$\tau_s$ [mPa]")
+    a.legend(fontsize="x-small")
+    b.set_title("(b) its power spectrum (normalised)", fontsize="medium")
+    b.set_xlabel("f [Hz]")
+    b.set_ylabel("power / peak")
+    b.set_ylim(1e-12, 2)
+    f = np.logspace(-2, np.log10(max(f_hi, max(meshes.values(), default=1.0)) * 2), 400)
+    for L, colour in zip(Ls, palette):
+        c.plot(f, amplitude_ratio(f, L, v_star, slip_velocity), color=colour, lw=1.0,
+               label=f"L = {L:g} m")
+    for label, f_max in sorted(meshes.items(), key=lambda kv: kv[1]):
+        for ax in (b, c):
+            ax.axvline(f_max, color="grey", ls="--", lw=0.8)
+        c.text(f_max, 1.02, label, rotation=90, ha="right", va="bottom", fontsize="x-small",
+               color="grey")
+    c.set_xscale("log")
+    c.set_ylim(0, 1.2)
+    c.set_title(f"(c) filter A/A0, |V| = {slip_velocity:g} m/s", fontsize="medium")
+    c.set_xlabel("f [Hz]")
+    c.set_ylabel("A/A0")
+    c.legend(fontsize="x-small", loc="lower left")
+    if title:
+        fig.suptitle(title)
+    return fig, data
