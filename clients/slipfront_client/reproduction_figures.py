@@ -35,6 +35,8 @@ def converged_by_L(*studies):
                 by_L.setdefault(float(r["L"]), []).append(r)
         for L, rs in by_L.items():
             ref = reference_run(rs)
+            if ref is not None and ref.get("outcome") == "no_rupture":
+                continue  # no event to draw or analyse (the paper's Fig. 4 leaves it out too)
             if ref is not None and not any(abs(L - k) <= 1e-9 * L for k in out):
                 out[L] = ref
         coulomb = coulomb or reference_run([r for r in runs if r.get("regime") == "coulomb"])

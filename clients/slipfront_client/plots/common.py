@@ -35,6 +35,18 @@ def colours(n, cmap="viridis"):
     return [cm(0.85 * i / max(n - 1, 1)) for i in range(n)]
 
 
+def ramp(n, cmap="Blues"):
+    """n colours light to dark, the lightest still readable on white (the paper's ramps)."""
+    cm = plt.get_cmap(cmap)
+    return [cm(0.35 + 0.65 * i / max(n - 1, 1)) for i in range(n)]
+
+
+def clip_speed_axis(ax, c_p):
+    """Rupture-speed axes from 0 to a little above c_p: the nucleation patch's V_r (the
+    front jumps across it at once) would otherwise flatten the rest of the curve."""
+    ax.set_ylim(0, 1.2 * c_p)
+
+
 # One line style and marker per method, so that FE and BI runs of one scene overlaid read apart
 # at a glance (their labels say the method too; the web view uses the same: run_labels.js).
 METHOD_STYLES = {"fe": {"ls": "-", "marker": "o"}, "spectral_bi": {"ls": "--", "marker": "s"}}

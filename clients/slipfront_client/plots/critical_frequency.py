@@ -5,7 +5,7 @@ spectral_critical_length); the L search's L_c and the paper's 1e-5 m as horizont
 
 import numpy as np
 
-from .common import colours, new_figure
+from .common import new_figure, ramp
 
 ATTENUATION = 0.98
 
@@ -26,13 +26,16 @@ def plot_critical_frequency(points, L_c=None, paper_L_c=1e-5, v_star=1e-4, title
         v = float(np.median([p[4] for p in points]))
         ax.loglog(f, critical_length(f, v_star, v), color="grey",
                   label=f"L_c(f), A/A0 = {ATTENUATION:g}, |V| = {v:.3g} m/s")
-        ax.fill_between(f, critical_length(f, v_star, v), 1, color="grey", alpha=0.12,
+        top = 30 * max([p[3] for p in points] + [L_c or 0, paper_L_c])
+        ax.fill_between(f, critical_length(f, v_star, v), top, color="grey", alpha=0.12,
                         label="L > L_c(f): L acts on the event")
-        for colour, (label, L, fr, lc, _) in zip(colours(len(points), "viridis_r"), points):
+        for colour, (label, L, fr, lc, _) in zip(ramp(len(points), "viridis_r"), points):
             ax.plot([fr], [lc], "o", color=colour, label=label)
     if L_c:
         ax.axhline(L_c, color="C3", lw=1.4, label=f"L search: L_c = {L_c:g} m")
     ax.axhline(paper_L_c, color="C1", ls="--", lw=1.0, label=f"paper: L_c ≈ {paper_L_c:g} m")
+    bottom = min([p[3] for p in points] + [L_c or paper_L_c, paper_L_c]) / 10
+    ax.set_ylim(bottom, top if points else paper_L_c * 100)
     ax.set_xlabel("highest frequency of the event f (99 % of τ_s power at x1 = 6 m) [Hz]")
     ax.set_ylabel("L [m]")
     ax.set_title(title or "Critical length against the event's frequency")

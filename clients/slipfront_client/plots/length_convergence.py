@@ -4,14 +4,14 @@ named, plain Coulomb (when given) in black."""
 
 import matplotlib.pyplot as plt
 
-from .common import colours
+from .common import clip_speed_axis, ramp
 from .velocity import signal_window, velocity_at
 
 
 def plot_length_convergence(results, L_c=None, coulomb=None, positions=(6.0, 10.0), title=None):
     """`results`: {L: Result}, one mesh-converged run per L; `coulomb`: a Result or None."""
     Ls = sorted(results, reverse=True)
-    palette = colours(len(Ls), "viridis_r")
+    palette = ramp(len(Ls), "viridis_r")
     fig, axes = plt.subplots(1, len(positions) + 1, figsize=(4.2 * (len(positions) + 1), 3.8),
                              squeeze=False, constrained_layout=True)
     axes = list(axes[0])
@@ -46,7 +46,12 @@ def plot_length_convergence(results, L_c=None, coulomb=None, positions=(6.0, 10.
     for L, r, colour in lines:
         label, lw, ls = style(L, r)
         ax.plot(r.front_x1, r.rupture_speed, color=colour, lw=lw, ls=ls, label=label)
-    ax.set_title("(b) rupture speed", fontsize="medium")
+    if lines:
+        c_s, c_p = lines[0][1].wave_speeds()
+        clip_speed_axis(ax, c_p)
+        for c, name in ((c_s, "c_s"), (c_p, "c_p")):
+            ax.axhline(c, color="grey", ls=":", lw=0.8)
+    ax.set_title("(b) rupture speed (c_s, c_p dotted grey)", fontsize="medium")
     ax.set_xlabel("x1 [m]")
     ax.set_ylabel(r"$V_r$ [m/s]")
     ax.legend(fontsize="x-small")

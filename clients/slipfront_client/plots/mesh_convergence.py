@@ -1,17 +1,17 @@
 """Mesh convergence at one L (paper Fig. 3a, 3b): |V| against time at x1 = 6 and 10 m and the
 rupture speed V_r against x1, one line per n_d of the same L and method, darker for finer
-meshes (the paper's colour ramp)."""
+meshes (the paper's colour ramp); the V_r axis stops a little above c_p."""
 
 import matplotlib.pyplot as plt
 
-from .common import colours
+from .common import clip_speed_axis, ramp
 from .velocity import signal_window, velocity_at
 
 
 def plot_mesh_convergence(results, positions=(6.0, 10.0), title=None):
     """`results`: runs of one L and method; drawn coarse (light) to fine (dark)."""
     runs = sorted(results, key=lambda r: float(r.n_d or 0))
-    palette = list(reversed(colours(len(runs), "Blues_r")))
+    palette = ramp(len(runs))
     fig, axes = plt.subplots(1, len(positions) + 1, figsize=(4.2 * (len(positions) + 1), 3.6),
                              squeeze=False, constrained_layout=True)
     axes = list(axes[0])
@@ -39,6 +39,7 @@ def plot_mesh_convergence(results, positions=(6.0, 10.0), title=None):
                 label=f"n_d = {float(r.n_d or 0):g}")
     if runs:
         c_s, c_p = runs[0].wave_speeds()
+        clip_speed_axis(ax, c_p)
         for c, name in ((c_s, "c_s"), (c_p, "c_p")):
             ax.axhline(c, color="grey", ls=":", lw=0.8)
             ax.text(ax.get_xlim()[0], c, f" {name}", va="bottom", fontsize="x-small", color="grey")

@@ -7,7 +7,7 @@ with the meshes' highest eigenfrequencies as dashed vertical lines."""
 import numpy as np
 import matplotlib.pyplot as plt
 
-from .common import colours
+from .common import ramp
 from .filter_response import amplitude_ratio
 
 
@@ -30,7 +30,7 @@ def power_spectrum(t, signal):
 def plot_strength_spectrum(results, meshes, x1=6.0, v_star=1e-4, slip_velocity=3e-3, title=None):
     """`results`: {L: Result}; `meshes`: {label: highest frequency [Hz]}."""
     Ls = sorted(results, reverse=True)
-    palette = colours(len(Ls), "viridis_r")
+    palette = ramp(len(Ls), "viridis_r")
     fig, (a, b, c) = plt.subplots(1, 3, figsize=(13.5, 3.9), constrained_layout=True)
     data = {"spectra": {}, "f_max": dict(meshes)}
     f_hi = 1.0
