@@ -24,7 +24,8 @@ from .reproduction_plan import (
     BI_LADDER, FE_ONLY, FINAL_JOB, FULL_L, FULL_LADDER, QUICK_BASE, QUICK_BI_LADDER, QUICK_L,
     QUICK_LADDER, QUICK_SEARCH, SEARCH, bi_base, search_body, study_body)
 from .reproduction_figures import MESH_L, loader, make_paper_figures
-from .reproduction_report import check_search, check_shape, cost_rows, make_figures, write_report
+from .reproduction_checks import check_search
+from .reproduction_report import check_shape, cost_rows, make_figures, write_report
 from .plots import common
 
 # What clients/reproduce_paper.py and the tests use (the plan's names are re-exported).
@@ -135,7 +136,8 @@ def report(args, api, study, speed_acc, wall, server, bi=None, search=None):
                 else results_mod.load_result(
                     results_mod.resolve_source(fig2_run["job_id"], lambda: api, cache, log)))
     formats = [f.strip() for f in args.format.split(",") if f.strip()]
-    figures = make_figures(study, bi.get("study"), rows, chosen, results, fig_dir, formats, log)
+    figures = make_figures(study, bi.get("study"), rows, chosen, results, fig_dir, formats, log,
+                           fig2[1])
     captions = {}
 
     def save(fig, stem, caption):

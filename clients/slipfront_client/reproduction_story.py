@@ -94,7 +94,7 @@ def paper_lines(study, bi_study, search_study):
     s = (search_study or {}).get("search") or {}
     L_c = s.get("L_c", (search_study or {}).get("L_c"))
     lines = ["## The paper's L_c beside ours\n",
-             f"| | L_c [m] | how |", "| --- | --- | --- |",
+             "| | L_c [m] | how |", "| --- | --- | --- |",
              f"| paper (§3.2, Fig. 4) | ≈ {PAPER_L_C:g} | FE, n_d 10 to 120; five L (1e-3 to "
              "5e-6 m); L_c read from the overlap of the two smallest L's curves |",
              f"| ours, BI L search | {fmt(L_c)} | the paper's mesh tolerances ({PAPER_TOLERANCES}) "
