@@ -119,7 +119,8 @@ def make_paper_figures(study, bi_study, search_study, metrics, load, save, mesh_
              "Paper Fig. 6 from our runs: each mesh-converged BI run's highest frequency (99 % "
              "of the τ_s power at x1 = 6 m, `spectral_frequency`) and its spectral estimate "
              "`spectral_critical_length` (dots), on the filter rule L_c(f) (A/A0 = 0.98); "
-             "the L search's L_c and the paper's 1e-5 m as horizontal lines.")
+             "the L search's L_c and the paper's 1e-5 m as horizontal lines, each with a star "
+             "at the frequency the rule needs for it (L_c ∝ 1/f, paper §5).")
     else:
         notes.append("Fig. 4-6: no mesh-converged BI run.")
     return notes

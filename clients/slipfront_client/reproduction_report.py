@@ -128,9 +128,11 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     search = search or {}
     if not args.quick and args.n_d_max < 160:
         add(f"> **FE capped at n_d = {args.n_d_max}** (`--n-d-max {args.n_d_max}`, the paper's "
-            f"ladder goes to 120 and ours to 160), BI in full (cap {args.bi_n_d_max}). Whole "
-            f"script: **{fmt(timing.get('script_wall'))} s** wall on {timing['nproc']} cores at "
-            f"load {timing['loadavg']}. Command: `{timing['command']}`. Run it without "
+            f"ladder goes to 120 and ours to 160), BI in full (cap {args.bi_n_d_max}). "
+            + (f"Whole script: **{fmt(timing.get('script_wall'))} s** wall on {timing['nproc']} "
+               f"cores at load {timing['loadavg']}. " if not args.study_id else
+               "Report written from existing studies (their wall times below). ")
+            + f"Command: `{timing['command']}`. Run it without "
             "`--n-d-max` on an idle machine for the whole FE ladder.\n")
     add("## The answer, by method\n")
     lines.extend(search_lines(search.get("study"), search.get("wall"),
