@@ -7,6 +7,7 @@ from .report import converged_n_d, fmt, percent, verdict_text
 from .reproduction_measures import runs_by_L
 
 PAPER_L_C = 1e-5
+V_STAR = 1e-4  # the paper scene's V* [m/s] (docs/physics.md)
 PAPER_TOLERANCES = "0.5 % on the propagation distance, 0.1 % on the arrival time at x1 = 11 m"
 
 
@@ -129,6 +130,9 @@ def paper_lines(study, bi_study, search_study):
         reasons.append("The L search's change of propagation distance from each L to the next "
                        "smaller: " + ", ".join(f"{percent(c)} at L = {fmt(L)} m" for c, L in changes)
                        + f"; its verdict: L_c = {fmt(L_c)} m (state `{s.get('state')}`).")
+    rule = filter_rule_line(study, search_study, L_c)
+    if rule:
+        reasons.append(rule)
     coul = s.get("coulomb") or {}
     agree = [st for st in coul.get("steps") or [] if st.get("agree")]
     if agree:
@@ -138,3 +142,25 @@ def paper_lines(study, bi_study, search_study):
     lines += [f"- {r}" for r in reasons] or ["- (no runs at the paper's L to compare)"]
     lines.append("")
     return lines
+
+
+def filter_rule_line(study, search_study, L_c):
+    """Both L_c read through the filter rule (paper §5, eq. 6 at A/A0 = 0.98; Fig. 6): the
+    frequency each needs, with |V| of the search's smallest-L run, beside the FE n_d = 20
+    mesh's highest frequency that the paper used."""
+    from .plots.critical_frequency import frequency_of
+    from .plots.filter_response import highest_frequency
+    own = [r for r in (search_study or {}).get("runs") or [] if not r.get("regime")
+           and (r.get("_metrics") or {}).get("spectral_velocity") is not None]
+    if not own or not L_c:
+        return None
+    v = float(min(own, key=lambda r: float(r["L"]))["_metrics"]["spectral_velocity"])
+    f20 = [highest_frequency(r["_metrics"]["stable_dt"]) for r in study.get("runs") or []
+           if abs(float(r["n_d"]) - 20) < 1e-9 and (r.get("_metrics") or {}).get("stable_dt")]
+    return (f"Through the filter rule (eq. 6 at A/A0 = 0.98, |V| = {v:.3g} m/s; Fig. 6), "
+            f"L_c = {PAPER_L_C:g} m is the critical length of an event whose frequencies stop "
+            f"at {frequency_of(PAPER_L_C, V_STAR, v):.3g} Hz — the paper took the highest "
+            "frequency of its n_d = 20 mesh (§5"
+            + (f"; ours: {f20[0]:.3g} Hz" if f20 else "") + ") — and our "
+            f"L_c = {fmt(L_c)} m that of an event with content up to "
+            f"{frequency_of(L_c, V_STAR, v):.3g} Hz.")
