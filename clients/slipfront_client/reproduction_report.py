@@ -136,7 +136,9 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
             "`--n-d-max` on an idle machine for the whole FE ladder.\n")
     add("## The answer, by method\n")
     lines.extend(search_lines(search.get("study"), search.get("wall"),
-                              len(search.get("metrics") or {})))
+                              len(search.get("metrics") or {}),
+                              sum(float(m.get("wall_time_s") or 0)
+                                  for m in (search.get("metrics") or {}).values())))
     lines.extend(fe_lines(study, metrics, args.n_d_max))
     if bi_study:
         add(f"- **BI, convergence study over the paper's L: {report_mod.verdict_text(bi_study)}** "
@@ -167,6 +169,8 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     add(f"FE study request: `{json.dumps(study.get('request') or study_body(args))}`\n")
     if bi_study:
         add(f"BI study request: `{json.dumps(bi_study.get('request') or study_body(args, 'spectral_bi'))}`\n")
+    if search.get("study"):
+        add(f"BI L search request: `{json.dumps(search['study'].get('request') or {})}`\n")
     add(f"- FE n_d ladder {args.ladder}, cap n_d_max = {args.n_d_max}"
         + (" (the paper's ladder goes to 160; capped here to bound the run time)"
            if not args.quick and args.n_d_max < 160 else "")
@@ -292,8 +296,9 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     add("ctest --test-dir build -L reproduction --output-on-failure     # the same under ctest")
     add("```\n")
     add("With `--server URL` the script uses a running server (runs it already has are reused, "
-        "`--fresh` recomputes them); `--study-id ID` (and `--bi-study-id ID`) write the report "
-        "of existing studies; `--bi-n-d-max` caps the BI ladder (default 320).\n")
+        "`--fresh` recomputes them); `--study-id ID` (and `--bi-study-id ID`, "
+        "`--search-study-id ID`) write the report of existing studies; `--bi-n-d-max` caps "
+        "the BI ladder (default 320).\n")
     with open(path, "w", encoding="utf-8") as f:
         f.write("\n".join(lines) + "\n")
 

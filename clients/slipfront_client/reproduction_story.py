@@ -36,7 +36,7 @@ def coulomb_rows(coulomb):
     return rows + [""]
 
 
-def search_lines(search_study, wall, n_runs):
+def search_lines(search_study, wall, n_runs, run_sum=None):
     """The BI answer: the L search's verdict, its steps and the comparison with Coulomb."""
     s = (search_study or {}).get("search") or {}
     if not s:
@@ -45,7 +45,9 @@ def search_lines(search_study, wall, n_runs):
     lines = [f"- **BI, L search: {'L_c = ' + fmt(L_c) + ' m' if L_c else 'no L_c'}** "
              f"(state `{s.get('state')}`), from L = {fmt(s.get('from'))} m by a factor "
              f"{fmt(s.get('factor'))}, L tried: {', '.join(fmt(L) for L in s.get('searched_L') or [])}; "
-             f"{n_runs} runs in {fmt(wall)} s (study `{search_study.get('id')}`).",
+             f"{n_runs} runs in {fmt(wall)} s wall, {fmt(run_sum)} s summed over its runs (study "
+             f"`{search_study.get('id')}`; it shared the two workers with the FE and BI studies, "
+             "so its wall time is mostly waiting for FE runs).",
              f"  Server's reason: {s.get('reason')}", ""]
     if s.get("steps"):
         lines += ["Each searched L against the next smaller one (the rule of docs/metrics.md "
@@ -123,7 +125,8 @@ def paper_lines(study, bi_study, search_study):
             f"to n_d = {tried:g} here (the paper reports n_d = 40 for 1e-5 m, finer for 5e-6 m, "
             "with the same tolerances), so our FE study cannot compare these L by the rule; BI "
             "converges there from n_d = "
-            + ", ".join(fmt(converged_n_d(bi_study, L)) for L in stuck if bi_study) + ".")
+            + ", ".join(f"{fmt(converged_n_d(bi_study, L))} (L = {L:g} m)" for L in stuck
+                        if bi_study) + ".")
     if s.get("steps"):
         changes = [((st.get("changes") or {}).get("propagation_distance"), st.get("L"))
                    for st in s["steps"]]
