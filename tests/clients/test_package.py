@@ -9,6 +9,7 @@ answer.
 """
 
 import csv
+import hashlib
 import io
 import json
 import os
@@ -18,7 +19,10 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import xml.etree.ElementTree as ET
 from unittest import mock
+
+import h5py
 
 from harness import CLIENTS, REPO, Server, binary_from_argv
 
@@ -138,6 +142,60 @@ class InstalledPackageTest(unittest.TestCase):
         r = self.client("study", "list")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertRegex(r.stdout.splitlines()[0], r"^id\s+status\s+kind\s+method\s+runs")
+
+    def test_6_export_provenance_integers_and_xdmf(self):
+        """A run downloaded under another name with its XDMF sidecar, then exported: the
+        sidecar is a temporal collection (one grid per recorded time) naming the file beside
+        it; the run table carries the provenance columns, `tags` filters as `tag` does, whole
+        numbers print as integers."""
+        h5 = os.path.join(self.tmp, "renamed run.h5")
+        r = self.client("submit", "--wait", "--quiet", "--tag", "prov",
+                        "--set", "method=spectral_bi", "--set", "geometry.nodes_per_meter=10",
+                        "--set", "time.duration=2", "--download", h5, "--xdmf")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        job_id = r.stdout.strip()
+        xdmf = os.path.join(self.tmp, "renamed run.xdmf")
+        root = ET.parse(xdmf).getroot()
+        collection = root.find("Domain/Grid")
+        self.assertEqual((collection.get("GridType"), collection.get("CollectionType")),
+                         ("Collection", "Temporal"))
+        steps = collection.findall("Grid")
+        with h5py.File(h5, "r") as f:
+            times = f["interface/time"][()]
+        self.assertEqual(len(steps), len(times))
+        self.assertEqual([float(g.find("Time").get("Value")) for g in steps], list(times))
+        referenced = {item.text.split(":")[0] for item in root.iter("DataItem")
+                      if item.get("Format") == "HDF"}
+        self.assertEqual(referenced, {"renamed run.h5"})
+        self.assertTrue(os.path.exists(os.path.join(os.path.dirname(xdmf), "renamed run.h5")))
+
+        r = self.client("list", "--where", "tags=prov", "--format", "csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = list(csv.DictReader(io.StringIO(r.stdout)))
+        self.assertEqual([row["id"] for row in rows], [job_id])
+        row = rows[0]
+        job = json.loads(self.client("status", job_id, "--json").stdout)
+        with open(h5, "rb") as f:
+            self.assertEqual(row["result_sha256"], hashlib.sha256(f.read()).hexdigest())
+        self.assertEqual(row["result_url"], f"{self.server.base}/api/v1/jobs/{job_id}/result.h5")
+        self.assertEqual(row["result_size_bytes"], str(os.path.getsize(h5)))
+        for column in ("spec_sha256", "scene_hash", "code_version"):
+            self.assertEqual(row[column], job[column], column)
+        self.assertEqual(row["tags"], "prov")
+        # Whole numbers as integers: in the table, in --json and in the status lines.
+        self.assertEqual(row["spec.geometry.nodes_per_meter"], "10")
+        self.assertRegex(row["memory_estimate_bytes"], r"^[0-9]+$")
+        self.assertEqual(row["metrics.steps"], str(job["metrics"]["steps"]))
+        self.assertIsInstance(job["spec"]["geometry"]["nodes_per_meter"], int)
+        self.assertIsInstance(job["memory_estimate_bytes"], int)
+        status = self.client("status", job_id).stdout
+        self.assertIn("n_d = 10,", status)
+        self.assertNotRegex(status, r"\b10\.0\b")
+        ndjson = self.client("list", "--where", "tags=prov", "--format", "ndjson").stdout
+        exported = json.loads(ndjson.splitlines()[0])
+        self.assertEqual(exported["spec.geometry.nodes_per_meter"], 10)
+        self.assertIn('"spec.geometry.nodes_per_meter":10,', ndjson)
+        self.assertEqual(exported["result_url"], row["result_url"])
 
     def test_5_friendly_message_when_nothing_listens(self):
         r = self.client("list", "--server", "http://127.0.0.1:9")
