@@ -3,10 +3,9 @@
 import argparse
 import os
 import sys
-from xml.sax.saxutils import escape as xml_escape
 
 from . import jobspec
-from .download import download_result
+from .result_download import download_result, write_xdmf
 from .errors import ServerError, UsageError
 from .output import job_summary, log, print_json, table
 from .waiting import FINAL, ProgressBar, check_outcome, wait_for_job
@@ -144,17 +143,6 @@ def cmd_submit(args, ctx):
                 log(f"XDMF sidecar written to {xdmf}")
     return 0
 
-
-def write_xdmf(api, job_id, h5_path):
-    """Writes the XDMF sidecar of job `job_id` beside its downloaded result `h5_path`, as
-    H5_STEM.xdmf, pointing at the file by the name it was saved under. Returns its path."""
-    xdmf = os.path.splitext(h5_path)[0] + ".xdmf"
-    text = api.result_xdmf(job_id)
-    # The server names the file ID.h5 (its download name); the sidecar must name this one.
-    text = text.replace(f">{job_id}.h5:", f">{xml_escape(os.path.basename(h5_path))}:")
-    with open(xdmf, "w", encoding="utf-8") as f:
-        f.write(text)
-    return xdmf
 
 
 def cmd_presets(args, ctx):

@@ -20,7 +20,7 @@ import numpy as np
 
 from harness import LONG, SCRIPT, TINY, Server, binary_from_argv, run_client, wait_until
 from slipfront_client.api import Api
-from slipfront_client.download import download_result
+from slipfront_client.result_download import download_result
 from slipfront_client.plots import slip_map
 from slipfront_client.results import load_result
 
