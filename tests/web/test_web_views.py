@@ -172,10 +172,19 @@ class WebViews(BrowserCase):
         text = self.js("return document.getElementById('view').innerText")
         for bad in ("null", "stable —", "height", "undefined", "NaN"):
             self.assertNotIn(bad, text)
+        self.assertRegex(cost, r"dx = [0-9.e-]+ m, nx = ")  # lengths with their unit
+        # The result file and its XDMF sidecar, which names the HDF5 file's download name.
+        job_id = self.bi_run["id"]
+        self.assertEqual(self.css("#download")[0].get_attribute("download"), f"{job_id}.h5")
+        xdmf = self.css("#download-xdmf")[0]
+        self.assertEqual(xdmf.get_attribute("download"), f"{job_id}.xdmf")
+        sidecar = self.server.get(xdmf.get_attribute("href").replace(self.server.base, ""))
+        self.assertEqual(sidecar.status_code, 200)
+        self.assertIn(f">{job_id}.h5:/interface/slip_velocity<", sidecar.text)
         # The FE run of the same scene does have a stable step and a height.
         self.open(f"/#/jobs/{self.fe_run['id']}")
         self.wait(lambda d: "stable" in " ".join(self.texts(".cols table.kv")))
-        self.assertIn("height = ", " ".join(self.texts(".cols table.kv")))
+        self.assertRegex(" ".join(self.texts(".cols table.kv")), r"height = [0-9.]+ m")
 
     def test_404_pages_have_no_empty_boxes(self):
         for path, what in (("/#/jobs/0123456789abcdef0123456789abcdef", "No job"),
