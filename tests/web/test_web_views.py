@@ -262,8 +262,32 @@ class WebViews(BrowserCase):
             self.assertEqual(row[0], "agree" if step["agree"] else "differ")
         lc = self.texts("#lc-value")[0]
         self.assertTrue(lc.endswith(" m") and "not determined" not in lc, lc)
+        # Plain Coulomb beside the L (the paper scene is well-posed under it): one row per L.
+        coulomb = search["coulomb"]
+        self.assertIn(coulomb["status"], self.texts("#search-coulomb p")[0])
+        self.assertEqual(len(self.css("#search-coulomb tbody tr")), len(coulomb["steps"]))
         self.shot("study-l-search")
         self.assert_no_console_errors("study with an L search")
+
+    def test_accuracy_study_shows_the_answer_and_its_meshes(self):
+        # The paper scene's arrest position within 0.5 % (docs/studies-api.md "Accuracy target").
+        r = self.server.post("/api/v1/studies", json={
+            "name": "arrest 0.5 %", "accuracy": {"metric": "arrest_position", "tolerance": 0.005}})
+        self.assertEqual(r.status_code, 201, r.text)
+        study = wait_study(self.server, r.json()["id"], timeout=300)
+        answer = study["accuracy"]
+        self.assertEqual(answer["state"], "met", answer)
+        self.open(f"/#/studies/{study['id']}")
+        self.wait(lambda d: self.chart_ready("#fig-accuracy"), message="the accuracy chart")
+        self.assertEqual(self.texts("#accuracy-state"), ["target met"])
+        self.assertIn(f"± {answer['error']:g}", self.texts("#accuracy-answer")[0])
+        self.assertEqual(len(self.css("#accuracy-steps tbody tr")), len(answer["steps"]))
+        trace = self.chart_data("#fig-accuracy")[0]
+        self.assertEqual(trace["x"], [s["n_d"] for s in answer["steps"]])
+        self.assertEqual(trace["y"], [s["value"] for s in answer["steps"]])
+        self.assertEqual(self.texts("#lc-value"), [])  # one L: no critical length on this page
+        self.shot("study-accuracy")
+        self.assert_no_console_errors("accuracy study")
 
     def test_speed_accuracy_joins_runs_only_along_refinements(self):
         sa = self.server.get(f"/api/v1/studies/{self.study_id}/speed-accuracy").json()
