@@ -181,7 +181,7 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     if bi_study:
         add(f"- Wall clock of the BI study: **{fmt(bi.get('wall'))} s**; sum of its runs' wall "
             f"times: **{bi.get('run_sum', 0):.1f} s** over {len(bi.get('metrics') or {})} runs. "
-            "The two studies ran at the same time on the same workers.")
+            "The studies (FE, BI and the L search) ran at the same time on the same workers.")
     add(f"- Machine: `nproc` = {timing['nproc']}, CPU {timing['cpu']}; server workers: "
         f"{timing['workers']}; load average (1, 5, 15 min) when the study finished: "
         f"{timing['loadavg']} — other work shared the machine when it exceeds the workers, "
