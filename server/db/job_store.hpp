@@ -92,6 +92,8 @@ public:
 
 private:
   std::optional<Job> query_one(const std::string& where, const std::vector<std::string>& args);
+  // The metrics row of a finished run, from its record (finish()).
+  static void write_metrics(Database& db, const std::string& id, const RunRecord& record);
 
   StoreDb db_;
 };
