@@ -22,7 +22,7 @@ import numpy as np
 import requests
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from server_harness import TINY, Server, long_job  # noqa: E402
+from server_harness import TINY, Server, long_job, wait_study  # noqa: E402
 
 BINARY = None
 JOBS = "/api/v1/jobs"
@@ -219,6 +219,31 @@ class KeepAndShare(unittest.TestCase):
         self.server.post(f"{JOBS}/{job_id}/cancel")
         self.server.wait_status(job_id, {"cancelled"}, timeout=60)
         self.assertEqual(self.delete(job_id).status_code, 200)
+
+    def test_a_run_of_a_study_is_archived_not_deleted_and_exports_with_its_study(self):
+        body = {"name": "kept study", "grid": {"L": [6.7e-4], "n_d": [5]},
+                "base": {"geometry": {"width": 12, "x_min": -1, "height": 4},
+                         "probe": {"arrival_x1": 3, "spectrum_x1": 2}, "time": {"duration": 3}}}
+        r = self.server.post("/api/v1/studies", data=json.dumps(body),
+                             headers={"Content-Type": "application/json"})
+        self.assertEqual(r.status_code, 201, r.text)
+        study = wait_study(self.server, r.json()["id"], timeout=120)
+        job_id = study["runs"][0]["job_id"]
+        r = self.delete(job_id)
+        self.assertEqual(r.status_code, 409, r.text)
+        self.assertIn(study["id"], r.json()["detail"])
+        self.assertIn("archive it instead", r.json()["detail"])
+        self.assertEqual(self.server.get(f"{JOBS}/{job_id}").status_code, 200)
+        self.assertEqual(self.server.post(f"{JOBS}/{job_id}/archive").status_code, 200)
+        again = self.server.get(f"/api/v1/studies/{study['id']}").json()
+        self.assertEqual([run["job_id"] for run in again["runs"]], [job_id])  # still its run
+        r = self.server.get("/api/v1/exports", params={"study_id": study["id"]}, timeout=60)
+        self.assertEqual(r.status_code, 404, "an archived run was exported by filter")
+        r = self.server.get("/api/v1/exports", params={"study_id": study["id"],
+                                                       "archived": "include"}, timeout=60)
+        self.assertEqual(r.status_code, 200, r.text)
+        manifest = json.loads(members(r.content)["manifest.json"])
+        self.assertEqual([run["id"] for run in manifest["runs"]], [job_id])
 
     # --- export and import ---------------------------------------------------------------
 

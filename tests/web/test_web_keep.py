@@ -45,6 +45,9 @@ class WebKeep(BrowserCase):
         self.wait(lambda d: self.job(job["id"])["tags"] == ["fig-2", "keep"], message="saved tags")
         self.assertEqual(self.job(job["id"])["note"], "the run of Fig. 2\nmesh checked")
         self.wait(lambda d: self.css("#keep-message")[0].text == "saved", message="'saved'")
+        # The provenance card shows the new tags too.
+        self.wait(lambda d: any("fig-2, keep" in t for t in self.texts(".kv td")),
+                  message="the new tags in the provenance card")
         # A tag longer than 64 bytes: refused beside the buttons, nothing changed.
         tags = self.css("#keep-tags")[0]
         tags.clear()
@@ -57,12 +60,13 @@ class WebKeep(BrowserCase):
 
     def test_archive_restore_and_delete(self):
         job = self.run_job("web archive")
+        visible = self.run_job("web listed")
         self.open_job(job["id"])
         self.css("#keep-archive")[0].click()
         self.wait(lambda d: self.css("#keep-archived"), message="archived")
         self.assertIsNotNone(self.job(job["id"])["archived_at"])
         self.open("/#/jobs")
-        self.wait(lambda d: self.listed_ids(), message="the jobs list")
+        self.wait(lambda d: visible["id"] in self.listed_ids(), message="the jobs list")
         self.assertNotIn(job["id"], self.listed_ids())
         self.css("#job-archived")[0].click()
         self.wait(lambda d: job["id"] in self.listed_ids(), message="archived runs shown")

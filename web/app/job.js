@@ -126,7 +126,7 @@ export async function jobPage(view, page, id) {
     renderHead();
     renderLive();
     // Drawn once (a refresh would wipe what is being typed), and again after each change.
-    const renderKeep = () => keepCard(keep, job, (updated) => { job = updated; renderHead(); renderKeep(); }, () => { location.hash = '#/jobs'; });
+    const renderKeep = () => keepCard(keep, job, (updated) => { job = updated; renderHead(); renderKeep(); renderDetails(); }, () => { location.hash = '#/jobs'; });
     if (!keep.hasChildNodes()) renderKeep();
     if (!wasFinal) await renderDetails();
     if (job.status === 'succeeded' && !drawn) {
