@@ -7,6 +7,8 @@
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 
+#include <algorithm>
+
 namespace slipfront::server {
 
 namespace net = boost::asio;
@@ -42,7 +44,9 @@ void HttpSession::run() {
 
 void HttpSession::read_header() {
   parser_.emplace();
-  body_limit_ = limits_.max_body_bytes;
+  // The parser checks a Content-Length against its limit with the header, before the path is
+  // known: the larger of the two limits here, the request's own in on_header().
+  body_limit_ = std::max(limits_.max_body_bytes, limits_.max_import_bytes);
   parser_->body_limit(body_limit_);
   parser_->header_limit(16 * 1024);
   arm_read_deadline();
@@ -87,11 +91,13 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   auto& req = parser_->get();
   // A run archive (POST /imports) may be larger than a JSON body.
   const std::string_view target(req.target().data(), req.target().size());
-  if (req.method() == http::verb::post &&
-      target.substr(0, target.find('?')) == api_prefix + "/imports") {
-    body_limit_ = limits_.max_import_bytes;
-    parser_->body_limit(body_limit_);
-  }
+  const bool import = req.method() == http::verb::post &&
+                      target.substr(0, target.find('?')) == api_prefix + "/imports";
+  body_limit_ = import ? limits_.max_import_bytes : limits_.max_body_bytes;
+  if (const auto length = parser_->content_length(); length && *length > body_limit_)
+    return reject(http::status::payload_too_large,
+                  "the body is larger than the limit of " + std::to_string(body_limit_) + " bytes");
+  parser_->body_limit(body_limit_); // a chunked body is counted against it as it arrives
   if (beast::iequals(req[http::field::expect], "100-continue")) {
     // curl waits for this before sending larger bodies.
     auto cont = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);

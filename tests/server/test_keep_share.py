@@ -61,7 +61,8 @@ class KeepAndShare(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.server = Server(BINARY, args=["--workers", "1"]).start()
-        cls.other = Server(BINARY, args=["--workers", "1"]).start()
+        cls.other = Server(BINARY, args=["--workers", "1",
+                                         "--max-import-bytes", "3000000"]).start()
 
     @classmethod
     def tearDownClass(cls):
@@ -343,6 +344,15 @@ class KeepAndShare(unittest.TestCase):
         self.assert_refused(make_tar(files.items()), "runs/extra.txt")
         self.assertFalse(os.path.exists(os.path.join(self.other.data_dir, "results",
                                                      job["id"] + ".h5")))
+
+    def test_an_archive_above_the_import_limit_gets_413(self):
+        r = self.other.post("/api/v1/imports", data=b"\0" * 3_500_000, timeout=60)
+        self.assertEqual(r.status_code, 413, r.text[:300])
+        self.assertIn("3000000", r.json()["detail"])
+        # The limit is the import's only: a JSON body keeps the 1 MiB of --max-body-bytes.
+        r = self.other.post(JOBS, data=b" " * 1_200_000,
+                            headers={"Content-Type": "application/json"}, timeout=60)
+        self.assertEqual(r.status_code, 413, r.text[:300])
 
     def test_hostile_member_names_are_refused(self):
         job, archive = self.exported("hostile", 5.3e-4)
