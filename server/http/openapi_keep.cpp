@@ -58,7 +58,7 @@ const char* keep_paths = R"json({
 const char* keep_job_fields = R"json({
   "note": {"type": "string", "description": "free text its owner keeps with it (PATCH)"},
   "archived_at": {"type": "string", "nullable": true, "description": "when it was archived; null = listed"},
-  "imported_from": {"type": "object", "nullable": true, "description": "an imported run: {server: {host, code_version}, id, exported_at}"}
+  "imported_from": {"type": "object", "nullable": true, "description": "an imported run: {server: {host, code_version}, id, submitted_by, exported_at}"}
 })json";
 } // namespace
 

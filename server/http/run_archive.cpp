@@ -197,6 +197,7 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
   if (!metrics.is_null() && !metrics.is_object()) in.refuse("metrics", "must be an object or null");
   job.imported_from = {{"server", origin.value("server", json())},
                        {"id", original_id},
+                       {"submitted_by", in.text("submitted_by")},
                        {"exported_at", origin.value("exported_at", json())}};
   if (!in.field("imported_from").is_null())
     job.imported_from["imported_from"] = in.field("imported_from");

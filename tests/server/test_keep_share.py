@@ -277,6 +277,7 @@ class KeepAndShare(unittest.TestCase):
             self.assertEqual(got["metrics"], original["metrics"])
             self.assertEqual(got["tags"], ["paper"])
             self.assertEqual(got["imported_from"]["id"], original["id"])
+            self.assertEqual(got["imported_from"]["submitted_by"], "anonymous")
             self.assertEqual(got["imported_from"]["server"]["code_version"],
                              original["code_version"])
             mine = self.server.get(original["result"]["url"]).content
