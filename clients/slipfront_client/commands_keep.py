@@ -81,7 +81,10 @@ def cmd_archive(args, ctx):
 
 def cmd_delete(args, ctx):
     if not args.yes:
-        answer = input(f"delete job {args.id} and its result file? [y/N] ")
+        try:
+            answer = input(f"delete job {args.id} and its result file? [y/N] ")
+        except EOFError:  # no terminal and no --yes: not deleted
+            answer = ""
         if answer.strip().lower() not in ("y", "yes"):
             raise UsageError("not deleted")
     result = ctx.api().delete(args.id)

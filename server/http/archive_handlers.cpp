@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <variant>
@@ -32,7 +33,9 @@ std::variant<std::vector<Job>, Response> runs_to_export(ServerContext& ctx, Requ
     if (rc.query.size() != 1)
       return problem_response(req, http::status::bad_request, "invalid query parameters",
                               {{"/query/ids", "give ids alone, or the filters of GET /jobs"}});
-    const auto ids = split_commas(it->second);
+    std::vector<std::string> ids;
+    for (const auto& id : split_commas(it->second)) // each run once, in the order given
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
     if (ids.empty() || ids.size() > max_archive_runs)
       return problem_response(req, http::status::bad_request, "invalid query parameters",
                               {{"/query/ids", "must list 1 to " + std::to_string(max_archive_runs) +

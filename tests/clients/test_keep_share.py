@@ -71,6 +71,9 @@ class ClientKeepShare(unittest.TestCase):
         r = self.client("delete", job_id, stdin="n\n")
         self.assertEqual(r.returncode, 2)
         self.assertEqual(self.job(job_id)["id"], job_id)
+        r = self.client("delete", job_id, stdin="")  # no answer: not deleted
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(self.job(job_id)["id"], job_id)
         r = self.client("delete", job_id, "--yes")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("with its result file", r.stdout)

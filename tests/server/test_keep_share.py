@@ -252,13 +252,14 @@ class KeepAndShare(unittest.TestCase):
         a = self.run_job(tiny("shared-a", L=4.5e-4, tags=["paper"]))
         b = self.run_job(tiny("shared-b", L=4.7e-4, tags=["paper"]))
         self.patch(a["id"], {"note": "Fig. 2 run"})
-        r = self.server.get("/api/v1/exports", params={"ids": f"{a['id']},{b['id']}"}, timeout=60)
+        r = self.server.get("/api/v1/exports", params={"ids": f"{a['id']},{b['id']},{a['id']}"},
+                            timeout=60)
         self.assertEqual(r.status_code, 200, r.text)
         self.assertEqual(r.headers["Content-Type"], "application/x-tar")
         files = members(r.content)
         manifest = json.loads(files["manifest.json"])
         self.assertEqual(manifest["format"], "slipfront-runs")
-        self.assertEqual({run["id"] for run in manifest["runs"]}, {a["id"], b["id"]})
+        self.assertEqual([run["id"] for run in manifest["runs"]], [a["id"], b["id"]])
         for f in manifest["files"]:
             self.assertEqual(sha256(files[f["name"]]), f["sha256"], f["name"])
         self.assertEqual(set(files), {"manifest.json"} | {f["name"] for f in manifest["files"]})
