@@ -7,7 +7,10 @@ ticked; restore lists it again; delete asks first and then removes the run.
     /usr/bin/python3 tests/web/test_web_keep.py --binary build/slipfront --web-dir build/share/slipfront/web
 """
 
-from browser_harness import BrowserCase, run
+import os
+import time
+
+from browser_harness import CONFIG, BrowserCase, run
 
 TINY = {"geometry": {"nodes_per_meter": 5}, "time": {"duration": 2.0}}
 
@@ -29,6 +32,14 @@ class WebKeep(BrowserCase):
         self.open(f"/#/jobs/{job_id}")
         self.wait(lambda d: self.css("#keep-save"), message="the Keep card")
 
+    def shot_card(self, selector, name):
+        if not CONFIG["shots"]:
+            return
+        os.makedirs(CONFIG["shots"], exist_ok=True)
+        self.js("arguments[0].scrollIntoView({block: 'start'})", self.css(selector)[0])
+        time.sleep(0.3)
+        self.css(selector)[0].screenshot(os.path.join(CONFIG["shots"], f"{name}.png"))
+
     def listed_ids(self):
         return self.js("return [...document.querySelectorAll('#jobs-table tbody tr[data-id]')]"
                        ".map(r => r.dataset.id)")
@@ -48,6 +59,7 @@ class WebKeep(BrowserCase):
         # The provenance card shows the new tags too.
         self.wait(lambda d: any("fig-2, keep" in t for t in self.texts(".kv td")),
                   message="the new tags in the provenance card")
+        self.shot_card("#job-keep", "web-job-keep")  # docs/figures/web-job-keep.png
         # A tag longer than 64 bytes: refused beside the buttons, nothing changed.
         tags = self.css("#keep-tags")[0]
         tags.clear()
