@@ -92,8 +92,8 @@ std::string scene_hash(const nlohmann::json& canonical) {
   return sha256_hex(canonical_text(scene));
 }
 
-std::string counterpart_scene_hash(const nlohmann::json& canonical) {
-  nlohmann::json other = canonical;
+nlohmann::json counterpart_document(const nlohmann::json& job) {
+  nlohmann::json other = job;
   if (other.value("method", "fe") == "spectral_bi") {
     other["method"] = "fe";
     other.erase("spectral_bi");
@@ -110,7 +110,11 @@ std::string counterpart_scene_hash(const nlohmann::json& canonical) {
     }
     if (other.contains("time") && other["time"].is_object()) other["time"].erase("safety_factor");
   }
-  const ParseResult parsed = parse_job(other);
+  return other;
+}
+
+std::string counterpart_scene_hash(const nlohmann::json& canonical) {
+  const ParseResult parsed = parse_job(counterpart_document(canonical));
   return parsed.ok() ? scene_hash(parsed.spec->canonical) : std::string();
 }
 

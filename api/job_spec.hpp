@@ -70,11 +70,12 @@ std::string spec_hash(const nlohmann::json& canonical);
 // name, tags and threads: runs with the same scene hash belong to one convergence map.
 std::string scene_hash(const nlohmann::json& canonical);
 
-// The scene of the same physics by the other method: the spec with "method" swapped and the
-// fields only one method has dropped (FE: geometry.height, geometry.top_boundary,
-// lower.height, lower.bottom_boundary, time.safety_factor and the "fe" section; BI: the
-// "spectral_bi" section). Empty if the
-// swapped spec is not valid.
+// The same physics by the other method: the job with "method" swapped and the fields only one
+// method has dropped (FE: geometry.height, geometry.top_boundary, lower.height,
+// lower.bottom_boundary, time.safety_factor and the "fe" section; BI: the "spectral_bi"
+// section). Not checked: parse it.
+nlohmann::json counterpart_document(const nlohmann::json& job);
+// The scene hash of counterpart_document(canonical); empty if that job is not valid.
 std::string counterpart_scene_hash(const nlohmann::json& canonical);
 
 // SHA-256 of arbitrary bytes / of a file's content (lower-case hex).

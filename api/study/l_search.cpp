@@ -29,6 +29,8 @@ std::string to_string(SearchVerdict::State state) {
     return "next_L";
   case SearchVerdict::State::found:
     return "found";
+  case SearchVerdict::State::meets_coulomb:
+    return "meets_coulomb";
   case SearchVerdict::State::floor:
     return "floor";
   case SearchVerdict::State::mesh_cap:
@@ -37,6 +39,17 @@ std::string to_string(SearchVerdict::State state) {
     return "all_agree";
   }
   return "refining";
+}
+
+CoulombReference coulomb_reference(double L, const std::vector<StudyRun>& coulomb_runs,
+                                   const std::vector<double>& ladder, double cap) {
+  CoulombReference ref;
+  const auto plan = refinement_plan(L, coulomb_runs, ladder, cap);
+  ref.run = reference_run(coulomb_runs, convergence_statuses(coulomb_runs), L);
+  ref.status = ref.run ? "mesh-converged from n_d = " + number_text(plan.converged_n_d) +
+                             ", compared at n_d = " + number_text(ref.run->n_d)
+                       : to_string(plan.state) + ": " + plan.reason;
+  return ref;
 }
 
 namespace {
@@ -71,7 +84,7 @@ std::size_t agreeing_tail(const std::vector<Reference>& refs, const ConvergenceT
 
 SearchVerdict search_verdict(const LSearch& search, const std::vector<double>& ladder,
                              std::size_t active, bool settled, const std::vector<StudyRun>& runs,
-                             const ConvergenceTolerances& tol) {
+                             const CoulombReference& coulomb, const ConvergenceTolerances& tol) {
   SearchVerdict v;
   active = std::min(active, ladder.size());
   const auto statuses = convergence_statuses(runs, tol);
@@ -93,8 +106,23 @@ SearchVerdict search_verdict(const LSearch& search, const std::vector<double>& l
                        {"changes", changes_json(c.distance_change, c.arrival_change)},
                        {"reason", c.reason}});
   }
+  // Each mesh-converged L against plain Coulomb; the first (largest) that agrees.
+  std::size_t meets = refs.size();
+  if (search.coulomb.value_or(false)) {
+    json against = json::array();
+    for (std::size_t k = 0; coulomb.run && k < refs.size(); ++k) {
+      const Comparison c = compare(*refs[k].run, *coulomb.run, tol);
+      against.push_back({{"L", refs[k].L},
+                         {"agree", c.agree},
+                         {"changes", changes_json(c.distance_change, c.arrival_change)},
+                         {"reason", c.reason}});
+      if (c.agree && meets == refs.size()) meets = k;
+    }
+    v.coulomb = {{"status", coulomb.status}, {"steps", against}};
+  }
   if (!settled) {
-    v.reason = "refining the meshes of L = " + number_text(ladder[active - 1]);
+    v.reason = "refining the meshes of L = " + number_text(ladder[active - 1]) +
+               (search.coulomb.value_or(false) && !coulomb.run ? " (and of plain Coulomb)" : "");
     return v;
   }
   const std::size_t confirm = static_cast<std::size_t>(search.confirm);
@@ -110,6 +138,18 @@ SearchVerdict search_verdict(const LSearch& search, const std::vector<double>& l
                compare(*refs[first - 1].run, *refs[first].run, tol).reason +
                "): L_c = " + number_text(v.L_c) + ", in [" + number_text(v.L_c) + ", " +
                number_text(refs[first - 1].L) + ")";
+    return v;
+  }
+  if (meets < refs.size()) {
+    v.state = SearchVerdict::State::meets_coulomb;
+    v.L_c = refs[meets].L;
+    v.reason = "L = " + number_text(v.L_c) + " meets plain Coulomb friction (" +
+               compare(*refs[meets].run, *coulomb.run, tol).reason + "; Coulomb " + coulomb.status +
+               "): below L_c the rupture propagates as under Coulomb, so " +
+               (meets > 0 ? "L_c = " + number_text(v.L_c) + ", in [" + number_text(v.L_c) + ", " +
+                                number_text(refs[meets - 1].L) + ")"
+                          : "L_c is at least " + number_text(v.L_c) +
+                                " (start the search at a larger L to bound it)");
     return v;
   }
   if (unconverged_tail >= confirm) {

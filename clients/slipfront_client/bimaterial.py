@@ -20,7 +20,7 @@ from .reproduction_plan import FE_ONLY
 
 PRESET = "bimaterial_prakash_clifton"
 FULL_L = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
-FULL_LADDER = [5, 10, 20]
+FULL_LADDER = [5, 10, 20, 40]
 # Coulomb runs as (n_d, spectral_bi.time_step_factor β): the BI default β = 0.5, and β = 0.25,
 # which removes the scheme's own mesh-scale mode of steady sliding under plain Coulomb
 # (docs/verification.md), so that what is left is the continuum's ill-posedness.

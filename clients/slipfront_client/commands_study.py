@@ -68,6 +68,71 @@ def add_parsers(sub, common):
     x.set_defaults(func=cmd_cancel)
 
 
+def add_accuracy_parser(sub, common):
+    a = sub.add_parser(
+        "accuracy", parents=[common], help="one metric at a stated accuracy",
+        description="Ask the server for one metric within a relative error: it picks the method "
+                    "and the first mesh, refines until its error estimate meets the target and "
+                    "answers with the value, the estimate and the cost (docs/studies-api.md "
+                    "\"Accuracy target\").")
+    a.add_argument("metric", help="arrest_position, propagation_distance, arrival_time_at_probe, "
+                                  "max_slip_velocity, rupture_speed.max or rupture_speed.mean")
+    a.add_argument("tolerance", help="the relative error allowed: 0.005 or 0.5%%")
+    a.add_argument("--L", dest="length", type=float, help="friction.L [m] (default 5e-5)")
+    a.add_argument("--method", choices=["auto", "fe", "spectral_bi"],
+                   help="default auto: spectral_bi where it applies")
+    a.add_argument("--base", help="base job JSON file (default: the paper's scene)")
+    a.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE")
+    a.add_argument("--n-d", dest="densities", help="the mesh ladder (default 10,20,40,80,160)")
+    a.add_argument("--n-d-max", type=float, help="cap of the ladder")
+    a.add_argument("--name")
+    a.add_argument("--tag", dest="tags", action="append", default=[])
+    a.add_argument("--no-wait", dest="wait", action="store_false",
+                   help="print the study id and return (default: wait and summarise)")
+    a.add_argument("--wait-timeout", type=float)
+    a.set_defaults(func=cmd_accuracy)
+
+
+def tolerance_value(text):
+    """0.005 or "0.5%" -> 0.005."""
+    try:
+        return float(text[:-1]) / 100.0 if text.endswith("%") else float(text)
+    except ValueError:
+        raise UsageError(f"tolerance {text!r}: expected a number or a percentage") from None
+
+
+def accuracy_body(args):
+    base = jobspec.build_job(args.base, args.overrides)
+    dropped = studies.drop_study_fields(base)
+    if dropped and not args.quiet:
+        log(f"base: {', '.join(dropped)} removed (set --L; the service chooses n_d)")
+    accuracy = {"metric": args.metric, "tolerance": tolerance_value(args.tolerance)}
+    for key, value in (("L", args.length), ("method", args.method), ("n_d_max", args.n_d_max)):
+        if value is not None:
+            accuracy[key] = value
+    if args.densities:
+        accuracy["n_d"] = floats(args.densities, "--n-d")
+    body = {"accuracy": accuracy, "tags": args.tags}
+    if base:
+        body["base"] = base
+    if args.name:
+        body["name"] = args.name
+    return body
+
+
+def cmd_accuracy(args, ctx):
+    api = ctx.api()
+    study = studies.create(api, accuracy_body(args))
+    if not args.quiet:
+        log(f"created study {study.get('id')}")
+    if args.wait:
+        study = studies.wait(api, study["id"], args.wait_timeout, None if args.quiet else log)
+        show(study, args)
+    else:
+        print_json(study) if args.json else print(study.get("id"))
+    return 0
+
+
 def build_body(args):
     if args.file:
         if args.base or args.lengths or args.densities:

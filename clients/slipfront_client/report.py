@@ -90,15 +90,15 @@ def steps_table(study):
 
 def n_d_table(study):
     """Per L: the coarsest converged n_d (what the L needed), the finest tried, the state."""
-    lengths = sorted({float(r["L"]) for r in study.get("runs") or [] if r.get("L") is not None},
-                     reverse=True)
+    own = [r for r in study.get("runs") or [] if not r.get("regime")]  # not a search's Coulomb
+    lengths = sorted({float(r["L"]) for r in own if r.get("L") is not None}, reverse=True)
     if not lengths:
         return []
     refinement = study.get("refinement") or {}
     lines = ["| L [m] | n_d needed (converged from) | finest n_d run | refinement |",
              "| --- | --- | --- | --- |"]
     for L in lengths:
-        tried = [float(r["n_d"]) for r in study.get("runs") or []
+        tried = [float(r["n_d"]) for r in own
                  if r.get("L") is not None and same_L(r["L"], L) and r.get("n_d") is not None]
         nd = converged_n_d(study, L)
         state = (_lookup(refinement, L) or {}).get("state", "—")

@@ -210,17 +210,34 @@ def row_from_result(result):
 
 
 def _floats(values):
-    return np.array([np.nan if v is None else float(v) for v in values or []], dtype=float)
+    return np.array([np.nan if v is None else float(v) for v in values or ()], dtype=float)
 
 
 def result_from_front(api, job_id):
     """A `Result` with only the front, from the server's JSON (GET /jobs/{id}/front and
     the job's spec and metrics): enough for the rupture-speed figure, no download."""
-    job = api.job(job_id, fields=["spec", "metrics"])
-    front = api.front(job_id)
-    empty = np.empty((0, 0))
-    return Result(path=job_id, x1=_floats(front.get("x1")), time=np.empty(0),
-                  slip_velocity=empty, strength=empty, front_x1=_floats(front.get("x1")),
+    return result_from_json(api, api.job(job_id, fields=["id", "spec", "metrics"]))
+
+
+def result_from_json(api, job, positions=()):
+    """A `Result` of `job` (its JSON, with `id`, `spec` and `metrics`) from the server's JSON,
+    no download: the front (GET /jobs/{id}/front) and, for each of `positions` [m] inside the
+    interface, the |V| history of the node nearest it (/fields/slip_velocity with x1_min =
+    x1_max; the run's sample times): `x1` then holds those nodes only, enough for the velocity
+    figure at those positions."""
+    front = api.front(job["id"])
+    front_x1 = _floats(front.get("x1"))
+    nodes, columns, time = [], [], np.empty(0)
+    inside = [x for x in positions if front_x1.size and front_x1.min() <= x <= front_x1.max()]
+    for x in inside:
+        field = api.get_json(f"/api/v1/jobs/{job['id']}/fields/slip_velocity",
+                             params={"x1_min": x, "x1_max": x, "max_points": 4000})
+        nodes.append(field["x1"][0])
+        columns.append(_floats(row[0] for row in field["values"]))
+        time = _floats(field["time"])
+    velocity = np.column_stack(columns) if columns else np.empty((0, 0))
+    return Result(path=job["id"], x1=np.array(nodes, dtype=float), time=time,
+                  slip_velocity=velocity, strength=np.empty((0, 0)), front_x1=front_x1,
                   arrival_time=_floats(front.get("arrival_time")),
                   rupture_speed=_floats(front.get("rupture_speed")),
                   spec=job.get("spec") or {}, metrics=job.get("metrics") or {})

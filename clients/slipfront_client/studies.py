@@ -156,6 +156,8 @@ def summary_lines(study):
                      f"{str(conv or '-'):>14}  {r.get('job_id', r.get('id', ''))}")
     lines.append("(d_dist, d_t_probe: relative changes of propagation_distance and "
                  "arrival_time_at_probe against the next finer n_d)")
+    if study.get("kind") == "accuracy":  # one L: no critical length, no cross-method table
+        return lines + accuracy_summary(study.get("accuracy"))
     converged = (study.get("convergence_map") or {}).get("converged_n_d") or {}
     for L, n_d in converged.items():
         lines.append(f"L = {L}: converged from n_d = {_fmt(n_d)}")
@@ -182,6 +184,37 @@ def search_summary(search):
     for step in search.get("steps") or []:
         lines.append(f"  {_fmt(step.get('L'))} vs {_fmt(step.get('smaller_L'))}: "
                      f"{'agree' if step.get('agree') else 'differ'} ({step.get('reason')})")
+    return lines
+
+
+def accuracy_summary(answer):
+    """An accuracy study's answer: the value with its error, how it was estimated, the meshes
+    and what they cost (docs/studies-api.md "Accuracy target")."""
+    if not answer:
+        return []
+    target = answer.get("target") or {}
+    value, error = answer.get("value"), answer.get("error")
+    lines = [f"accuracy target: {target.get('metric')} within "
+             f"{report.percent(target.get('tolerance'))} at L = {_fmt(target.get('L'))} m",
+             f"  answer ({answer.get('state')}): {_fmt(value)} ± {_fmt(error)} "
+             f"({report.percent(answer.get('relative_error'))}, {answer.get('estimate') or '-'}) "
+             f"at n_d = {_fmt(answer.get('n_d'))}"]
+    if answer.get("extrapolated") is not None:
+        lines.append(f"  Richardson: observed order {_fmt(answer.get('observed_order'))}, "
+                     f"extrapolated {_fmt(answer['extrapolated'])}")
+    method = answer.get("method") or {}
+    lines.append(f"  method {method.get('name')}: {method.get('reason')}")
+    start = answer.get("start") or {}
+    if start:
+        lines.append(f"  first mesh n_d = {_fmt(start.get('n_d'))}: {start.get('reason')}")
+    for step in answer.get("steps") or []:
+        lines.append(f"  n_d = {_fmt(step.get('n_d')):>6}: {_fmt(step.get('value'))}"
+                     + (f"  ± {_fmt(step.get('error'))} ({step.get('estimate')})"
+                        if step.get("error") is not None else "")
+                     + f"  [{_fmt(step.get('wall_time_s'))} s]")
+    cost = answer.get("cost") or {}
+    lines.append(f"  cost: {cost.get('runs')} run(s), {_fmt(cost.get('wall_time_s'))} s of "
+                 f"run wall time; {answer.get('reason')}")
     return lines
 
 

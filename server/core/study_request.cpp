@@ -20,14 +20,21 @@ const char* to_string(StudyKind kind) {
     return "convergence";
   case StudyKind::failure_regimes:
     return "failure_regimes";
+  case StudyKind::accuracy:
+    return "accuracy";
   }
   return "grid";
 }
 
 std::optional<StudyKind> parse_study_kind(const std::string& text) {
-  for (auto k : {StudyKind::grid, StudyKind::convergence, StudyKind::failure_regimes})
+  for (auto k :
+       {StudyKind::grid, StudyKind::convergence, StudyKind::failure_regimes, StudyKind::accuracy})
     if (text == to_string(k)) return k;
   return std::nullopt;
+}
+
+nlohmann::json coulomb_overrides() {
+  return {{"friction", {{"law", "coulomb"}}}};
 }
 
 const std::vector<double>& default_ladder() {
@@ -131,7 +138,7 @@ void parse_search(const json& s, StudyRequest& r, Errors& errors) {
                           "(each optional)"});
     return;
   }
-  reject_unknown(s, at, {"from", "factor", "floor", "confirm"}, errors);
+  reject_unknown(s, at, {"from", "factor", "floor", "confirm", "coulomb"}, errors);
   api::LSearch search;
   search.from =
       bounded_number(s, "from", at, 1e-12, 1.0, "a number in [1e-12, 1] (m)", search.from, errors);
@@ -144,6 +151,13 @@ void parse_search(const json& s, StudyRequest& r, Errors& errors) {
   if (confirm != std::floor(confirm))
     errors.push_back({at + "/confirm", "must be an integer in [2, 5]"});
   search.confirm = static_cast<int>(confirm);
+  if (auto it = s.find("coulomb"); it != s.end()) {
+    if (it->is_boolean())
+      search.coulomb = it->get<bool>();
+    else
+      errors.push_back({at + "/coulomb", "must be a boolean (default: where Coulomb is "
+                                         "well-posed)"});
+  }
   if (!(search.floor < search.from))
     errors.push_back({at + "/floor", "must be below from (" + api::number_text(search.from) + ")"});
   r.search = search;
@@ -152,6 +166,26 @@ void parse_search(const json& s, StudyRequest& r, Errors& errors) {
     errors.push_back({at, "from, factor and floor allow " + std::to_string(r.L.size()) +
                               " L values; the rule needs at least confirm + 1 = " +
                               std::to_string(search.confirm + 1)});
+}
+
+// "n_d" (a ladder, default default_ladder()) and "n_d_max" (default its last mesh) of the
+// object at `at`.
+void parse_ladder(const json& c, const std::string& at, StudyRequest& r, Errors& errors) {
+  r.n_d = c.contains("n_d") ? positive_list(c, "n_d", at + "/n_d", max_study_n_d, errors)
+                            : default_ladder();
+  if (!std::is_sorted(r.n_d.begin(), r.n_d.end()))
+    errors.push_back({at + "/n_d", "the ladder must increase"});
+  if (c.contains("n_d") && r.n_d.size() < 2)
+    errors.push_back({at + "/n_d", "needs at least two meshes"});
+  r.n_d_max = r.n_d.empty() ? 0.0 : r.n_d.back();
+  if (auto it = c.find("n_d_max"); it != c.end()) {
+    if (!it->is_number() || !(it->get<double>() > 0.0))
+      errors.push_back({at + "/n_d_max", "must be a number > 0"});
+    else
+      r.n_d_max = it->get<double>();
+  }
+  if (r.n_d.size() >= 2 && r.n_d_max < r.n_d[1])
+    errors.push_back({at + "/n_d_max", "must allow at least the first two meshes of the ladder"});
 }
 
 void parse_convergence(const json& c, StudyRequest& r, Errors& errors) {
@@ -168,25 +202,69 @@ void parse_convergence(const json& c, StudyRequest& r, Errors& errors) {
     r.L = positive_list(c, "L", "/convergence/L", max_study_L, errors);
   else
     parse_search(c["search"], r, errors);
-  r.n_d = c.contains("n_d") ? positive_list(c, "n_d", "/convergence/n_d", max_study_n_d, errors)
-                            : default_ladder();
-  if (!std::is_sorted(r.n_d.begin(), r.n_d.end()))
-    errors.push_back({"/convergence/n_d", "the ladder must increase"});
-  if (c.contains("n_d") && r.n_d.size() < 2)
-    errors.push_back({"/convergence/n_d", "needs at least two meshes"});
-  r.n_d_max = r.n_d.empty() ? 0.0 : r.n_d.back();
-  if (auto it = c.find("n_d_max"); it != c.end()) {
-    if (!it->is_number() || !(it->get<double>() > 0.0))
-      errors.push_back({"/convergence/n_d_max", "must be a number > 0"});
-    else
-      r.n_d_max = it->get<double>();
-  }
-  if (r.n_d.size() >= 2 && r.n_d_max < r.n_d[1])
-    errors.push_back({"/convergence/n_d_max", "must allow at least the first two meshes of "
-                                              "the ladder"});
+  parse_ladder(c, "/convergence", r, errors);
   if (r.L.size() * r.n_d.size() > max_study_runs)
     errors.push_back(
         {"/convergence", "at most " + std::to_string(max_study_runs) + " runs per study"});
+}
+
+// "accuracy": {"metric", "tolerance", "L", "method", "n_d", "n_d_max"} (docs/studies-api.md
+// "Accuracy target").
+void parse_accuracy(const json& a, StudyRequest& r, Errors& errors) {
+  const std::string at = "/accuracy";
+  if (!a.is_object()) {
+    errors.push_back({at, "must be an object {\"metric\", \"tolerance\", \"L\", \"method\", "
+                          "\"n_d\", \"n_d_max\"}"});
+    return;
+  }
+  reject_unknown(a, at, {"metric", "tolerance", "L", "method", "n_d", "n_d_max", "start"}, errors);
+  api::AccuracyTarget target;
+  const auto& known = api::accuracy_metrics();
+  std::string names;
+  for (const auto& name : known)
+    names += (names.empty() ? "" : ", ") + name;
+  const auto metric = a.find("metric");
+  if (metric == a.end())
+    errors.push_back({at + "/metric", "is required (one of " + names + ")"});
+  else if (!metric->is_string() ||
+           std::find(known.begin(), known.end(), metric->get<std::string>()) == known.end())
+    errors.push_back({at + "/metric", "must be one of " + names});
+  else
+    target.metric = metric->get<std::string>();
+  if (!a.contains("tolerance"))
+    errors.push_back({at + "/tolerance", "is required (the relative error allowed, e.g. 0.005)"});
+  target.tolerance =
+      bounded_number(a, "tolerance", at, 1e-6, 0.5,
+                     "a relative error in [1e-6, 0.5] (0.005 is 0.5 %)", 0.0, errors);
+  target.L = bounded_number(a, "L", at, 1e-12, 1.0, "a number in [1e-12, 1] (m)", 5e-5, errors);
+  if (auto it = a.find("method"); it != a.end()) {
+    if (!it->is_string() || (*it != "auto" && *it != "fe" && *it != "spectral_bi"))
+      errors.push_back({at + "/method", "must be \"auto\", \"fe\" or \"spectral_bi\""});
+    else
+      r.method_choice = it->get<std::string>();
+  }
+  if (r.method_choice != "auto" && r.base.contains("method") && r.base["method"] != r.method_choice)
+    errors.push_back({at + "/method", "differs from /base/method: give the method once"});
+  parse_ladder(a, at, r, errors);
+  if (auto it = a.find("start"); it != a.end()) {
+    const json* n_d = it->is_object() && it->contains("n_d") ? &(*it)["n_d"] : nullptr;
+    const auto rung = n_d && n_d->is_number()
+                          ? std::find(r.n_d.begin(), r.n_d.end(), n_d->get<double>())
+                          : r.n_d.end();
+    if (rung == r.n_d.end() || rung + 1 == r.n_d.end() || *(rung + 1) > r.n_d_max)
+      errors.push_back({at + "/start/n_d", "must be a mesh of the ladder with a finer one at or "
+                                           "below n_d_max"});
+    else
+      r.accuracy_start = static_cast<std::size_t>(rung - r.n_d.begin());
+    if (it->is_object()) {
+      reject_unknown(*it, at + "/start", {"n_d", "reason"}, errors);
+      const auto reason = it->find("reason");
+      if (reason != it->end() && (!reason->is_string() || reason->get<std::string>().size() > 1000))
+        errors.push_back({at + "/start/reason", "must be a string of at most 1000 characters"});
+    }
+  }
+  r.L = {target.L};
+  r.accuracy = target;
 }
 
 // Each run carries /base/tags, the study's tags and "study:<id>" (run_document), and a job
@@ -215,9 +293,10 @@ StudyRequestParse parse_study_request(const json& body) {
   }
   StudyRequest r;
   r.body = body;
-  reject_unknown(body, "",
-                 {"name", "tags", "base", "grid", "convergence", "preset", "priority", "fresh"},
-                 errors);
+  reject_unknown(
+      body, "",
+      {"name", "tags", "base", "grid", "convergence", "preset", "accuracy", "priority", "fresh"},
+      errors);
   if (auto it = body.find("name"); it != body.end()) {
     if (!it->is_string() || it->get<std::string>().size() > 200)
       errors.push_back({"/name", "must be a string of at most 200 characters"});
@@ -255,9 +334,13 @@ StudyRequestParse parse_study_request(const json& body) {
   check_tag_count(r, errors);
 
   const bool grid = body.contains("grid"), convergence = body.contains("convergence"),
-             preset = body.contains("preset");
-  if (int(grid) + int(convergence) + int(preset) != 1) {
-    errors.push_back({"", "give exactly one of \"grid\", \"convergence\" or \"preset\""});
+             preset = body.contains("preset"), accuracy = body.contains("accuracy");
+  if (int(grid) + int(convergence) + int(preset) + int(accuracy) != 1) {
+    errors.push_back(
+        {"", "give exactly one of \"grid\", \"convergence\", \"preset\" or \"accuracy\""});
+  } else if (accuracy) {
+    r.kind = StudyKind::accuracy;
+    parse_accuracy(body["accuracy"], r, errors);
   } else if (grid) {
     r.kind = StudyKind::grid;
     parse_grid(body["grid"], r, errors);

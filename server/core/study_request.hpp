@@ -4,6 +4,7 @@
 #pragma once
 
 #include "api/job_spec.hpp"
+#include "api/study/accuracy_target.hpp"
 #include "api/study/l_search.hpp"
 
 #include <nlohmann/json.hpp>
@@ -14,7 +15,7 @@
 
 namespace slipfront::server {
 
-enum class StudyKind { grid, convergence, failure_regimes };
+enum class StudyKind { grid, convergence, failure_regimes, accuracy };
 const char* to_string(StudyKind kind);
 std::optional<StudyKind> parse_study_kind(const std::string& text);
 
@@ -27,6 +28,9 @@ struct StudyRequest {
   std::vector<double> n_d;                        // grid: meshes; convergence: the ladder
   double n_d_max = 0.0;                           // convergence: the cap
   std::optional<api::LSearch> search;             // convergence without L: L holds its whole ladder
+  std::optional<api::AccuracyTarget> accuracy;    // accuracy: L holds its one L, n_d the ladder
+  std::string method_choice = "auto";             // accuracy: "auto", "fe" or "spectral_bi"
+  std::optional<std::size_t> accuracy_start;      // accuracy: index in n_d of its first mesh
   std::optional<int> priority;
   std::optional<bool> fresh;
   nlohmann::json body; // the request as received
@@ -53,6 +57,12 @@ std::size_t base_tag_count(const StudyRequest& request);
 nlohmann::json run_document(const StudyRequest& request, const std::string& study_id,
                             const nlohmann::json& overrides, const std::string& regime, double L,
                             double n_d);
+
+// An L search's plain-Coulomb runs (docs/studies-api.md "L search"): their regime and the
+// merge patch that makes the base's friction plain Coulomb (its constant mu, no
+// regularisation; friction.L is set but not used).
+constexpr const char* coulomb_regime = "coulomb";
+nlohmann::json coulomb_overrides();
 
 // The default convergence ladder.
 const std::vector<double>& default_ladder();

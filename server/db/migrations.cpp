@@ -15,7 +15,8 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m5_slurm_executor()},
       {migrations::m6_search_indexes()},
       {migrations::m7_study_idempotency_keys()},
-      {migrations::m8_run_annotations()},
+      {migrations::m8_accuracy_studies()},
+      {migrations::m9_run_annotations()},
   };
   return list;
 }

@@ -61,6 +61,7 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   j["convergence_map"] = result.value("convergence_map", json(nullptr));
   if (result.contains("refinement")) j["refinement"] = result["refinement"];
   if (result.contains("search")) j["search"] = result["search"];
+  if (result.contains("accuracy")) j["accuracy"] = result["accuracy"];
   if (result.contains("regimes")) j["regimes"] = result["regimes"];
   return j;
 }

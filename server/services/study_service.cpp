@@ -11,6 +11,7 @@
 #include "api/result_reader.hpp"
 #include "api/study/failure_regimes.hpp"
 #include "api/study_analysis.hpp"
+#include "solver/interface/ill_posedness.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -53,6 +54,53 @@ void add_search_stations(StudyRequest& r, JobService& jobs) {
   r.body["base"]["stations"] = stations;
 }
 
+// An accuracy study (docs/studies-api.md "Accuracy target"): the method, when the request
+// leaves it to the service (the spectral BI method where it applies to the scene: its runs
+// cost less at the same n_d), and the first mesh of the ladder, from the runs the database
+// already has of the scene. Written into the stored request, so that a restart and an
+// idempotent replay see the same choices.
+void prepare_accuracy(StudyRequest& r, JobService& jobs, StudyStore& studies) {
+  if (r.kind != StudyKind::accuracy) return;
+  if (!r.base.contains("method")) {
+    json chosen = r.base;
+    chosen["method"] = "fe";
+    if (r.method_choice != "fe") {
+      json bi = api::counterpart_document(chosen);
+      StudyRequest trial = r;
+      trial.base = bi;
+      const bool applies = jobs.validate(run_document(trial, std::string(32, '0'), json::object(),
+                                                      "", r.L[0], r.n_d[0]))
+                               .spec.has_value();
+      if (applies || r.method_choice == "spectral_bi") chosen = std::move(bi);
+    }
+    r.base = chosen;
+    r.body["base"] = chosen;
+  }
+  if (r.accuracy_start) return;
+  auto base =
+      jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], r.n_d[0]));
+  if (!base.spec) return; // its errors are reported by check_run
+  std::vector<api::StudyRun> known;
+  for (const auto& row : studies.scene_runs(api::scene_hash(base.spec->canonical)))
+    known.push_back(to_study_run(row));
+  std::string why;
+  const std::size_t start = api::accuracy_start(*r.accuracy, r.n_d, r.n_d_max, known, why);
+  r.accuracy_start = start;
+  r.body["accuracy"]["start"] = {{"n_d", r.n_d[start]}, {"reason", why}};
+}
+
+// Whether an L search refines plain Coulomb beside its L (docs/studies-api.md "L search"):
+// where the request does not say, where Coulomb is well-posed for the scene. Written into the
+// stored request.
+void decide_search_coulomb(StudyRequest& r, JobService& jobs) {
+  if (!r.search || r.search->coulomb) return;
+  auto base = jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], 10));
+  if (!base.spec) return; // its errors are reported by check_run
+  std::string why;
+  r.search->coulomb = coulomb_well_posed(base.spec->params, why);
+  r.body["convergence"]["search"]["coulomb"] = *r.search->coulomb;
+}
+
 // Every run the study may submit: for a convergence study the whole ladder up to the cap
 // (checked now, so that a later mesh is not refused), submitted: the first two meshes.
 std::vector<Planned> plan_runs(const StudyRequest& r) {
@@ -71,7 +119,22 @@ std::vector<Planned> plan_runs(const StudyRequest& r) {
       for (double n_d : r.n_d)
         if (n_d <= r.n_d_max) out.push_back({"", json::object(), L, n_d, started && first++ < 2});
     }
+    if (r.search && r.search->coulomb.value_or(false)) {
+      int first = 0;
+      for (double n_d : r.n_d)
+        if (n_d <= r.n_d_max)
+          out.push_back(
+              {std::string(coulomb_regime), coulomb_overrides(), r.search->from, n_d, first++ < 2});
+    }
     break;
+  case StudyKind::accuracy: {
+    // The ladder from its first mesh up to the cap; the supervisor adds one mesh at a time.
+    const std::size_t first = r.accuracy_start.value_or(0);
+    for (std::size_t i = first; i < r.n_d.size(); ++i)
+      if (r.n_d[i] <= r.n_d_max)
+        out.push_back({"", json::object(), r.L[0], r.n_d[i], i < first + 2});
+    break;
+  }
   case StudyKind::failure_regimes:
     for (const auto& regime : api::failure_regimes())
       for (double n_d : regime.n_d)
@@ -83,7 +146,10 @@ std::vector<Planned> plan_runs(const StudyRequest& r) {
 
 std::string value_pointer(const StudyRequest& r, const char* axis, double value) {
   const auto& values = std::string(axis) == "L" ? r.L : r.n_d;
-  const std::string group = r.kind == StudyKind::convergence ? "/convergence/" : "/grid/";
+  if (r.kind == StudyKind::accuracy && values == r.L) return "/accuracy/L";
+  const std::string group = r.kind == StudyKind::convergence ? "/convergence/"
+                            : r.kind == StudyKind::accuracy  ? "/accuracy/"
+                                                             : "/grid/";
   for (std::size_t i = 0; i < values.size(); ++i)
     if (values[i] == value) return group + axis + "/" + std::to_string(i);
   return "/preset";
@@ -141,6 +207,8 @@ StudyCreateResult StudyService::create(const std::string& body, const std::strin
     return out;
   }
   add_search_stations(*parsed.request, jobs_);
+  decide_search_coulomb(*parsed.request, jobs_);
+  prepare_accuracy(*parsed.request, jobs_, studies_);
   const StudyRequest& request = *parsed.request;
   const auto planned = plan_runs(request);
   std::set<std::string> seen;

@@ -4,8 +4,10 @@
 #include "server/core/log.hpp"
 #include "server/services/study_progress.hpp"
 
+#include "api/job_spec.hpp"
 #include "api/json_number.hpp"
 #include "api/number_text.hpp"
+#include "api/study/accuracy_target.hpp"
 #include "api/study/l_search.hpp"
 #include "api/study/run_rules.hpp"
 
@@ -136,6 +138,22 @@ std::vector<api::StudyRun> study_runs(const std::vector<StudyRunRow>& rows) {
   return runs;
 }
 
+// The runs of one regime ("" the study's own L, coulomb_regime an L search's Coulomb runs).
+std::vector<api::StudyRun> regime_runs(const std::vector<StudyRunRow>& rows,
+                                       const std::string& regime) {
+  std::vector<api::StudyRun> runs;
+  for (const auto& r : rows)
+    if (r.regime == regime) runs.push_back(to_study_run(r));
+  return runs;
+}
+
+// An L search's plain-Coulomb reference; `coulomb_runs` must outlive it.
+api::CoulombReference search_coulomb(const StudyRequest& r,
+                                     const std::vector<api::StudyRun>& coulomb_runs) {
+  if (!r.search || !r.search->coulomb.value_or(false)) return {};
+  return api::coulomb_reference(r.search->from, coulomb_runs, r.n_d, r.n_d_max);
+}
+
 // How many L of an L search's ladder have runs: they are started in the ladder's order.
 std::size_t started_L(const std::vector<double>& ladder, const std::vector<StudyRunRow>& rows) {
   std::size_t started = 1;
@@ -147,22 +165,89 @@ std::size_t started_L(const std::vector<double>& ladder, const std::vector<Study
 }
 
 // The search's state for the reader (docs/studies-api.md "L search").
-json search_json(const api::LSearch& search, const std::vector<double>& ladder, std::size_t active,
-                 bool settled, const std::vector<api::StudyRun>& runs) {
-  const auto v = api::search_verdict(search, ladder, active, settled, runs);
+json search_json(const StudyRequest& r, std::size_t active, bool settled,
+                 const std::vector<StudyRunRow>& rows) {
+  const api::LSearch& search = *r.search;
+  const std::vector<double>& ladder = r.L;
+  const auto coulomb_runs = regime_runs(rows, coulomb_regime);
+  const auto v = api::search_verdict(search, ladder, active, settled, regime_runs(rows, ""),
+                                     search_coulomb(r, coulomb_runs));
   return {{"state", api::to_string(v.state)},
           {"reason", v.reason},
           {"L_c", api::json_number(v.L_c)},
           {"next_L", api::json_number(v.next_L)},
           {"searched_L", std::vector<double>(ladder.begin(), ladder.begin() + active)},
           {"steps", v.steps},
+          {"coulomb", v.coulomb},
           {"from", search.from},
           {"factor", search.factor},
           {"floor", search.floor},
           {"confirm", search.confirm}};
 }
 
+// Why an accuracy study runs the method it runs (the service chose it when "auto").
+std::string method_reason(const StudyRequest& r, JobService& jobs, const std::string& study_id) {
+  const std::string method = r.base.value("method", "fe");
+  if (r.method_choice != "auto") return "asked for (accuracy.method)";
+  if (method == "spectral_bi")
+    return "chosen by the service: the scene is a half-space problem the spectral BI method "
+           "solves, at less cost than FE at the same n_d";
+  StudyRequest trial = r;
+  trial.base = api::counterpart_document(r.base);
+  const auto bi =
+      jobs.validate(run_document(trial, study_id, json::object(), "", r.L[0], r.n_d[0]));
+  if (bi.spec) return "named by the base (/base/method)";
+  return "chosen by the service: the spectral BI method cannot run this scene (" +
+         (bi.errors.empty() ? std::string("invalid")
+                            : bi.errors[0].pointer + " " + bi.errors[0].reason) +
+         ")";
+}
+
 } // namespace
+
+json StudySupervisor::accuracy_step(const StudyRecord& study, const StudyRequest& request,
+                                    std::vector<StudyRunRow>& rows, bool may_submit,
+                                    bool& plans_open) {
+  const auto& target = *request.accuracy;
+  const std::size_t first = request.accuracy_start.value_or(0);
+  api::AccuracyVerdict v;
+  // Each pass submits at most one mesh; a reused result can settle it at once, so repeat.
+  for (std::size_t pass = 0; pass <= request.n_d.size(); ++pass) {
+    v = api::accuracy_verdict(target, request.n_d, first, request.n_d_max, study_runs(rows));
+    if (v.state != api::AccuracyVerdict::State::run_next || !may_submit) break;
+    auto r = submit_study_run(jobs_, studies_, study, request, json::object(), "", target.L,
+                              v.next_n_d, true);
+    if (!r.job) {
+      v.state = api::AccuracyVerdict::State::failed;
+      v.reason = "n_d = " + number_text(v.next_n_d) + " refused: " +
+                 (r.errors.empty() ? std::string("queue")
+                                   : r.errors[0].pointer + " " + r.errors[0].reason);
+      log_error("study " + study.id + ": " + v.reason);
+      break;
+    }
+    log_info("study " + study.id + ": accuracy: submitted n_d = " + number_text(v.next_n_d) +
+             " as job " + r.job->id);
+    rows = studies_.runs(study.id);
+  }
+  plans_open = may_submit && (v.state == api::AccuracyVerdict::State::waiting ||
+                              v.state == api::AccuracyVerdict::State::run_next);
+  if (!may_submit && v.state == api::AccuracyVerdict::State::run_next)
+    v.reason = "study cancelled; " + v.reason;
+  double wall = 0.0;
+  for (const auto& run : study_runs(rows))
+    wall += run.wall_time_s;
+  json out = api::to_json(v);
+  out["target"] = {{"metric", target.metric}, {"tolerance", target.tolerance}, {"L", target.L}};
+  out["method"] = {{"name", request.base.value("method", "fe")},
+                   {"reason", method_reason(request, jobs_, study.id)}};
+  const json& start = request.body["accuracy"];
+  out["start"] = start.contains("start") ? start["start"] : json(nullptr);
+  out["cost"] = {{"runs", rows.size()},
+                 {"wall_time_s", wall},
+                 {"description", "the study's runs, each by its own wall time (a reused result "
+                                 "by the time it took when it was computed)"}};
+  return out;
+}
 
 // The first two meshes (up to the cap) of the next L of a search; whether one was submitted.
 bool StudySupervisor::start_L(const StudyRecord& study, const StudyRequest& request, double L) {
@@ -209,10 +294,16 @@ void StudySupervisor::step_locked(const std::string& study_id) {
       refinement = json::object();
       plans_open = false;
       bool submitted = false;
-      const auto runs = study_runs(rows);
-      for (std::size_t i = 0; i < active; ++i) {
-        const double L = request.L[i];
-        auto plan = api::refinement_plan(L, runs, request.n_d, request.n_d_max);
+      const auto runs = regime_runs(rows, "");
+      const auto coulomb_runs = regime_runs(rows, coulomb_regime);
+      const bool with_coulomb = request.search && request.search->coulomb.value_or(false);
+      for (std::size_t i = 0; i < active + (with_coulomb ? 1 : 0); ++i) {
+        // The L in order; an L search's plain-Coulomb runs last, refined like one more L.
+        const bool coulomb = i == active;
+        const double L = coulomb ? request.search->from : request.L[i];
+        const std::string regime = coulomb ? coulomb_regime : "";
+        auto plan =
+            api::refinement_plan(L, coulomb ? coulomb_runs : runs, request.n_d, request.n_d_max);
         json entry = {{"L", L},
                       {"state", api::to_string(plan.state)},
                       {"next_n_d", std::isfinite(plan.next_n_d) ? json(plan.next_n_d) : json()},
@@ -221,7 +312,8 @@ void StudySupervisor::step_locked(const std::string& study_id) {
                       {"reason", plan.reason}};
         if (plan.state == api::RefinementPlan::State::waiting) plans_open = true;
         if (plan.state == api::RefinementPlan::State::run_next) {
-          auto r = submit_study_run(jobs_, studies_, *study, request, json::object(), "", L,
+          auto r = submit_study_run(jobs_, studies_, *study, request,
+                                    coulomb ? coulomb_overrides() : json::object(), regime, L,
                                     plan.next_n_d, true);
           if (r.job) {
             submitted = true;
@@ -229,7 +321,7 @@ void StudySupervisor::step_locked(const std::string& study_id) {
             entry["state"] = "waiting";
             entry["reason"] = "submitted n_d = " + number_text(plan.next_n_d) + " (job " +
                               r.job->id + "): " + plan.reason;
-            log_info("study " + study_id + ": L = " + number_text(L) +
+            log_info("study " + study_id + ": " + (coulomb ? "Coulomb" : "L = " + number_text(L)) +
                      ": submitted n_d = " + number_text(plan.next_n_d) + " as job " + r.job->id);
           } else {
             entry["state"] = "submission_failed";
@@ -239,10 +331,12 @@ void StudySupervisor::step_locked(const std::string& study_id) {
             log_error("study " + study_id + ": " + entry["reason"].get<std::string>());
           }
         }
-        refinement[json(L).dump()] = entry;
+        if (coulomb) entry["regime"] = coulomb_regime;
+        refinement[coulomb ? std::string(coulomb_regime) : json(L).dump()] = entry;
       }
       if (!submitted && !plans_open && request.search) {
-        const auto verdict = api::search_verdict(*request.search, request.L, active, true, runs);
+        const auto verdict = api::search_verdict(*request.search, request.L, active, true, runs,
+                                                 search_coulomb(request, coulomb_runs));
         if (verdict.state == api::SearchVerdict::State::next_L) {
           submitted = start_L(*study, request, verdict.next_L);
           ++active;
@@ -252,11 +346,13 @@ void StudySupervisor::step_locked(const std::string& study_id) {
       if (!submitted) break;
       rows = studies_.runs(study_id);
     }
-    if (request.search)
-      search = search_json(*request.search, request.L, active, !plans_open, study_runs(rows));
+    if (request.search) search = search_json(request, active, !plans_open, rows);
+  } else if (study->kind == "accuracy") {
+    search = accuracy_step(*study, request, rows, study->status != api::StudyStatus::cancelled,
+                           plans_open);
   }
   analyse_study(*study, rows, refinement, plans_open, now_iso8601());
-  if (!search.is_null()) study->result["search"] = search;
+  if (!search.is_null()) study->result[study->kind == "accuracy" ? "accuracy" : "search"] = search;
   studies_.save_analysis(*study, rows);
   if (study->status == api::StudyStatus::finished && !study->finished_at.empty())
     log_info("study " + study_id + ": " + std::to_string(study->runs_total) + " run(s) finished");

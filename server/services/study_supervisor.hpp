@@ -63,6 +63,11 @@ public:
 private:
   void loop();
   bool start_L(const StudyRecord& study, const StudyRequest& request, double L);
+  // An accuracy study's next mesh, if its verdict asks for one and `may_submit` (not once
+  // cancelled), and the verdict as JSON (docs/studies-api.md "Accuracy target");
+  // `plans_open` while a mesh is queued or running.
+  nlohmann::json accuracy_step(const StudyRecord& study, const StudyRequest& request,
+                               std::vector<StudyRunRow>& rows, bool may_submit, bool& plans_open);
 
   StudyStore& studies_;
   JobService& jobs_;

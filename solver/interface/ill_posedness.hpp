@@ -14,4 +14,13 @@ namespace slipfront {
 // law: prakash_clifton, or a slip_scale or time_scale regularization).
 std::string bimaterial_coulomb_warning(const SimulationParams& params);
 
+// Whether the scene under plain Coulomb friction (its constant mu, no regularisation) is a
+// well-posed problem whose mesh-converged answer the regularised runs may be compared with
+// (docs/studies-api.md "L search"): on the rigid plane when mu < 1 (Renardy 1992; Martins et
+// al. 1995: ill-posed only when the static and kinetic coefficients are equal and above one),
+// between two identical solids (no slip-normal coupling); not between two different solids
+// (Adams 1995), and not judged for slip weakening (weakening friction is ill-posed at smaller
+// mu as well, paper Sec. 1). `why` says which.
+bool coulomb_well_posed(const SimulationParams& params, std::string& why);
+
 } // namespace slipfront

@@ -228,6 +228,23 @@ class EndToEnd(unittest.TestCase):
         self.assertEqual(r.returncode, 2)
         self.assertIn("need --search", r.stderr)
 
+    def test_accuracy_target(self):
+        # One metric at a stated accuracy on the tiny FE scene (docs/studies-api.md "Accuracy
+        # target"): the answer with its estimate and the meshes it took, or the cap.
+        r = self.client("accuracy", "propagation_distance", "5%", "--base", self.job_file,
+                        "--method", "fe", "--n-d", "5,10,20", "--wait-timeout", "60", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        answer = json.loads(r.stdout)["accuracy"]
+        self.assertIn(answer["state"], ("met", "mesh_cap", "failed"), answer)
+        self.assertEqual(answer["method"], {"name": "fe", "reason": "asked for (accuracy.method)"})
+        self.assertEqual(answer["target"]["tolerance"], 0.05)
+        r = self.client("study", "show", json.loads(r.stdout)["id"])
+        self.assertIn("accuracy target: propagation_distance within 5 %", r.stdout)
+        self.assertNotIn("L_c", r.stdout)
+        r = self.client("accuracy", "arrest_position", "half")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("tolerance 'half'", r.stderr)
+
     def test_bi_study_and_both_methods(self):
         bi_base = os.path.join(self.tmp, "bi_base.json")
         base = json.loads(json.dumps(TINY))

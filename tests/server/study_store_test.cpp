@@ -1,4 +1,4 @@
-// The studies schema (migrations 2 -> 3 -> 4) and StudyStore.
+// The studies schema (migrations 2 -> 3 -> 4, 7 -> 8) and StudyStore.
 #include "api/job_spec.hpp"
 #include "api/study_analysis.hpp"
 #include "server/core/job_id.hpp"
@@ -122,6 +122,42 @@ TEST(StudySchema, MigrationToFourKeepsStudiesAndTheirRunsAndAllowsCancelled) {
   EXPECT_THROW(jobs.db().with_db([&](Database& db) {
     db.exec("INSERT INTO study_runs (study_id, job_id, L, n_d) VALUES ('" + std::string(32, 'c') +
             "', '" + job_id + "', 1e-5, 20)");
+  }),
+               std::exception);
+}
+
+TEST(StudySchema, MigrationToEightKeepsStudiesKeysAndRunsAndAllowsAccuracy) {
+  TempDir dir("slipfront-study-");
+  const auto path = dir.file("db.sqlite");
+  const std::string study_id(32, 'a'), job_id(32, 'b');
+  {
+    Database raw(path); // a database written by a build at schema version 7
+    raw.exec("PRAGMA foreign_keys = ON");
+    for (int v = 0; v < 7; ++v)
+      raw.exec(schema_migrations()[static_cast<std::size_t>(v)].sql);
+    raw.set_user_version(7);
+    raw.exec("INSERT INTO jobs (id, status, spec, spec_sha256, created_at, study_id) VALUES ('" +
+             job_id + "', 'succeeded', '{}', 'h', '2024', '" + study_id + "')");
+    raw.exec("INSERT INTO studies (id, kind, base_spec, request, scene_hash, created_at, "
+             "runs_total, idempotency_key, submitted_by) VALUES ('" +
+             study_id + "', 'convergence', '{}', '{}', 's', '2024', 1, 'key-1', 'ana')");
+    raw.exec("INSERT INTO study_runs (study_id, job_id, regime, L, n_d) VALUES ('" + study_id +
+             "', '" + job_id + "', 'coulomb', 5e-5, 10)");
+    EXPECT_THROW(raw.exec("UPDATE studies SET kind = 'accuracy'"), std::exception);
+  }
+  JobStore jobs(path);
+  EXPECT_EQ(jobs.user_version(), JobStore::schema_version);
+  StudyStore studies(jobs);
+  ASSERT_TRUE(studies.find_by_idempotency_key("ana", "key-1"));
+  ASSERT_EQ(studies.runs(study_id).size(), 1u);
+  EXPECT_EQ(studies.runs(study_id)[0].regime, "coulomb");
+  jobs.db().with_db([&](Database& db) { db.exec("UPDATE studies SET kind = 'accuracy'"); });
+  EXPECT_EQ(studies.get(study_id)->kind, "accuracy");
+  // The idempotency key stays unique per submitter after the rebuild.
+  EXPECT_THROW(jobs.db().with_db([&](Database& db) {
+    db.exec("INSERT INTO studies (id, kind, base_spec, request, scene_hash, created_at, "
+            "idempotency_key, submitted_by) VALUES ('" +
+            std::string(32, 'c') + "', 'grid', '{}', '{}', 's', '2024', 'key-1', 'ana')");
   }),
                std::exception);
 }

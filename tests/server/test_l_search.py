@@ -47,6 +47,16 @@ class LSearch(unittest.TestCase):
             # compared at a station both reached (docs/metrics.md "Convergence status").
             self.assertTrue(any("at the station x1" in s["reason"] for s in steps), steps)
             self.assertLess(search["L_c"], 1e-5)  # BI: below the paper's estimate (docs)
+            # The paper scene is well-posed under plain Coulomb (rigid plane, mu = 0.75 < 1):
+            # the service refines Coulomb beside the L and each L approaches it.
+            self.assertTrue(study["request"]["convergence"]["search"]["coulomb"], study["request"])
+            coulomb = search["coulomb"]
+            self.assertTrue(coulomb["status"].startswith("mesh-converged"), coulomb)
+            changes = [s["changes"]["propagation_distance"] for s in coulomb["steps"]]
+            for larger_L, smaller_L in zip(changes, changes[1:]):  # never away from Coulomb
+                self.assertLessEqual(smaller_L, larger_L * (1 + 1e-9), coulomb)
+            self.assertTrue(coulomb["steps"][-1]["agree"], coulomb)
+            self.assertFalse(coulomb["steps"][0]["agree"], coulomb)
         finally:
             server.terminate()
             server.cleanup()

@@ -25,7 +25,7 @@ void add_L(std::vector<StudyRun>& runs, double L, double distance, bool converge
   runs.push_back(finished(std::to_string(runs.size()), L, 20, distance, 5.0));
 }
 
-const LSearch search{4e-5, 2.0, 1e-6, 2};
+const LSearch search{4e-5, 2.0, 1e-6, 2, std::nullopt};
 
 } // namespace
 
@@ -34,7 +34,8 @@ TEST(LSearch, LadderGoesDownByTheFactorToTheFloor) {
   ASSERT_EQ(ladder.size(), 6u); // 4e-5 ... 1.25e-6; 6.25e-7 is below the floor
   EXPECT_DOUBLE_EQ(ladder[0], 4e-5);
   EXPECT_DOUBLE_EQ(ladder[5], 1.25e-6);
-  EXPECT_EQ(search_ladder(LSearch{1e-5, 10.0, 1e-7, 2}, 50).size(), 3u); // the floor itself
+  EXPECT_EQ(search_ladder(LSearch{1e-5, 10.0, 1e-7, 2, std::nullopt}, 50).size(),
+            3u); // the floor itself
   EXPECT_EQ(search_ladder(search, 3).size(), 3u);
 }
 
@@ -107,4 +108,45 @@ TEST(LSearch, MeshCapWhenTheSmallestLNeverConverge) {
   const auto v = search_verdict(search, ladder, 3, true, runs);
   EXPECT_EQ(v.state, SearchVerdict::State::mesh_cap);
   EXPECT_NE(v.reason.find("smallest mesh-converged L is 4e-05"), std::string::npos) << v.reason;
+}
+
+TEST(LSearch, StopsWhereTheRegularisedRunsMeetPlainCoulomb) {
+  LSearch with_coulomb = search;
+  with_coulomb.coulomb = true;
+  const auto ladder = search_ladder(with_coulomb, 50);
+  std::vector<StudyRun> runs;
+  add_L(runs, 4e-5, 12.0);
+  add_L(runs, 2e-5, 10.3);
+  std::vector<StudyRun> coulomb_runs;
+  add_L(coulomb_runs, 4e-5, 10.3); // Coulomb (its runs carry the search's first L)
+  const auto reference = coulomb_reference(4e-5, coulomb_runs, {10, 20}, 20);
+  ASSERT_NE(reference.run, nullptr);
+  EXPECT_NE(reference.status.find("mesh-converged from n_d = 10"), std::string::npos)
+      << reference.status;
+  // Two L only, so the pair rule cannot be met yet; 2e-5 agrees with Coulomb: stop there.
+  const auto v = search_verdict(with_coulomb, ladder, 2, true, runs, reference);
+  EXPECT_EQ(v.state, SearchVerdict::State::meets_coulomb);
+  EXPECT_DOUBLE_EQ(v.L_c, 2e-5);
+  EXPECT_NE(v.reason.find("in [2e-05, 4e-05)"), std::string::npos) << v.reason;
+  ASSERT_EQ(v.coulomb["steps"].size(), 2u);
+  EXPECT_FALSE(v.coulomb["steps"][0]["agree"].get<bool>());
+  EXPECT_TRUE(v.coulomb["steps"][1]["agree"].get<bool>());
+  // While Coulomb is still refining there is no reference: the search goes on down.
+  std::vector<StudyRun> refining = {coulomb_runs.front()};
+  const auto pending = coulomb_reference(4e-5, refining, {10, 20}, 20);
+  EXPECT_EQ(pending.run, nullptr);
+  EXPECT_EQ(search_verdict(with_coulomb, ladder, 2, true, runs, pending).state,
+            SearchVerdict::State::next_L);
+}
+
+TEST(LSearch, CoulombIsNotComparedWhenSwitchedOff) {
+  const auto ladder = search_ladder(search, 50); // search.coulomb unset
+  std::vector<StudyRun> runs, coulomb_runs;
+  add_L(runs, 4e-5, 12.0);
+  add_L(runs, 2e-5, 10.3);
+  add_L(coulomb_runs, 4e-5, 10.3);
+  const auto v = search_verdict(search, ladder, 2, true, runs,
+                                coulomb_reference(4e-5, coulomb_runs, {10, 20}, 20));
+  EXPECT_EQ(v.state, SearchVerdict::State::next_L);
+  EXPECT_TRUE(v.coulomb.is_null());
 }

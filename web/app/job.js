@@ -3,7 +3,8 @@
 // on-fault stations of a run that has them (job_stations.js).
 import { h, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
 import { get, getJSON } from './api.js';
-import { drawFigures, lowerWaveSpeeds, waveSpeeds } from './job_figures.js';
+import { drawFigures } from './job_figures.js';
+import { belowText } from './run_labels.js';
 import { drawStations, hasStations } from './job_stations.js';
 import { cancelJob, frictionText, jobNd } from './jobs.js';
 import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
@@ -15,15 +16,6 @@ const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
 function meshText(mesh) {
   const known = Object.entries(mesh || {}).filter(([, v]) => v !== null && v !== undefined);
   return known.length ? known.map(([k, v]) => `${k} = ${typeof v === 'number' && !Number.isInteger(v) ? fmt(v, 6) : v}`).join(', ') : '—';
-}
-
-// What is below the interface when it is not the rigid plane (as the CLI's run labels):
-// 'bimaterial' for two different elastic solids, 'full space' for two identical ones.
-function belowText(spec) {
-  const lower = lowerWaveSpeeds(spec), upper = waveSpeeds(spec);
-  if (!lower) return '';
-  const same = upper && lower.cs === upper.cs && lower.cp === upper.cp && (spec.lower.density ?? 1) === (spec.material?.density ?? 1);
-  return same ? 'full space' : 'bimaterial';
 }
 
 export async function jobPage(view, page, id) {

@@ -61,7 +61,7 @@ export async function cancelJob(id, out) {
 }
 
 export function jobsPage(view, page) {
-  const state = { sort: 'created', dir: -1, filter: '', status: '', archived: false, jobs: [] };
+  const state = { sort: 'created', dir: -1, filter: '', status: '', archived: false, jobs: [], picked: new Set() }; // picked: ids to compare
   const messages = new Map();
   const filter = h('input', { type: 'search', id: 'job-filter', placeholder: 'filter: name, tag, id, user…', size: 30 });
   const status = h('select', { id: 'job-status' },
@@ -70,9 +70,10 @@ export function jobsPage(view, page) {
   const counter = h('span', { class: 'muted' });
   const message = h('span', { id: 'jobs-message' });
   const table = h('table', { class: 'grid', id: 'jobs-table' });
+  const compare = h('button', { id: 'compare-selected', onclick: () => { location.hash = `#/compare?ids=${[...state.picked].join(',')}`; } });
   view.append(
     h('div', { class: 'pagehead' }, h('h1', { text: 'Jobs' }), h('a', { class: 'button', href: '#/submit', text: 'Submit a job' })),
-    h('div', { class: 'toolbar' }, filter, status, h('label', {}, archived, ' show archived'), counter, message),
+    h('div', { class: 'toolbar' }, filter, status, h('label', {}, archived, ' show archived'), counter, compare, message),
     h('div', { class: 'tablewrap' }, table));
 
   const render = () => {
@@ -87,7 +88,10 @@ export function jobsPage(view, page) {
       return (va < vb ? -1 : 1) * state.dir;
     });
     clear(table);
-    table.append(h('thead', {}, h('tr', {}, COLUMNS.map((c) => h('th', {
+    const pick = (id, on) => { if (on) state.picked.add(id); else state.picked.delete(id); };
+    const all = h('input', { type: 'checkbox', id: 'pick-all', title: 'pick every run shown (to compare)', checked: rows.length > 0 && rows.every((j) => state.picked.has(j.id)),
+      onchange: (ev) => { rows.forEach((j) => pick(j.id, ev.target.checked)); render(); } });
+    table.append(h('thead', {}, h('tr', {}, h('th', {}, all), COLUMNS.map((c) => h('th', {
       class: `${c.num ? 'num ' : ''}sortable${state.sort === c.key ? ' sorted' : ''}`,
       title: 'sort', onclick: () => { state.dir = state.sort === c.key ? -state.dir : (c.key === 'created' ? -1 : 1); state.sort = c.key; render(); },
     }, c.label, state.sort === c.key ? (state.dir > 0 ? ' ▲' : ' ▼') : '')), h('th', { text: '' }))));
@@ -96,12 +100,17 @@ export function jobsPage(view, page) {
       if (!messages.has(j.id)) messages.set(j.id, h('span'));
       const out = messages.get(j.id); // a cancel's answer stays through the refreshes
       const active = j.status === 'queued' || j.status === 'running';
-      body.append(h('tr', { dataset: { id: j.id, status: j.status } }, COLUMNS.map((c) => c.cell(j)),
+      body.append(h('tr', { dataset: { id: j.id, status: j.status } },
+        h('td', {}, h('input', { type: 'checkbox', class: 'pick', title: 'pick to compare', checked: state.picked.has(j.id), onchange: (ev) => { pick(j.id, ev.target.checked); render(); } })),
+        COLUMNS.map((c) => c.cell(j)),
         h('td', {}, active ? h('button', { class: 'small', onclick: () => cancelJob(j.id, out), text: 'Cancel' }) : null, out)));
     }
-    if (!rows.length) body.append(h('tr', {}, h('td', { colspan: COLUMNS.length + 1, class: 'muted', text: state.jobs.length ? 'No job matches the filter.' : 'No jobs yet: submit one.' })));
+    if (!rows.length) body.append(h('tr', {}, h('td', { colspan: COLUMNS.length + 2, class: 'muted', text: state.jobs.length ? 'No job matches the filter.' : 'No jobs yet: submit one.' })));
     table.append(body);
     counter.textContent = `${rows.length} of ${state.jobs.length} shown`;
+    compare.textContent = `Compare selected (${state.picked.size})`;
+    compare.disabled = state.picked.size < 2;
+    compare.title = compare.disabled ? 'tick two runs or more (the boxes at the left) to compare them' : 'open the picked runs side by side';
   };
 
   const load = async () => {

@@ -7,13 +7,15 @@ import { jobPage } from './job.js';
 import { studiesPage, studyPage } from './studies.js';
 import { submitPage } from './submit.js';
 import { lengthFitPage } from './length_fit.js';
+import { comparePage } from './compare.js';
 
 const view = document.getElementById('view');
 let current = null; // {stop()}
 
 function route() {
   const hash = location.hash || '#/jobs';
-  const parts = hash.replace(/^#\/?/, '').split('/').map(decodeURIComponent);
+  const [, path, query] = hash.replace(/^#\/?/, '').match(/^([^?]*)\??(.*)$/); // #/compare?ids=...
+  const parts = path.split('/').map(decodeURIComponent);
   if (current?.stop) current.stop();
   current = null;
   clear(view);
@@ -35,6 +37,7 @@ function route() {
     studies: () => (id ? studyPage(view, page, id) : studiesPage(view, page)),
     submit: () => submitPage(view, page, id),
     'length-fit': () => lengthFitPage(view),
+    compare: () => comparePage(view, page, new URLSearchParams(query)),
   }[parts[0]];
   if (!render) {
     view.append(h('p', { text: 'No such page. ' }, h('a', { href: '#/jobs', text: 'Jobs' })));

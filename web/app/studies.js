@@ -79,9 +79,9 @@ export async function studyPage(view, page, id) {
       h('p', { class: 'muted', text: 'Each cell is a run at (L, n_d): converged when it agrees with the next finer mesh (propagation distance within 0.5 %, arrival time at the probe within 0.1 %). Cells fill in as runs finish; hover a cell for the reason.' }),
       convergenceGrid(study.convergence_map, study.runs, 'study-cmap', { tolerances: cl.tolerances, finished: study.status !== 'running' }));
     if (study.refinement && Object.keys(study.refinement).length) {
-      mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [`L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
+      mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [r.regime === 'coulomb' ? 'plain Coulomb' : `L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
     }
-    fill(runsCard, h('h2', { text: 'Runs' }), runsTable(study.runs || [], study.status !== 'running'));
+    fill(runsCard, h('h2', { text: 'Runs' }), h('p', {}, h('a', { id: 'compare-study', href: `#/compare?study=${study.id}`, text: 'Compare these runs side by side' })), runsTable(study.runs || [], study.status !== 'running'));
     if (study.cross_method && (Array.isArray(study.cross_method) ? study.cross_method.length : Object.keys(study.cross_method).length)) {
       runsCard.append(h('details', {}, h('summary', { text: 'The same L by FE and BI (cross-method table)' }), h('pre', { class: 'json', text: JSON.stringify(study.cross_method, null, 2) })));
     }

@@ -35,6 +35,17 @@ def colours(n, cmap="viridis"):
     return [cm(0.85 * i / max(n - 1, 1)) for i in range(n)]
 
 
+# One line style and marker per method, so that FE and BI runs of one scene overlaid read apart
+# at a glance (their labels say the method too; the web view uses the same: run_labels.js).
+METHOD_STYLES = {"fe": {"ls": "-", "marker": "o"}, "spectral_bi": {"ls": "--", "marker": "s"}}
+
+
+def method_style(spec, metrics=None):
+    """{ls, marker} of a run's method (its spec's, else its metrics', else FE)."""
+    method = (spec or {}).get("method") or (metrics or {}).get("method") or "fe"
+    return METHOD_STYLES.get(method, METHOD_STYLES["fe"])
+
+
 def save_figure(fig, out_dir, stem, formats, dpi=150):
     """Write `out_dir/stem.<fmt>` for every format; return the paths; close the figure."""
     os.makedirs(out_dir, exist_ok=True)

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ..results import below_label, solid_wave_speeds
-from .common import colours, new_figure
+from .common import colours, method_style, new_figure
 
 
 def nucleation_patch(spec):
@@ -25,7 +25,9 @@ def nucleation_patch(spec):
     return 0.0, math.hypot(a, b)
 
 
-def plot_speed(results, title=None):
+def plot_speed(results, title=None, labels=None):
+    """V_r against x1 of every run, named by `labels` (default: each run's label), in its
+    method's line style and marker."""
     fig, ax = new_figure()
     data = {}
     patch = nucleation_patch(results[0].spec) if results else None
@@ -33,11 +35,14 @@ def plot_speed(results, title=None):
         ax.axvspan(*patch, color="tab:orange", alpha=0.15, lw=0,
                    label=f"nucleation patch ({patch[0]:.3g} to {patch[1]:.3g} m)")
         data["nucleation_patch"] = patch
-    for colour, result in zip(colours(len(results)), results):
+    for colour, result, label in zip(colours(len(results)), results,
+                                     labels or [r.label() for r in results]):
         ok = np.isfinite(result.rupture_speed)
         x, v = result.front_x1[ok], result.rupture_speed[ok]
-        data[result.label()] = {"x1": x, "rupture_speed": v}
-        ax.plot(x, v, color=colour, lw=1.2, marker=".", ms=3, label=result.label())
+        data[label] = {"x1": x, "rupture_speed": v}
+        style = method_style(result.spec, result.metrics)
+        ax.plot(x, v, color=colour, lw=1.2, ls=style["ls"], marker=style["marker"], ms=3,
+                label=label)
     if results:
         c_s, c_p = results[0].wave_speeds()
         lines = [(c_s, r"$c_s$", "--"), (c_p, r"$c_p$", "-.")]

@@ -1,13 +1,13 @@
 """(b) Slip velocity |V| against time at given positions x1 (paper Fig. 2b, 3a, 4a),
 several runs overlaid, each labelled by what identifies it (results.run_label: method, friction
-law and its scale parameter, n_d). Each panel's time axis is zoomed to the
-signal: from a little before the first run's |V| exceeds 1 % of the panel's peak to a little
+law and its scale parameter, n_d; or the labels given) and drawn in its method's line style
+(FE solid, BI dashed). Each panel's time axis is zoomed to the signal: from a little before the first run's |V| exceeds 1 % of the panel's peak to a little
 after the last run's falls below it (`zoom=False` shows the whole run)."""
 
 import numpy as np
 import matplotlib.pyplot as plt
 
-from .common import colours
+from .common import colours, method_style
 
 SIGNAL_FRACTION = 0.01
 
@@ -39,22 +39,24 @@ def signal_window(samples, fraction=SIGNAL_FRACTION, pad=0.15):
     return max(first, t0 - pad * width), min(last, t1 + pad * width)
 
 
-def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True):
-    """One panel per position; one line per run. Positions outside a run are skipped."""
+def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True, labels=None):
+    """One panel per position; one line per run, named by `labels` (default: each run's
+    label). Positions outside a run are skipped."""
     fig, axes = plt.subplots(len(positions), 1, figsize=(6.4, 2.6 * len(positions) + 0.6),
                              squeeze=False, constrained_layout=True)
     data = {}
     palette = colours(len(results))
     for ax, x in zip(axes[:, 0], positions):
         samples = []
-        for colour, result in zip(palette, results):
+        for colour, result, label in zip(palette, results, labels or [r.label() for r in results]):
             sample = velocity_at(result, x)
             if sample is None:
                 continue
             node_x, t, v = sample
             samples.append((t, v))
-            data.setdefault(result.label(), {})[x] = {"node_x1": node_x, "time": t, "abs_v": v}
-            ax.plot(t, v * 1e3, color=colour, lw=1.0, label=result.label())
+            data.setdefault(label, {})[x] = {"node_x1": node_x, "time": t, "abs_v": v}
+            style = method_style(result.spec, result.metrics)
+            ax.plot(t, v * 1e3, color=colour, lw=1.0, ls=style["ls"], label=label)
         ax.set_ylabel("|V| [mm/s]")
         window = signal_window(samples) if zoom and samples else None
         if window:
