@@ -40,9 +40,11 @@ const std::map<std::string, Words>& field_words() {
             "`a = ζ dx / c_s`, which vanishes under refinement; 0 is the paper's undamped "
             "scheme. It shrinks the stable step to `sqrt(a² + dt0²) − a` (ζ = 0.1: 0.84 dt0) and "
             "costs about twice the work per step (docs/physics.md, docs/small-l-study.md)"}},
-      {"/material/density", {"kg/m^3", "rho"}},
-      {"/material/young_modulus", {"Pa", "E"}},
-      {"/material/poisson_ratio", {"", "nu; 0.5 (incompressible) has no finite c_p"}},
+      {"/material/density", {"kg/m^3", "rho: mass density of the solid above the interface"}},
+      {"/material/young_modulus", {"Pa", "E: Young's modulus of the solid above the interface"}},
+      {"/material/poisson_ratio",
+       {"", "nu: Poisson's ratio of the solid above the interface; 0.5 (incompressible) has no "
+            "finite c_p"}},
       {"/material/p_wave_speed",
        {"m/s", "c_p: with s_wave_speed instead of young_modulus and poisson_ratio (not mixed); "
                "more than sqrt(2) · c_s (poisson_ratio > 0). Converted with mu = rho c_s², "
@@ -78,9 +80,11 @@ const std::map<std::string, Words>& field_words() {
        {"", "the lower block's far boundary x2 = -height keeps the remote traction, or absorbs "
             "waves (Lysmer–Kuhlemeyer dashpots)"}},
       {"/loading/normal_stress",
-       {"Pa", "tau2_0; negative = compressive (the solid must be pressed on the plane)"}},
+       {"Pa", "tau2_0: the uniform initial normal stress on the interface; negative = "
+              "compressive (the solid must be pressed on the plane)"}},
       {"/loading/shear_stress",
-       {"Pa", "tau1_0; positive drives the solid towards +x1. At most mu_0 · "
+       {"Pa", "tau1_0: the uniform initial shear stress on the interface; positive drives the "
+              "solid towards +x1. At most mu_0 · "
               "\\|normal_stress\\| outside the nucleation patch (the initial state is stuck)"}},
       {"/friction/law",
        {"", "the coefficient: `prakash_clifton` (constant mu with the slip-scale regularisation "
@@ -113,8 +117,12 @@ const std::map<std::string, Words>& field_words() {
        {"", "`ellipse`: the moving ellipse of the paper's appendix A (a, b, v, alpha); "
             "`overstressed_patch`: a uniform initial shear stress in [x1_min, x1_max] (x1_min, "
             "x1_max, shear_stress)"}},
-      {"/nucleation/a", {"m", "a_ell (ellipse)"}},
-      {"/nucleation/b", {"m", "b_ell (ellipse)"}},
+      {"/nucleation/a",
+       {"m", "a_ell: the ellipse's size along x1 − v t, xi = (x1 − v t)/a (docs/physics.md; "
+             "ellipse)"}},
+      {"/nucleation/b",
+       {"m", "b_ell: the ellipse's size along x1 + v t, eta = (x1 + v t)/b − eta_0 "
+             "(docs/physics.md; ellipse)"}},
       {"/nucleation/v", {"m/s", "v_ell: speed of the ellipse towards +x1 (ellipse)"}},
       {"/nucleation/alpha", {"", "largest relative reduction of the normal load (ellipse)"}},
       {"/nucleation/x1_min",
@@ -292,6 +300,44 @@ std::vector<JobField> job_fields() {
   return fields;
 }
 
+// Fields that only one choice of another field uses (the rules api/job_checks.cpp enforces):
+// the schema says so as "x-when": {"pointer": the choosing field, "values": the choices that
+// use it}, and the web view's form shows the field only then.
+struct UsedWhen {
+  const char* pointer;
+  std::vector<std::string> values;
+};
+
+const std::map<std::string, UsedWhen>& used_when() {
+  static const UsedWhen slip_weakening{"/friction/law", {"slip_weakening"}};
+  static const UsedWhen ellipse{"/nucleation/type", {"ellipse"}};
+  static const UsedWhen patch{"/nucleation/type", {"overstressed_patch"}};
+  static const UsedWhen elastic_lower{"/lower/solid", {"elastic"}};
+  static const std::map<std::string, UsedWhen> rules = {
+      {"/friction/regularization", {"/friction/law", {"coulomb", "slip_weakening"}}},
+      {"/friction/mu", {"/friction/law", {"prakash_clifton", "coulomb"}}},
+      {"/friction/mu_s", slip_weakening},
+      {"/friction/mu_d", slip_weakening},
+      {"/friction/D_c", slip_weakening},
+      {"/friction/t_star", {"/friction/regularization", {"time_scale"}}},
+      {"/nucleation/a", ellipse},
+      {"/nucleation/b", ellipse},
+      {"/nucleation/v", ellipse},
+      {"/nucleation/alpha", ellipse},
+      {"/nucleation/x1_min", patch},
+      {"/nucleation/x1_max", patch},
+      {"/nucleation/shear_stress", patch},
+      {"/lower/density", elastic_lower},
+      {"/lower/young_modulus", elastic_lower},
+      {"/lower/poisson_ratio", elastic_lower},
+      {"/lower/p_wave_speed", elastic_lower},
+      {"/lower/s_wave_speed", elastic_lower},
+      {"/lower/height", elastic_lower},
+      {"/lower/bottom_boundary", elastic_lower},
+  };
+  return rules;
+}
+
 std::vector<std::string> documented_job_pointers() {
   std::vector<std::string> pointers;
   for (const auto& [pointer, words] : field_words())
@@ -306,7 +352,9 @@ nlohmann::json job_json_schema() {
       {"title", "slipfront job"},
       {"description", "One simulation (docs/api-job-spec.md). Every field is optional "
                       "and defaults to the paper's scene; unknown fields are errors, and so are "
-                      "fields the chosen method does not use (x-methods)."},
+                      "fields the chosen method does not use (x-methods). x-order lists an "
+                      "object's properties in the reader's order; x-when names the choice of "
+                      "another field a field is used with."},
       {"type", "object"},
       {"additionalProperties", false},
       {"properties", nlohmann::json::object()}};
@@ -332,7 +380,14 @@ nlohmann::json job_json_schema() {
     if (field.fe) methods.push_back("fe");
     if (field.spectral_bi) methods.push_back("spectral_bi");
     schema["x-methods"] = methods;
+    if (auto rule = used_when().find(field.pointer); rule != used_when().end())
+      schema["x-when"] = {{"pointer", rule->second.pointer}, {"values", rule->second.values}};
     (*parent)["properties"][name] = schema;
+    // The reader's order (the one docs/api-job-spec.md shows): JSON objects have none.
+    (*parent)["x-order"].push_back(name);
+    if (parent != &root && !section.ends_with("/*") &&
+        std::find(root["x-order"].begin(), root["x-order"].end(), section) == root["x-order"].end())
+      root["x-order"].push_back(section);
   }
   // Not a field of the job but a shorthand for one (api/presets.hpp): expanded before the
   // fields are read, so it has no default and never appears in a stored spec.

@@ -6,6 +6,7 @@
 #include "app/commands.hpp"
 #include "app/options.hpp"
 
+#include "api/json_number.hpp"
 #include "api/presets.hpp"
 
 #include <iomanip>
@@ -55,7 +56,8 @@ int list_presets(const PresetsOptions& options) {
                 << "\" (`slipfront presets` lists them)\n";
       return exit_code::bad_input;
     }
-    const nlohmann::json entry = api::preset_json(*preset);
+    nlohmann::json entry = api::preset_json(*preset);
+    api::whole_numbers_as_integers(entry);
     std::cout << (json ? entry : entry["spec"]).dump(2) << '\n';
     return exit_code::success;
   }
@@ -63,6 +65,7 @@ int list_presets(const PresetsOptions& options) {
     nlohmann::json list = nlohmann::json::array();
     for (const api::Preset& preset : api::presets())
       list.push_back(api::preset_json(preset));
+    api::whole_numbers_as_integers(list);
     std::cout << nlohmann::json{{"presets", list}}.dump(2) << '\n';
     return exit_code::success;
   }

@@ -5,6 +5,7 @@
 #include "app/options.hpp"
 #include "app/progress_display.hpp"
 
+#include "api/json_number.hpp"
 #include "api/result_xdmf.hpp"
 #include "api/run_files.hpp"
 #include "api/run_job.hpp"
@@ -154,6 +155,7 @@ int run(const RunOptions& options) {
                               {"sha256", output.record.result.sha256},
                               {"xdmf", xdmf_path}};
   }
+  api::whole_numbers_as_integers(printed); // "nodes_per_meter": 10, not 10.0
   std::cout << printed.dump() << std::endl;
 
   if (output.result.metrics.outcome == Outcome::diverged) {

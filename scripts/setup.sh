@@ -15,6 +15,7 @@ packages=(
   libhdf5-dev hdf5-tools libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-requests python3-pandas
   python3-venv python3-pip python3-setuptools python3-xarray python3-h5netcdf
+  python3-nbconvert python3-ipykernel   # clients/examples/tour.ipynb, executed in ctest
   curl wrk clang-format pyflakes3
   slurm-wlm munge
   chromium chromium-driver python3-selenium

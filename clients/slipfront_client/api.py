@@ -10,6 +10,7 @@ Every request goes through `Api.request`, which
 """
 
 import email.utils
+import re
 import time
 import uuid
 
@@ -18,6 +19,9 @@ import requests
 from .errors import ServerError, UsageError
 
 API = "/api/v1"
+# A result_url cell of the run table: a CSV cell, or the value of an NDJSON row's key.
+RESULT_PATH = re.compile(r'(^|,|"result_url":")(/api/v1/jobs/[0-9a-f]{32}/result\.h5)(?=,|"|\r?$)',
+                         re.MULTILINE)
 USER_AGENT = "slipfront-client/1"
 
 
@@ -255,7 +259,12 @@ class Api:
             texts.append("".join(lines))
             url = response.links.get("next", {}).get("url")
             params = {}  # the next URL carries every parameter but the page size
-        return "".join(texts)
+        return self._absolute_result_urls("".join(texts))
+
+    def _absolute_result_urls(self, text):
+        """The run table's result_url cells (the server writes them as paths, /api/v1/jobs/
+        ID/result.h5) as full URLs on the server asked, for a table read elsewhere."""
+        return RESULT_PATH.sub(lambda m: m.group(1) + self.base_url + m.group(2), text)
 
     def list_studies(self, status=None, limit=None, page_size=100):
         """Yield study summaries newest first (all of them, or `limit`)."""

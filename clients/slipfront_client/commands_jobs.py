@@ -5,7 +5,7 @@ import os
 import sys
 
 from . import jobspec
-from .download import download_result
+from .result_download import download_result, write_xdmf
 from .errors import ServerError, UsageError
 from .output import job_summary, log, print_json, table
 from .waiting import FINAL, ProgressBar, check_outcome, wait_for_job
@@ -27,6 +27,9 @@ def add_parsers(sub, common):
     p.add_argument("--wait", action="store_true", help="wait for the job, with a progress bar")
     p.add_argument("--wait-timeout", type=float, help="give up waiting after this many seconds")
     p.add_argument("--download", metavar="FILE", help="after --wait, download the result here")
+    p.add_argument("--xdmf", action="store_true",
+                   help="with --download, also write the XDMF sidecar (ParaView, VisIt) beside "
+                        "it, as FILE.xdmf")
     p.add_argument("--dry-run", action="store_true", help="print the job JSON and do not submit")
     p.set_defaults(func=cmd_submit)
 
@@ -105,6 +108,8 @@ def add_parsers(sub, common):
 def cmd_submit(args, ctx):
     if args.download and not args.wait:
         raise UsageError("--download needs --wait")
+    if args.xdmf and not args.download:
+        raise UsageError("--xdmf needs --download FILE")
     if args.priority is not None and not -100 <= args.priority <= 100:
         raise UsageError("--priority must be an integer in [-100, 100]")
     spec = jobspec.build_job(args.job, args.overrides, args.name, args.tags, preset=args.preset)
@@ -134,7 +139,12 @@ def cmd_submit(args, ctx):
         path, sha, _ = download_result(api, job["id"], args.download, log=log)
         if not args.quiet:
             log(f"result written to {path} (sha256 {sha})")
+        if args.xdmf:
+            xdmf = write_xdmf(api, job["id"], path)
+            if not args.quiet:
+                log(f"XDMF sidecar written to {xdmf}")
     return 0
+
 
 
 def cmd_presets(args, ctx):
@@ -234,13 +244,7 @@ def cmd_download(args, ctx):
         log(f"{path}: {'up to date' if fetched == 0 else f'{fetched} bytes fetched'}, sha256 {sha}")
     print(path)
     if args.xdmf:
-        xdmf = os.path.splitext(path)[0] + ".xdmf"
-        text = ctx.api().result_xdmf(args.id)
-        # The server names the file ID.h5; point the sidecar at the name it was saved under.
-        text = text.replace(f"{args.id}.h5", os.path.basename(path))
-        with open(xdmf, "w", encoding="utf-8") as f:
-            f.write(text)
-        print(xdmf)
+        print(write_xdmf(ctx.api(), args.id, path))
     return 0
 
 

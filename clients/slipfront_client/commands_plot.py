@@ -37,7 +37,11 @@ def add_parsers(sub, common_parent):
     out = argparse.ArgumentParser(add_help=False)
     out.add_argument("-o", "--output-dir", default=".", help="directory for the figures (default .)")
     out.add_argument("--format", default="png", help="comma-separated: png,pdf,svg (default png)")
-    out.add_argument("--stem", help="file name without extension (default: the figure's name)")
+    out.add_argument("--stem", help="file name without extension (default: the figure's name, "
+                                    "and for map the figure's name and each source's: "
+                                    "map_SOURCE)")
+    out.add_argument("--force", action="store_true",
+                     help="replace figure files that exist (default: refuse, naming them)")
     out.add_argument("--title", help="figure title")
     out.add_argument("--cache-dir", help="where job ids are downloaded (default ~/.cache/slipfront)")
     parents = [common_parent, out]
@@ -102,6 +106,19 @@ def add_parsers(sub, common_parent):
     k.set_defaults(func=cmd_cost)
 
 
+def output_paths(args, stems):
+    """The files the figures `stems` will be written to. Without --force, refuses (before any
+    work) when one of them exists: a figure is never replaced silently."""
+    common = plots("common")
+    paths = [os.path.join(args.output_dir, f"{stem}.{fmt}")
+             for stem in stems for fmt in common.parse_formats(args.format)]
+    existing = [p for p in paths if os.path.exists(p)]
+    if existing and not args.force:
+        raise UsageError(f"{', '.join(existing)} exist{'s' if len(existing) == 1 else ''}: "
+                         "give --force to replace, or choose --stem or --output-dir")
+    return paths
+
+
 def _save(fig, args, stem):
     common = plots("common")
     paths = common.save_figure(fig, args.output_dir, args.stem or stem,
@@ -131,20 +148,34 @@ def _server_rows(ctx, tag):
     return [results().row_from_job(j) for j in jobs]
 
 
+def map_stems(args):
+    """One figure per source: map_SOURCE (SOURCE: the file's name without its extension, or
+    the job id); --stem names a single figure, or replaces "map" for several."""
+    if args.stem and len(args.sources) == 1:
+        return [args.stem]
+    stems = [f"{args.stem or 'map'}_{os.path.splitext(os.path.basename(s))[0]}"
+             for s in args.sources]
+    if len(set(stems)) != len(stems):
+        raise UsageError("plot map: two sources have the same name; draw them one at a time "
+                         "with --stem")
+    return stems
+
+
 def cmd_map(args, ctx):
     common = plots("common")
     formats = common.parse_formats(args.format)
     probes = floats(args.probes, "--probes")
-    for source, result in zip(args.sources, _results(args, ctx)):
+    stems = map_stems(args)
+    output_paths(args, stems)
+    for stem, result in zip(stems, _results(args, ctx)):
         fig, _ = plots("slip_map").plot_map(result, probes, args.vmax, args.title, args.scale)
-        stem = args.stem if args.stem and len(args.sources) == 1 else None
-        stem = stem or "map_" + os.path.splitext(os.path.basename(source))[0]
         for path in common.save_figure(fig, args.output_dir, stem, formats):
             print(path)
     return 0
 
 
 def cmd_velocity(args, ctx):
+    output_paths(args, [args.stem or "velocity"])
     positions = floats(args.x1, "--x1")
     fig, _ = plots("velocity").plot_velocity(_results(args, ctx), positions, args.title,
                                              zoom=not args.no_zoom)
@@ -153,6 +184,7 @@ def cmd_velocity(args, ctx):
 
 
 def cmd_speed(args, ctx):
+    output_paths(args, [args.stem or "speed"])
     if args.front_json:
         runs = [results().result_from_front(ctx.api(), source) for source in args.sources]
     else:
@@ -190,6 +222,7 @@ def convergence_points(args, ctx):
 
 
 def cmd_convergence(args, ctx):
+    output_paths(args, [args.stem or "convergence"])
     points = convergence_points(args, ctx)
     fig, _ = plots("convergence").plot_convergence(points, args.critical_length, args.title)
     _save(fig, args, "convergence")
@@ -197,6 +230,7 @@ def cmd_convergence(args, ctx):
 
 
 def cmd_filter(args, ctx):
+    output_paths(args, [args.stem or "filter"])
     filter_response = plots("filter_response")
     runs = _results(args, ctx) if args.sources else []
     if args.lengths:
@@ -248,6 +282,7 @@ def study_cost_rows(api, study_ids):
 
 
 def cmd_cost(args, ctx):
+    output_paths(args, [args.stem or "cost"])
     inputs = sum(bool(x) for x in (args.sources, args.data, args.tag, args.study))
     if inputs != 1:
         raise UsageError("plot cost: give exactly one of SOURCES, --data, --tag, --study")

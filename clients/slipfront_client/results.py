@@ -167,7 +167,7 @@ def resolve_source(source, api_factory, cache=None, log=None):
         return source
     if not JOB_ID.match(source):
         raise UsageError(f"{source}: no such file, and not a job id (32 hex characters)")
-    from .download import download_result  # here: plotting local files needs no HTTP
+    from .result_download import download_result  # here: plotting local files needs no HTTP
 
     cache = cache or cache_dir()
     os.makedirs(cache, exist_ok=True)

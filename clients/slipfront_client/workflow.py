@@ -13,7 +13,7 @@ import os
 
 from . import config, studies
 from .api import Api
-from .download import download_result
+from .result_download import download_result, write_xdmf
 from .results import cache_dir, load_result
 from .waiting import check_outcome, wait_for_job
 
@@ -39,13 +39,17 @@ def wait_job(api, job_id, timeout=None):
     return check_outcome(wait_for_job(api, job_id, timeout=timeout))
 
 
-def download(api, job_id, path=None):
+def download(api, job_id, path=None, xdmf=False):
     """Download (verified by SHA-256, resumable) a job's HDF5 result; returns the path.
-    Default path: the cache directory (~/.cache/slipfront/ID.h5)."""
+    Default path: the cache directory (~/.cache/slipfront/ID.h5). With `xdmf`, also writes
+    its XDMF sidecar (ParaView) beside it, naming the file by the name it was saved under."""
     if path is None:
         os.makedirs(cache_dir(), exist_ok=True)
         path = os.path.join(cache_dir(), f"{job_id}.h5")
-    return download_result(api, job_id, path)[0]
+    path = download_result(api, job_id, path)[0]
+    if xdmf:
+        write_xdmf(api, job_id, path)
+    return path
 
 
 def load_job_result(api, job_id, path=None):

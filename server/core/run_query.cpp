@@ -30,6 +30,7 @@ const JobField job_fields[] = {
     {"method", FieldType::text},
     {"outcome", FieldType::text},
     {"tag", FieldType::tag},
+    {"tags", FieldType::tag}, // the run table's column name: tags=paper means tag=paper
     {"submitted_by", FieldType::text},
     {"created_at", FieldType::text},
     {"started_at", FieldType::text},
@@ -204,7 +205,8 @@ private:
       if (text == "false") return 0.0;
       fail(f.name + " is true or false, not '" + text + "'");
     case FieldType::tag:
-      if (op != CompareOp::eq && op != CompareOp::ne) fail("tag takes = or != only");
+      if (op != CompareOp::eq && op != CompareOp::ne)
+        fail(f.name + " takes = or != only (whether a run has that tag)");
       return text;
     case FieldType::text:
       return text;
@@ -275,7 +277,8 @@ std::vector<SortKey> parse_sort(std::string_view text) {
     if (!std::all_of(item.begin(), item.end(), is_field_char))
       throw QueryError("sort", "'" + std::string(item) + "' is not a field name");
     key.field = resolve_field(item, "sort");
-    if (key.field.type == FieldType::tag) throw QueryError("sort", "cannot sort by tag");
+    if (key.field.type == FieldType::tag)
+      throw QueryError("sort", "cannot sort by " + key.field.name);
     out.push_back(std::move(key));
   }
   return out;

@@ -18,7 +18,8 @@ const std::map<std::string, std::string> job_column_sql = {
     {"status", "j.status"},
     {"method", "COALESCE(json_extract(j.spec, '$.method'), 'fe')"},
     {"outcome", "m.outcome"},
-    {"tag", ""}, // EXISTS over json_each(j.tags): condition_sql
+    {"tag", ""},  // EXISTS over json_each(j.tags): condition_sql
+    {"tags", ""}, // the same (the run table's column name)
     {"submitted_by", "j.submitted_by"},
     {"created_at", "j.created_at"},
     {"started_at", "j.started_at"},

@@ -1,4 +1,5 @@
 // POST /jobs, GET /jobs, GET /jobs/{id}, POST /jobs/{id}/cancel.
+#include "api/json_number.hpp"
 #include "server/core/job_id.hpp"
 #include "server/core/priority.hpp"
 #include "server/core/run_query.hpp"
@@ -79,8 +80,8 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
   body["reused"] =
       r.kind == Kind::reused || (r.kind == Kind::replayed && !r.job->cached_from.empty());
   body["cache"] = !r.job->cached_from.empty() ? "hit" : (r.job->fresh ? "bypassed" : "miss");
-  auto res =
-      json_response(req, r.kind == Kind::replayed ? http::status::ok : http::status::created, body);
+  auto res = json_response(req, r.kind == Kind::replayed ? http::status::ok : http::status::created,
+                           std::move(body));
   res.set(http::field::location, api_prefix + "/jobs/" + r.job->id);
   if (r.kind == Kind::replayed) res.set("Idempotent-Replayed", "true");
   return res;
@@ -157,7 +158,7 @@ Response list_jobs(ServerContext& ctx, RequestContext& rc) {
   const auto next = next_link(page, rc.query);
   body["next_cursor"] = cursor ? nlohmann::json(*cursor) : nlohmann::json(nullptr);
   body["next"] = next ? nlohmann::json(*next) : nlohmann::json(nullptr);
-  return json_response(rc.request, http::status::ok, body);
+  return json_response(rc.request, http::status::ok, std::move(body));
 }
 
 Response cancel_job(ServerContext& ctx, RequestContext& rc) {
@@ -184,12 +185,12 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
   case Kind::cancelled: {
     auto body = job_to_json(*r.job);
     body["cancel_requested"] = true;
-    return json_response(rc.request, http::status::ok, body);
+    return json_response(rc.request, http::status::ok, std::move(body));
   }
   case Kind::cancel_requested: {
     auto body = job_to_json(*r.job);
     body["cancel_requested"] = true;
-    return json_response(rc.request, http::status::accepted, body);
+    return json_response(rc.request, http::status::accepted, std::move(body));
   }
   }
   return problem_response(rc.request, http::status::internal_server_error, "unreachable");
@@ -212,10 +213,11 @@ Response job_defaults(RequestContext& rc) {
   if (!parsed.ok())
     return problem_response(rc.request, http::status::internal_server_error,
                             "the defaults do not validate", parsed.errors);
-  return json_response(rc.request, http::status::ok,
-                       {{"method", method},
-                        {"spec", parsed.spec->canonical},
-                        {"memory_estimate_bytes", parsed.spec->memory_estimate_bytes}});
+  return json_response(
+      rc.request, http::status::ok,
+      {{"method", method},
+       {"spec", parsed.spec->canonical},
+       {"memory_estimate_bytes", api::json_bytes(parsed.spec->memory_estimate_bytes)}});
 }
 
 } // namespace

@@ -44,7 +44,7 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   else
     j["result"] = nullptr;
   j["cached_from"] = text_or_null(job.cached_from);
-  j["memory_estimate_bytes"] = job.memory_estimate_bytes;
+  j["memory_estimate_bytes"] = api::json_bytes(job.memory_estimate_bytes);
   j["attempts"] = job.attempts;
   j["scene_hash"] = text_or_null(job.scene_hash);
   j["study_id"] = text_or_null(job.study_id);

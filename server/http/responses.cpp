@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "api/json_number.hpp"
 #include "server/http/query_string.hpp"
 
 #include <cmath>
@@ -52,7 +53,8 @@ bool etag_list_matches(std::string_view if_none_match, std::string_view etag) {
 }
 
 http::response<http::string_body> json_response(const Request& req, http::status status,
-                                                const nlohmann::json& body) {
+                                                nlohmann::json body) {
+  api::whole_numbers_as_integers(body); // "n_d": 10, not 10.0 (api/json_number.hpp)
   auto res = text_response(req, status,
                            body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
                            "application/json");

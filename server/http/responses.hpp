@@ -14,7 +14,7 @@
 namespace slipfront::server {
 
 http::response<http::string_body> json_response(const Request& req, http::status status,
-                                                const nlohmann::json& body);
+                                                nlohmann::json body);
 http::response<http::string_body> text_response(const Request& req, http::status status,
                                                 std::string body, const std::string& content_type);
 // A number, or null for NaN and infinities (which JSON cannot hold).

@@ -134,7 +134,7 @@ Response front(ServerContext& ctx, RequestContext& rc) {
     body["id"] = job.id;
     body["units"] = {{"x1", "m"}, {"arrival_time", "s"}, {"rupture_speed", "m/s"}};
   }
-  return json_response(rc.request, http::status::ok, body);
+  return json_response(rc.request, http::status::ok, std::move(body));
 }
 
 std::optional<double> finite_number(const std::string& s) {
@@ -232,7 +232,7 @@ Response field(ServerContext& ctx, RequestContext& rc) {
   body["values"] = std::move(rows);
   body["min"] = number_or_null(vmin);
   body["max"] = number_or_null(vmax);
-  return json_response(req, http::status::ok, body);
+  return json_response(req, http::status::ok, std::move(body));
 }
 
 } // namespace

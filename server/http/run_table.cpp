@@ -1,6 +1,7 @@
 #include "server/http/run_table.hpp"
 
 #include "api/json_number.hpp"
+#include "server/http/api_prefix.hpp"
 
 #include <algorithm>
 #include <string_view>
@@ -63,9 +64,19 @@ nlohmann::ordered_json run_row(const Job& job, const std::string& convergence_st
   row["finished_at"] = text_or_null(job.finished_at);
   row["wall_time_s"] =
       job.started_at.empty() ? nlohmann::json(nullptr) : api::json_number(job.wall_time_s);
-  row["memory_estimate_bytes"] = job.memory_estimate_bytes;
+  row["memory_estimate_bytes"] = api::json_bytes(job.memory_estimate_bytes);
   row["cached_from"] = text_or_null(job.cached_from);
   row["error"] = text_or_null(job.error);
+  // Provenance, what a paper cites: the physics (spec_sha256), the scene (scene_hash), the
+  // code that ran, and the result file with its checksum and its URL on this server.
+  row["spec_sha256"] = text_or_null(job.spec_sha256);
+  row["scene_hash"] = text_or_null(job.scene_hash);
+  row["code_version"] = text_or_null(job.code_version);
+  const bool has_result = job.status == JobStatus::succeeded && !job.result.path.empty();
+  row["result_sha256"] = has_result ? text_or_null(job.result.sha256) : nlohmann::json(nullptr);
+  row["result_size_bytes"] = has_result ? nlohmann::json(job.result.size) : nlohmann::json(nullptr);
+  row["result_url"] = has_result ? nlohmann::json(api_prefix + "/jobs/" + job.id + "/result.h5")
+                                 : nlohmann::json(nullptr);
   if (job.spec.is_object()) {
     nlohmann::json spec = job.spec;
     spec.erase("name");
@@ -73,6 +84,7 @@ nlohmann::ordered_json run_row(const Job& job, const std::string& convergence_st
     flatten(spec, "spec", row);
   }
   if (job.metrics.is_object()) flatten(job.metrics, "metrics", row);
+  api::whole_numbers_as_integers(row); // "spec.geometry.nodes_per_meter": 10, not 10.0
   return row;
 }
 

@@ -127,7 +127,7 @@ Response stations_json(ServerContext& ctx, RequestContext& rc) {
   body["slip"] = strided_rows(s.slip, n, steps, stride);
   body["shear_traction"] = strided_rows(s.shear_traction, n, steps, stride);
   body["normal_traction"] = strided_rows(s.normal_traction, n, steps, stride);
-  return json_response(req, http::status::ok, body);
+  return json_response(req, http::status::ok, std::move(body));
 }
 
 } // namespace

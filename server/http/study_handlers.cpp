@@ -165,7 +165,7 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
                   (status ? std::string("&status=") + api::to_string(*status) : std::string()) +
                   "&cursor=" + std::to_string(*next))
            : json(nullptr);
-  return json_response(rc.request, http::status::ok, body);
+  return json_response(rc.request, http::status::ok, std::move(body));
 }
 
 // speed_accuracy of each regime, with the L2 error of the slip-velocity records (the service
@@ -176,7 +176,7 @@ Response speed_accuracy(ServerContext& ctx, RequestContext& rc) {
   if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
   auto body = ctx.studies.speed_accuracy(id);
   if (!body) return not_found_study(rc.request, id);
-  return json_response(rc.request, http::status::ok, *body);
+  return json_response(rc.request, http::status::ok, std::move(*body));
 }
 
 bool is_hex64(const std::string& s) {
@@ -213,7 +213,7 @@ Response convergence_map(ServerContext& ctx, RequestContext& rc) {
   if (!study_id.empty()) body["study_id"] = study_id;
   body["source"] = "every succeeded or failed job with this scene hash, whoever submitted it "
                    "(reused copies are counted once, as their original)";
-  return json_response(rc.request, http::status::ok, body);
+  return json_response(rc.request, http::status::ok, std::move(body));
 }
 
 } // namespace

@@ -63,39 +63,82 @@ def check_scales(path):
         return {name: interface[name].shape for name in ["x1", "time"] + INTERFACE_2D}
 
 
+def check_item(item, xdmf_path, h5_path, f):
+    """A DataItem in HDF format names the HDF5 file beside the XDMF file, an existing dataset
+    of its Dimensions, and the dataset's type."""
+    file_name, dataset = item.text.split(":", 1)
+    if os.path.join(os.path.dirname(xdmf_path), file_name) != h5_path:
+        fail(f"data item {item.text} does not point at {h5_path}")
+    if dataset not in f:
+        fail(f"data item {item.text}: no such dataset")
+    dims = tuple(int(d) for d in item.get("Dimensions").split())
+    if dims != f[dataset].shape:
+        fail(f"data item {item.text}: Dimensions {dims}, dataset {f[dataset].shape}")
+    kind = f[dataset].dtype
+    want = ("Char", "1") if kind == np.int8 else ("Float", "8")
+    if (item.get("NumberType"), item.get("Precision")) != want:
+        fail(f"data item {item.text}: {item.get('NumberType')}/{item.get('Precision')} for {kind}")
+    return dataset
+
+
+def check_temporal(collection, xdmf_path, h5_path, f, n_samples, n_nodes):
+    """The grid ParaView animates: a temporal collection of one line of nodes per recorded
+    time, its Time the file's /interface/time, each field a hyperslab of that time's row."""
+    if (collection.get("GridType"), collection.get("CollectionType")) != ("Collection", "Temporal"):
+        fail(f"first grid {collection.attrib}: not a temporal collection")
+    steps = collection.findall("Grid")
+    if len(steps) != n_samples:
+        fail(f"{len(steps)} grids in the temporal collection, {n_samples} recorded times")
+    times = [float(step.find("Time").get("Value")) for step in steps]
+    if not np.array_equal(np.array(times), f["interface/time"][()]):
+        fail("the collection's Time values differ from /interface/time")
+    for k in sorted({0, n_samples // 2, n_samples - 1}):
+        step = steps[k]
+        if step.find("Topology").get("Dimensions") != f"1 {n_nodes}":
+            fail(f"step {k}: topology {step.find('Topology').attrib}")
+        x1 = step.find("Geometry/DataItem")
+        if check_item(x1, xdmf_path, h5_path, f) != "/interface/x1":
+            fail(f"step {k}: geometry X is {x1.text}")
+        names = [a.get("Name") for a in step.findall("Attribute")]
+        if names != INTERFACE_2D:
+            fail(f"step {k}: attributes {names}, expected {INTERFACE_2D}")
+        for attribute in step.findall("Attribute"):
+            slab = attribute.find("DataItem")
+            selection, whole = slab.findall("DataItem")
+            start, stride, count = [tuple(int(v) for v in row) for row in
+                                    np.array(selection.text.split()).reshape(3, 2)]
+            dataset = check_item(whole, xdmf_path, h5_path, f)
+            if (slab.get("ItemType"), slab.get("Dimensions")) != ("HyperSlab", f"1 {n_nodes}") or \
+                    start != (k, 0) or stride != (1, 1) or count != (1, n_nodes):
+                fail(f"step {k}, {dataset}: hyperslab {slab.attrib} {start} {stride} {count}")
+            if dataset != f"/interface/{attribute.get('Name')}":
+                fail(f"step {k}: attribute {attribute.get('Name')} reads {dataset}")
+
+
 def check_xdmf(xdmf_path, h5_path, shapes):
     root = ET.parse(xdmf_path).getroot()  # raises on malformed XML
     if root.tag != "Xdmf" or root.get("Version") != "3.0":
         fail(f"{xdmf_path}: root is {root.tag} version {root.get('Version')}")
-    grid = root.find("Domain/Grid")
-    topology = grid.find("Topology")
     n_samples, n_nodes = shapes["time"][0], shapes["x1"][0]
-    if topology.get("TopologyType") != "2DRectMesh" or \
-            topology.get("Dimensions") != f"{n_samples} {n_nodes}":
-        fail(f"topology {topology.attrib}, expected 2DRectMesh {n_samples} {n_nodes}")
-    geometry = [item.text for item in grid.findall("Geometry/DataItem")]
-    h5_name = os.path.basename(h5_path)
-    if geometry != [f"{h5_name}:/interface/x1", f"{h5_name}:/interface/time"]:
-        fail(f"geometry items {geometry}")
-    items = grid.findall(".//DataItem")
-    names = [a.get("Name") for a in grid.findall("Attribute")]
-    if names != INTERFACE_2D:
-        fail(f"attributes {names}, expected {INTERFACE_2D}")
+    grids = root.findall("Domain/Grid")
+    if [g.get("Name") for g in grids] != ["interface", "x1-t plane"]:
+        fail(f"top-level grids {[g.get('Name') for g in grids]}")
     with h5py.File(h5_path, "r") as f:
-        for item in items:
-            file_name, dataset = item.text.split(":", 1)
-            if os.path.join(os.path.dirname(xdmf_path), file_name) != h5_path:
-                fail(f"data item {item.text} does not point at {h5_path}")
-            if dataset not in f:
-                fail(f"data item {item.text}: no such dataset")
-            dims = tuple(int(d) for d in item.get("Dimensions").split())
-            if dims != f[dataset].shape:
-                fail(f"data item {item.text}: Dimensions {dims}, dataset {f[dataset].shape}")
-            kind = f[dataset].dtype
-            want = ("Char", "1") if kind == np.int8 else ("Float", "8")
-            if (item.get("NumberType"), item.get("Precision")) != want:
-                fail(f"data item {item.text}: {item.get('NumberType')}/{item.get('Precision')} "
-                     f"for {kind}")
+        check_temporal(grids[0], xdmf_path, h5_path, f, n_samples, n_nodes)
+        grid = grids[1]
+        topology = grid.find("Topology")
+        if topology.get("TopologyType") != "2DRectMesh" or \
+                topology.get("Dimensions") != f"{n_samples} {n_nodes}":
+            fail(f"topology {topology.attrib}, expected 2DRectMesh {n_samples} {n_nodes}")
+        geometry = [item.text for item in grid.findall("Geometry/DataItem")]
+        h5_name = os.path.basename(h5_path)
+        if geometry != [f"{h5_name}:/interface/x1", f"{h5_name}:/interface/time"]:
+            fail(f"geometry items {geometry}")
+        names = [a.get("Name") for a in grid.findall("Attribute")]
+        if names != INTERFACE_2D:
+            fail(f"attributes {names}, expected {INTERFACE_2D}")
+        for item in grid.findall(".//DataItem"):
+            check_item(item, xdmf_path, h5_path, f)
 
 
 def check_xarray(h5_path):
@@ -142,7 +185,8 @@ def main(slipfront, work):
     check_xdmf(xdmf, h5, shapes)
     check_xarray(h5)
     print(f"ok: scales attached, XDMF valid ({shapes['time'][0]} samples x {shapes['x1'][0]} "
-          "nodes), xarray reads time and x1 as coordinates")
+          f"nodes, a temporal collection of {shapes['time'][0]} steps, "
+          f"{os.path.getsize(xdmf)} bytes), xarray reads time and x1 as coordinates")
 
 
 if __name__ == "__main__":

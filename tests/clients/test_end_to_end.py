@@ -20,7 +20,7 @@ import numpy as np
 
 from harness import LONG, SCRIPT, TINY, Server, binary_from_argv, run_client, wait_until
 from slipfront_client.api import Api
-from slipfront_client.download import download_result
+from slipfront_client.result_download import download_result
 from slipfront_client.plots import slip_map
 from slipfront_client.results import load_result
 
@@ -348,6 +348,30 @@ class EndToEnd(unittest.TestCase):
                        {"L": 1e-5, "n_d": 80, "status": "unknown"}], f)
         self.assertFigures(self.plot("convergence", "--map", points, "--critical-length", "1e-5",
                                      "--stem", "conv_json"), 2)
+
+    def test_plot_never_overwrites_silently(self):
+        out = os.path.join(self.tmp, "figs-again")
+        first = self.client("plot", "filter", "--L", "1e-4", "-o", out)
+        self.assertEqual(first.returncode, 0, first.stderr)
+        path = first.stdout.strip()
+        self.assertEqual(path, os.path.join(out, "filter.png"))
+        before = os.stat(path).st_mtime_ns
+        again = self.client("plot", "filter", "--L", "1e-5", "-o", out)
+        self.assertEqual(again.returncode, 2, again.stdout)
+        self.assertIn(f"{path} exists: give --force to replace", again.stderr)
+        self.assertEqual(os.stat(path).st_mtime_ns, before)
+        forced = self.client("plot", "filter", "--L", "1e-5", "-o", out, "--force")
+        self.assertEqual(forced.returncode, 0, forced.stderr)
+        self.assertNotEqual(os.stat(path).st_mtime_ns, before)
+        # map: one figure per source, map_SOURCE; two sources, one refused before any is drawn
+        r = self.client("plot", "map", self.h5, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        stem = os.path.splitext(os.path.basename(self.h5))[0]
+        self.assertEqual(r.stdout.split(), [os.path.join(out, f"map_{stem}.png")])
+        job = self.grid[("1e-4", "10")]
+        r = self.client("plot", "map", job, self.h5, "-o", out)
+        self.assertEqual(r.returncode, 2, r.stdout)
+        self.assertFalse(os.path.exists(os.path.join(out, f"map_{job}.png")))
 
     def test_plot_filter_and_cost(self):
         self.assertFigures(self.plot("filter", *self.grid.values()), 2)

@@ -1,7 +1,8 @@
 """The client as an installable package (docs/python-api.md): it installs offline into a
-venv with Debian's pip and setuptools, its console script runs, its version is the
-server's (project VERSION in CMakeLists.txt and `slipfront --version`), the notebook-style
-example runs against a live loopback server with the installed package, and the command
+venv with Debian's pip and setuptools (the README's command), its console script runs, its
+version is the server's (project VERSION in CMakeLists.txt and `slipfront --version`), the
+notebook clients/examples/tour.ipynb runs under nbconvert in a kernel of that venv against a
+live loopback server, and the command
 line lists, filters and exports runs, lists studies, and explains a server that does not
 answer.
 
@@ -9,6 +10,7 @@ answer.
 """
 
 import csv
+import hashlib
 import io
 import json
 import os
@@ -18,7 +20,10 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import xml.etree.ElementTree as ET
 from unittest import mock
+
+import h5py
 
 from harness import CLIENTS, REPO, Server, binary_from_argv
 
@@ -89,23 +94,57 @@ class InstalledPackageTest(unittest.TestCase):
             capture_output=True, text=True, env=self.env, cwd=self.tmp, check=True)
         self.assertEqual(metadata.stdout.strip(), client_version)
 
-    def test_3_notebook_example_runs_against_the_server(self):
+    def test_3_notebook_runs_against_the_server(self):
+        """clients/examples/tour.ipynb, executed top to bottom by nbconvert (Debian's
+        python3-nbconvert) in a kernel of the venv (python3-ipykernel): submit, study,
+        compare, export, with the installed package against the loopback server."""
+        jupyter = os.path.join(self.tmp, "jupyter")
+        kernel = os.path.join(jupyter, "kernels", "slipfront-venv")
+        os.makedirs(kernel, exist_ok=True)
+        with open(os.path.join(kernel, "kernel.json"), "w") as f:
+            json.dump({"argv": [self.python, "-m", "ipykernel_launcher", "-f",
+                                "{connection_file}"],
+                       "display_name": "slipfront venv", "language": "python"}, f)
         out = os.path.join(self.tmp, "tour")
-        example = os.path.join(CLIENTS, "examples", "notebook_tour.py")
-        r = subprocess.run([self.python, example, "--server", self.server.base, "--out", out],
-                           capture_output=True, text=True, env=self.env, timeout=600,
-                           cwd=self.tmp)
-        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
-        self.assertIn(os.path.join(self.tmp, "venv"), subprocess.run(
-            [self.python, "-c", "import slipfront_client; print(slipfront_client.__file__)"],
-            capture_output=True, text=True, env=self.env, cwd=self.tmp).stdout)
-        for name in ("map.png", "velocity.png", "speed.png"):
+        env = dict(self.env, SLIPFRONT_SERVER=self.server.base, SLIPFRONT_TOUR_OUT=out,
+                   JUPYTER_PATH=jupyter, JUPYTER_RUNTIME_DIR=os.path.join(jupyter, "runtime"),
+                   IPYTHONDIR=os.path.join(self.tmp, "ipython"),
+                   PYDEVD_DISABLE_FILE_VALIDATION="1")
+        env.pop("MPLBACKEND")  # the kernel's own choice, as in Jupyter
+        notebook = os.path.join(CLIENTS, "examples", "tour.ipynb")
+        r = subprocess.run(["/usr/bin/python3", "-m", "nbconvert", "--to", "notebook",
+                            "--execute", notebook, "--output-dir", out,
+                            "--ExecutePreprocessor.kernel_name=slipfront-venv",
+                            "--ExecutePreprocessor.timeout=600"],
+                           capture_output=True, text=True, env=env, timeout=900, cwd=self.tmp)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr[-4000:])
+        with open(os.path.join(out, "tour.ipynb")) as f:
+            executed = json.load(f)
+        outputs = [o for c in executed["cells"] if c["cell_type"] == "code" for o in c["outputs"]]
+        self.assertFalse([o for o in outputs if o["output_type"] == "error"])
+        text = "".join("".join(o["text"]) for o in outputs if o["output_type"] == "stream")
+        self.assertIn(f"from {os.path.join(self.tmp, 'venv')}", text)  # the installed package
+        self.assertRegex(text, r"job [0-9a-f]{32}: arrested, arrest at")
+        self.assertRegex(text, r"slip velocity \(\d+, \d+\)")
+        self.assertRegex(text, r"study [0-9a-f]{32}: finished")
+        self.assertRegex(text, r"6 of 6 runs arrested")
+        self.assertRegex(text, r"L = 0.0001 m +L = 2e-05 m")
+        self.assertIn("metrics.arrest_position", text)
+        images = [o for o in outputs if "image/png" in o.get("data", {})]
+        self.assertEqual(len(images), 4)  # map, V(t), rupture speed, the two runs' V(t)
+        for name in ("map.png", "velocity.png", "speed.png", "compare_velocity.png"):
             self.assertGreater(os.path.getsize(os.path.join(out, name)), 10000, name)
-        self.assertRegex(r.stdout, r"job [0-9a-f]{32}: arrested, arrest at")
-        self.assertRegex(r.stdout, r"slip velocity \(\d+, \d+\)")
-        self.assertRegex(r.stdout, r"study [0-9a-f]{32}: finished")
-        self.assertRegex(r.stdout, r"\d+ of 6 runs arrested")
-        self.assertIn("convergence_status", r.stdout)
+        with open(os.path.join(out, "runs.csv")) as f:
+            rows = list(csv.DictReader(f))
+        self.assertEqual(len(rows), 7)  # the tour's run and its study's six
+        for row in rows:
+            self.assertRegex(row["result_sha256"], r"^[0-9a-f]{64}$")
+            self.assertEqual(row["result_url"],
+                             f"{self.server.base}/api/v1/jobs/{row['id']}/result.h5")
+        sidecar = ET.parse(os.path.join(out, "paper_run.xdmf")).getroot()
+        self.assertEqual({i.text.split(":")[0] for i in sidecar.iter("DataItem")
+                          if i.get("Format") == "HDF"}, {"paper_run.h5"})
+        self.assertTrue(os.path.exists(os.path.join(out, "paper_run.h5")))
 
     def test_4_list_filters_and_exports(self):
         r = self.client("submit", "--wait", "--quiet", "--tag", "pkg",
@@ -138,6 +177,60 @@ class InstalledPackageTest(unittest.TestCase):
         r = self.client("study", "list")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertRegex(r.stdout.splitlines()[0], r"^id\s+status\s+kind\s+method\s+runs")
+
+    def test_6_export_provenance_integers_and_xdmf(self):
+        """A run downloaded under another name with its XDMF sidecar, then exported: the
+        sidecar is a temporal collection (one grid per recorded time) naming the file beside
+        it; the run table carries the provenance columns, `tags` filters as `tag` does, whole
+        numbers print as integers."""
+        h5 = os.path.join(self.tmp, "renamed run.h5")
+        r = self.client("submit", "--wait", "--quiet", "--tag", "prov",
+                        "--set", "method=spectral_bi", "--set", "geometry.nodes_per_meter=10",
+                        "--set", "time.duration=2", "--download", h5, "--xdmf")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        job_id = r.stdout.strip()
+        xdmf = os.path.join(self.tmp, "renamed run.xdmf")
+        root = ET.parse(xdmf).getroot()
+        collection = root.find("Domain/Grid")
+        self.assertEqual((collection.get("GridType"), collection.get("CollectionType")),
+                         ("Collection", "Temporal"))
+        steps = collection.findall("Grid")
+        with h5py.File(h5, "r") as f:
+            times = f["interface/time"][()]
+        self.assertEqual(len(steps), len(times))
+        self.assertEqual([float(g.find("Time").get("Value")) for g in steps], list(times))
+        referenced = {item.text.split(":")[0] for item in root.iter("DataItem")
+                      if item.get("Format") == "HDF"}
+        self.assertEqual(referenced, {"renamed run.h5"})
+        self.assertTrue(os.path.exists(os.path.join(os.path.dirname(xdmf), "renamed run.h5")))
+
+        r = self.client("list", "--where", "tags=prov", "--format", "csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = list(csv.DictReader(io.StringIO(r.stdout)))
+        self.assertEqual([row["id"] for row in rows], [job_id])
+        row = rows[0]
+        job = json.loads(self.client("status", job_id, "--json").stdout)
+        with open(h5, "rb") as f:
+            self.assertEqual(row["result_sha256"], hashlib.sha256(f.read()).hexdigest())
+        self.assertEqual(row["result_url"], f"{self.server.base}/api/v1/jobs/{job_id}/result.h5")
+        self.assertEqual(row["result_size_bytes"], str(os.path.getsize(h5)))
+        for column in ("spec_sha256", "scene_hash", "code_version"):
+            self.assertEqual(row[column], job[column], column)
+        self.assertEqual(row["tags"], "prov")
+        # Whole numbers as integers: in the table, in --json and in the status lines.
+        self.assertEqual(row["spec.geometry.nodes_per_meter"], "10")
+        self.assertRegex(row["memory_estimate_bytes"], r"^[0-9]+$")
+        self.assertEqual(row["metrics.steps"], str(job["metrics"]["steps"]))
+        self.assertIsInstance(job["spec"]["geometry"]["nodes_per_meter"], int)
+        self.assertIsInstance(job["memory_estimate_bytes"], int)
+        status = self.client("status", job_id).stdout
+        self.assertIn("n_d = 10,", status)
+        self.assertNotRegex(status, r"\b10\.0\b")
+        ndjson = self.client("list", "--where", "tags=prov", "--format", "ndjson").stdout
+        exported = json.loads(ndjson.splitlines()[0])
+        self.assertEqual(exported["spec.geometry.nodes_per_meter"], 10)
+        self.assertIn('"spec.geometry.nodes_per_meter":10,', ndjson)
+        self.assertEqual(exported["result_url"], row["result_url"])
 
     def test_5_friendly_message_when_nothing_listens(self):
         r = self.client("list", "--server", "http://127.0.0.1:9")

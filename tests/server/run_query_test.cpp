@@ -62,6 +62,8 @@ TEST(RunQuery, RefusesWithAReason) {
   EXPECT_NE(reason_of("outcome=a;").find("after a separator"), std::string::npos);
   EXPECT_NE(reason_of("  ").find("empty"), std::string::npos);
   EXPECT_NE(reason_of("tag>a").find("tag takes"), std::string::npos);
+  // the run table names the column `tags`: the same filter under that name
+  EXPECT_NE(reason_of("tags>a").find("tags takes = or != only"), std::string::npos);
   EXPECT_NE(reason_of("1=1").find("unknown field"), std::string::npos);
 }
 

@@ -82,6 +82,9 @@ class SearchTest(unittest.TestCase):
         self.assertNotIn(self.fe_id, self.ids_of(where="method!=fe"))
         self.assertEqual(self.ids_of(where="tag=paper"), {self.ids[1e-4], self.ids[5e-5]})
         self.assertNotIn(self.ids[1e-4], self.ids_of(where="tag!=mid"))
+        # `tags`, the run table's column name, filters as `tag` does
+        self.assertEqual(self.ids_of(where="tags=paper"), self.ids_of(where="tag=paper"))
+        self.assertEqual(self.ids_of(where="tags!=mid"), self.ids_of(where="tag!=mid"))
         # Metrics: compare with what each job reports.
         arrests = {i: j["metrics"]["arrest_position"] for i, j in self.jobs.items()
                    if j["metrics"] and j["metrics"]["arrest_position"] is not None}
@@ -240,7 +243,7 @@ class XdmfRouteTest(unittest.TestCase):
             self.assertTrue(r.headers["Content-Type"].startswith("application/xml"))
             self.assertIn(f'filename="{job_id}.xdmf"', r.headers["Content-Disposition"])
             root = ET.fromstring(r.text)
-            items = [i.text for i in root.iter("DataItem")]
+            items = [i.text for i in root.iter("DataItem") if i.get("Format") == "HDF"]
             self.assertIn(f"{job_id}.h5:/interface/slip_velocity", items)
             self.assertTrue(all(i.startswith(f"{job_id}.h5:/interface/") for i in items), items)
             self.assertEqual(server.get(f"{JOBS}/{'0' * 32}/result.xdmf").status_code, 404)

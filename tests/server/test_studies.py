@@ -157,10 +157,17 @@ class Studies(unittest.TestCase):
         r = self.create({"name": "search", "base": base(),
                          "convergence": {"search": {"from": 1e-4, "factor": 2}, "n_d": [5, 10]}})
         created = r.json()
-        self.assertEqual(sorted(run["L"] for run in created["runs"]), [1e-4, 1e-4])
+        own = [run for run in created["runs"] if "regime" not in run]
+        self.assertEqual(sorted(run["L"] for run in own), [1e-4, 1e-4])
+        # The tiny scene is on the rigid plane with mu = 0.75 < 1: plain Coulomb is well-posed,
+        # and its first two meshes run beside the L (docs/studies-api.md "L search").
+        coulomb = [run for run in created["runs"] if run.get("regime") == "coulomb"]
+        self.assertEqual(sorted(run["n_d"] for run in coulomb), [5, 10])
+        self.assertTrue(created["request"]["convergence"]["search"]["coulomb"])
         study = wait_finished(self.server, created["id"])
         search = study["search"]
         self.assertEqual(search["state"], "mesh_cap", search)
+        self.assertIn("status", search["coulomb"])
         self.assertEqual(search["searched_L"], [1e-4, 5e-5])
         self.assertEqual(sorted({run["L"] for run in study["runs"]}), [5e-5, 1e-4])
         self.assertIn("stopped at the mesh cap", search["reason"])

@@ -72,7 +72,10 @@ class SubmitForm(BrowserCase):
             self.wait(lambda d: self.js("return document.getElementById('group_fe').hidden") == (method != "fe"))
             for pointer, sub in fields.items():
                 hidden = self.js("return document.querySelector(`[data-field='${arguments[0]}']`).hidden", pointer)
-                self.assertEqual(hidden, method not in sub["x-methods"], f"{pointer} under {method}")
+                when = sub.get("x-when")  # with the defaults: the law prakash_clifton, ...
+                unused = when is not None and fields[when["pointer"]]["default"] not in when["values"]
+                self.assertEqual(hidden, method not in sub["x-methods"] or unused,
+                                 f"{pointer} under {method}")
         # A range error of the server beside its field (threads: 0 .. 256).
         box = self.css("#f_threads")[0]
         box.clear()
@@ -84,6 +87,81 @@ class SubmitForm(BrowserCase):
         self.assertIn("invalid", box.get_attribute("class"))
         self.assertEqual(" ".join(self.texts("[data-field='/material/poisson_ratio'] > .ferr")).strip(), "")
         self.assert_no_console_errors("submit (422)", expected=(" 422 ",))
+
+    def visible(self, pointer):
+        return self.js("const f = document.querySelector(`[data-field='${arguments[0]}']`);"
+                       "return !!f && !f.closest('[hidden]')", pointer)
+
+    def choose(self, pointer, value):
+        Select(self.css(f"[data-field='{pointer}'] select")[0]).select_by_value(json.dumps(value))
+
+    def test_fields_follow_the_choices_they_depend_on(self):
+        """x-order and x-when of the schema: a choice comes before the fields it chooses, and
+        a field shows only with the choice that uses it (mu_s with slip_weakening); what is
+        hidden is not sent; no field sticks out of its group."""
+        schema = self.server.get("/api/v1/schema/job.json").json()
+        self.assertEqual(schema["properties"]["friction"]["x-order"][:2], ["law", "regularization"])
+        self.open_form()
+        order = self.js("return [...document.querySelectorAll('#group_friction [data-field]')]"
+                        ".map(f => f.dataset.field)")
+        self.assertEqual(order, [f"/friction/{n}" for n in schema["properties"]["friction"]["x-order"]])
+        nucleation = self.js("return [...document.querySelectorAll('#group_nucleation [data-field]')]"
+                             ".map(f => f.dataset.field)")
+        self.assertEqual(nucleation[:2], ["/nucleation/enabled", "/nucleation/type"])
+        # The paper's law: mu, L and v_star; none of slip weakening's, no regularisation choice.
+        for pointer in ("/friction/mu", "/friction/L", "/friction/v_star"):
+            self.assertTrue(self.visible(pointer), pointer)
+        for pointer in ("/friction/mu_s", "/friction/mu_d", "/friction/D_c", "/friction/t_star",
+                        "/friction/regularization", "/nucleation/x1_min", "/lower/density"):
+            self.assertFalse(self.visible(pointer), pointer)
+        self.choose("/friction/law", "slip_weakening")
+        self.wait(lambda d: self.visible("/friction/mu_s"), message="mu_s with slip_weakening")
+        self.assertTrue(self.visible("/friction/D_c") and self.visible("/friction/regularization"))
+        self.assertFalse(self.visible("/friction/mu"))
+        self.assertFalse(self.visible("/friction/t_star"))
+        self.choose("/friction/regularization", "time_scale")
+        self.wait(lambda d: self.visible("/friction/t_star"), message="t_star with time_scale")
+        self.choose("/nucleation/type", "overstressed_patch")
+        self.wait(lambda d: self.visible("/nucleation/x1_min"))
+        self.assertFalse(self.visible("/nucleation/a"))
+        self.choose("/lower/solid", "elastic")
+        self.wait(lambda d: self.visible("/lower/density"))
+        # Back to the paper's law: its regularisation choice is hidden, and so is t_star.
+        self.choose("/friction/law", "prakash_clifton")
+        self.wait(lambda d: not self.visible("/friction/t_star"))
+        self.choose("/friction/law", "slip_weakening")
+        self.wait(lambda d: self.visible("/friction/t_star"))
+        # No input or table sticks out of its group (a grid cell as wide as its column).
+        outside = self.js(
+            "return [...document.querySelectorAll('#job-fields fieldset:not([hidden])')].flatMap(fs => {"
+            " const r = fs.getBoundingClientRect();"
+            " return [...fs.querySelectorAll('input, select, table')].filter(i => i.offsetParent)"
+            "  .filter(i => { const b = i.getBoundingClientRect(); return b.right > r.right + 1; })"
+            "  .map(i => i.id || i.tagName); })")
+        self.assertEqual(outside, [])
+        self.assertIn("wide", self.css("#group_profiles")[0].get_attribute("class"))
+        # A slip-weakening BI job from the form: what is shown is sent, and the server takes it.
+        self.choose("/method", "spectral_bi")
+        self.choose("/nucleation/type", "ellipse")
+        self.choose("/lower/solid", "rigid")
+        self.choose("/friction/regularization", "none")
+        for pointer, value in (("/friction/mu_s", "0.7"), ("/friction/D_c", "0.002"),
+                               ("/time/duration", "2")):
+            box = self.css(f"[data-field='{pointer}'] input")[0]
+            box.clear()
+            box.send_keys(value)
+        self.js("window.__sent = []; const f = window.fetch; window.fetch = (u, o) => {"
+                " if (o && o.method === 'POST') window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
+        self.css("#job-submit")[0].click()
+        self.wait(lambda d: "#/jobs/" in d.current_url, message="the job page opens")
+        sent = self.js("return window.__sent")[0]
+        self.assertEqual(sent["friction"], {"law": "slip_weakening", "mu_s": 0.7, "D_c": 0.002})
+        self.assertNotIn("lower", sent)
+        self.assertNotIn("nucleation", sent)
+        job = self.server.get(f"/api/v1/jobs/{self.driver.current_url.rsplit('/', 1)[1]}").json()
+        self.assertEqual((job["spec"]["friction"]["law"], job["spec"]["friction"]["mu_s"]),
+                         ("slip_weakening", 0.7))
+        self.assert_no_console_errors("submit (choices)")
 
     def test_presets_fill_the_form_and_only_changes_are_sent(self):
         # The server's presets (GET /api/v1/presets): the scene presets and examples/.

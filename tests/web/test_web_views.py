@@ -172,10 +172,19 @@ class WebViews(BrowserCase):
         text = self.js("return document.getElementById('view').innerText")
         for bad in ("null", "stable —", "height", "undefined", "NaN"):
             self.assertNotIn(bad, text)
+        self.assertRegex(cost, r"dx = [0-9.e-]+ m, nx = ")  # lengths with their unit
+        # The result file and its XDMF sidecar, which names the HDF5 file's download name.
+        job_id = self.bi_run["id"]
+        self.assertEqual(self.css("#download")[0].get_attribute("download"), f"{job_id}.h5")
+        xdmf = self.css("#download-xdmf")[0]
+        self.assertEqual(xdmf.get_attribute("download"), f"{job_id}.xdmf")
+        sidecar = self.server.get(xdmf.get_attribute("href").replace(self.server.base, ""))
+        self.assertEqual(sidecar.status_code, 200)
+        self.assertIn(f">{job_id}.h5:/interface/slip_velocity<", sidecar.text)
         # The FE run of the same scene does have a stable step and a height.
         self.open(f"/#/jobs/{self.fe_run['id']}")
         self.wait(lambda d: "stable" in " ".join(self.texts(".cols table.kv")))
-        self.assertIn("height = ", " ".join(self.texts(".cols table.kv")))
+        self.assertRegex(" ".join(self.texts(".cols table.kv")), r"height = [0-9.]+ m")
 
     def test_404_pages_have_no_empty_boxes(self):
         for path, what in (("/#/jobs/0123456789abcdef0123456789abcdef", "No job"),
@@ -253,8 +262,32 @@ class WebViews(BrowserCase):
             self.assertEqual(row[0], "agree" if step["agree"] else "differ")
         lc = self.texts("#lc-value")[0]
         self.assertTrue(lc.endswith(" m") and "not determined" not in lc, lc)
+        # Plain Coulomb beside the L (the paper scene is well-posed under it): one row per L.
+        coulomb = search["coulomb"]
+        self.assertIn(coulomb["status"], self.texts("#search-coulomb p")[0])
+        self.assertEqual(len(self.css("#search-coulomb tbody tr")), len(coulomb["steps"]))
         self.shot("study-l-search")
         self.assert_no_console_errors("study with an L search")
+
+    def test_accuracy_study_shows_the_answer_and_its_meshes(self):
+        # The paper scene's arrest position within 0.5 % (docs/studies-api.md "Accuracy target").
+        r = self.server.post("/api/v1/studies", json={
+            "name": "arrest 0.5 %", "accuracy": {"metric": "arrest_position", "tolerance": 0.005}})
+        self.assertEqual(r.status_code, 201, r.text)
+        study = wait_study(self.server, r.json()["id"], timeout=300)
+        answer = study["accuracy"]
+        self.assertEqual(answer["state"], "met", answer)
+        self.open(f"/#/studies/{study['id']}")
+        self.wait(lambda d: self.chart_ready("#fig-accuracy"), message="the accuracy chart")
+        self.assertEqual(self.texts("#accuracy-state"), ["target met"])
+        self.assertIn(f"± {answer['error']:g}", self.texts("#accuracy-answer")[0])
+        self.assertEqual(len(self.css("#accuracy-steps tbody tr")), len(answer["steps"]))
+        trace = self.chart_data("#fig-accuracy")[0]
+        self.assertEqual(trace["x"], [s["n_d"] for s in answer["steps"]])
+        self.assertEqual(trace["y"], [s["value"] for s in answer["steps"]])
+        self.assertEqual(self.texts("#lc-value"), [])  # one L: no critical length on this page
+        self.shot("study-accuracy")
+        self.assert_no_console_errors("accuracy study")
 
     def test_speed_accuracy_joins_runs_only_along_refinements(self):
         sa = self.server.get(f"/api/v1/studies/{self.study_id}/speed-accuracy").json()

@@ -12,10 +12,12 @@ import { keepCard } from './job_keep.js';
 
 const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
 
-// "nx = 800, ny = 101": the mesh entries a method has (the BI method has no height).
+// "dx = 0.025 m, height = 20 m, nx = 800, ny = 101": the mesh entries a method has (the BI
+// method has no height), lengths with their unit.
+const MESH_UNITS = { dx: ' m', height: ' m' };
 function meshText(mesh) {
   const known = Object.entries(mesh || {}).filter(([, v]) => v !== null && v !== undefined);
-  return known.length ? known.map(([k, v]) => `${k} = ${typeof v === 'number' && !Number.isInteger(v) ? fmt(v, 6) : v}`).join(', ') : '—';
+  return known.length ? known.map(([k, v]) => `${k} = ${typeof v === 'number' && !Number.isInteger(v) ? fmt(v, 6) : v}${MESH_UNITS[k] || ''}`).join(', ') : '—';
 }
 
 export async function jobPage(view, page, id) {
@@ -45,6 +47,7 @@ export async function jobPage(view, page, id) {
       job.error ? h('p', { class: 'error', text: job.error }) : null,
       h('div', { class: 'actions' },
         job.result ? h('a', { class: 'button', id: 'download', href: job.result.url, download: `${job.id}.h5`, text: `Download HDF5 (${fmtBytes(job.result.size)})` }) : null,
+        job.result ? h('a', { class: 'button', id: 'download-xdmf', href: `/api/v1/jobs/${job.id}/result.xdmf`, download: `${job.id}.xdmf`, text: 'XDMF for ParaView', title: `The time series of the interface for ParaView or VisIt: save it beside ${job.id}.h5 (it reads the data from that file)` }) : null,
         active ? h('button', { id: 'cancel', onclick: () => cancelJob(job.id, out), text: 'Cancel' }) : null, out));
   };
 

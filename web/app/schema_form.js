@@ -6,7 +6,9 @@
 //   a small table of rows (add, remove);  object -> a group (fieldset), nested as deep as the
 //   schema;  anything else -> a JSON box.
 // Units (x-unit), descriptions and ranges are shown with each field; x-methods says for which
-// methods a field is shown. Every input carries data-pointer (its JSON pointer), so that the
+// methods a field is shown, x-when for which choice of another field ({pointer, values}: mu_s
+// only with the law slip_weakening); x-order gives an object's properties in the reader's order
+// (law before its parameters). Every input carries data-pointer (its JSON pointer), so that the
 // server's 422 errors find their field.
 import { h, fmt } from './dom.js';
 
@@ -140,6 +142,14 @@ function help(schema) {
   };
 }
 
+// An object schema's properties in its x-order (the server's reader order), the others after.
+function orderedProperties(schema) {
+  const order = schema['x-order'] || [];
+  const rank = (name) => (order.includes(name) ? order.indexOf(name) : order.length);
+  return Object.entries(schema.properties || {}).map((e, i) => [...e, i])
+    .sort((a, b) => rank(a[0]) - rank(b[0]) || a[2] - b[2]).map(([name, sub]) => [name, sub]);
+}
+
 function labelOf(name, schema) {
   return `${name}${schema['x-unit'] ? ` [${schema['x-unit']}]` : ''}`;
 }
@@ -151,26 +161,39 @@ export class SchemaForm {
   // follow in the schema's order).
   constructor(schema, { skip = [], order = [] } = {}) {
     this.schema = schema;
-    this.fields = []; // {pointer, schema, element, read, write, methods}
+    this.fields = []; // {pointer, schema, element, read, write, methods, when}
     this.groups = []; // {element, fields: [field...]} for visibility
+    this.method = null;
+    this.base = {};
     this.element = h('div', { class: 'fieldsets' });
     const loose = h('fieldset', { id: 'group-run' }, h('legend', { text: 'run' }));
     const looseFields = [];
+    const wide = []; // arrays of objects: a table needs the page's width
     const rank = (name) => (order.includes(name) ? order.indexOf(name) : order.length);
-    const entries = Object.entries(schema.properties || {}).map((e, i) => [...e, i]).sort((a, b) => rank(a[0]) - rank(b[0]) || a[2] - b[2]);
+    const entries = orderedProperties(schema).map((e, i) => [...e, i]).sort((a, b) => rank(a[0]) - rank(b[0]) || a[2] - b[2]);
     for (const [name, sub] of entries) {
       if (skip.includes(name)) continue;
       if (kindOf(sub) === 'object') this.element.append(this.group(`/${name}`, name, sub));
-      else { loose.append(this.field(`/${name}`, name, sub, looseFields)); }
+      else if (kindOf(sub) === 'rows') {
+        const fs = h('fieldset', { id: `group${idOf(`/${name}`).slice(1)}`, class: 'wide' }, h('legend', { text: name, title: plainDescription(sub) }));
+        const fields = [];
+        fs.append(this.field(`/${name}`, name, sub, fields));
+        this.groups.push({ element: fs, fields });
+        wide.push(fs);
+      } else { loose.append(this.field(`/${name}`, name, sub, looseFields)); }
     }
+    this.element.append(...wide);
     if (looseFields.length) { this.element.prepend(loose); this.groups.push({ element: loose, fields: looseFields }); }
+    // A choice that other fields depend on (x-when) shows or hides them when it changes.
+    const selectors = new Set(this.fields.map((f) => f.when?.pointer).filter(Boolean));
+    for (const f of this.fields) if (selectors.has(f.pointer)) f.element.addEventListener('change', () => this.refresh());
   }
 
   // A fieldset for an object schema, nested objects as nested fieldsets.
   group(pointer, name, schema, parentFields = null) {
     const fs = h('fieldset', { id: `group${idOf(pointer).slice(1)}` }, h('legend', { text: name, title: schema.description || '' }));
     const fields = [];
-    for (const [key, sub] of Object.entries(schema.properties || {})) {
+    for (const [key, sub] of orderedProperties(schema)) {
       const p = `${pointer}/${key}`;
       if (kindOf(sub) === 'object') fs.append(this.group(p, key, sub, fields));
       else fs.append(this.field(p, key, sub, fields));
@@ -184,7 +207,7 @@ export class SchemaForm {
   // One field: its label (name and unit), input and help; registered for reading.
   field(pointer, name, schema, groupFields) {
     const kind = kindOf(schema);
-    const record = { pointer, schema, kind, methods: schema['x-methods'] || null };
+    const record = { pointer, schema, kind, methods: schema['x-methods'] || null, when: schema['x-when'] || null };
     let control;
     if (kind === 'rows') {
       const rows = new RowEditor(pointer, schema);
@@ -210,7 +233,27 @@ export class SchemaForm {
 
   // Shows the fields of `method` (x-methods), hides the others and the groups left empty.
   showMethod(method) {
-    for (const f of this.fields) f.element.hidden = !!f.methods && !f.methods.includes(method);
+    this.method = method;
+    this.refresh();
+  }
+
+  // The value of the choice at `pointer` for x-when: what it holds while shown, else what the
+  // server takes without it (the base spec's, or the schema's default).
+  choice(pointer) {
+    const f = this.fields.find((g) => g.pointer === pointer);
+    if (!f) return valueAt(this.base, pointer);
+    if (!f.element.hidden) return f.read();
+    return valueAt(this.base, pointer) ?? f.schema.default;
+  }
+
+  // Shows a field when the method uses it (x-methods) and, with x-when, when its choosing
+  // field holds one of its values; hides the groups left empty. Fields come in order, and a
+  // choosing field before the fields it chooses (law before mu_s), so one pass settles all.
+  refresh() {
+    for (const f of this.fields) {
+      const byMethod = !f.methods || this.method === null || f.methods.includes(this.method);
+      f.element.hidden = !byMethod || (!!f.when && !f.when.values.includes(this.choice(f.when.pointer)));
+    }
     for (const g of this.groups) {
       const own = g.element.dataset.methods;
       g.element.hidden = (own && !own.split(' ').includes(method)) || g.fields.every((f) => f.element.hidden);
@@ -220,6 +263,7 @@ export class SchemaForm {
   // Writes a spec into the form: `base` (the defaults) overlaid with `spec`. Returns the
   // pointers of `spec` that no field takes.
   write(base, spec = {}) {
+    this.base = base;
     for (const f of this.fields) {
       const fallback = valueAt(base, f.pointer) ?? f.schema.default;
       f.setDefault(fallback);
@@ -251,7 +295,7 @@ class RowEditor {
   constructor(pointer, schema) {
     this.pointer = pointer;
     this.schema = schema;
-    this.columns = Object.entries(schema.items.properties || {});
+    this.columns = orderedProperties(schema.items || {}); // the reader's order (x-order)
     this.values = [];
     this.body = h('tbody');
     const addButton = h('button', { type: 'button', class: 'small', id: `${idOf(pointer)}_add`, text: 'add a row', onclick: () => { this.sync(); this.values.push(this.newItem()); this.render(); } });

@@ -6,6 +6,7 @@ import { get, getJSON, post } from './api.js';
 import { convergenceGrid, mapIsFinal, statusBadge } from './convergence_grid.js';
 import { METRICS, drawSpeedChart } from './speed_chart.js';
 import { searchSection } from './study_search.js';
+import { accuracySection } from './study_accuracy.js';
 
 export function studiesPage(view, page) {
   const table = h('table', { class: 'grid', id: 'studies-table' });
@@ -61,9 +62,12 @@ export async function studyPage(view, page, id) {
     const out = h('span');
     fill(head, h('h1', {}, study.name || `study ${shortId(study.id)}`, ' ', badge(study.status)),
       h('div', { class: 'sub muted' }, `${study.kind} study · ${study.method === 'spectral_bi' ? 'spectral BI' : 'FE'} · id `, h('code', { text: study.id })));
-    fill(summary, h('h2', { text: 'Progress and L_c' }),
+    fill(summary, h('h2', { text: study.kind === 'accuracy' ? 'Progress and answer' : 'Progress and L_c' }),
       progressBar(p.fraction, `${p.done ?? 0} of ${p.total ?? 0} runs final${study.status === 'running' ? ' (a convergence study adds finer meshes as it goes)' : ''}`),
-      kvTable([
+      kvTable(study.kind === 'accuracy' ? [
+        ['created / finished', `${fmtTime(study.created_at)} / ${fmtTime(study.finished_at)}`],
+        ['submitted by', study.submitted_by],
+      ] : [
         ['L_c', h('strong', { id: 'lc-value', text: study.L_c != null ? `${fmt(study.L_c)} m` : (study.status === 'running' ? 'not determined yet' : 'not determined (see the reason)') })],
         ['reason', h('span', { id: 'lc-reason', text: cl.reason || '—' })],
         ['next larger L', cl.next_larger_L != null ? `${fmt(cl.next_larger_L)} m` : '—'],
@@ -74,10 +78,13 @@ export async function studyPage(view, page, id) {
       study.status === 'running' ? h('div', { class: 'actions' }, h('button', { onclick: async () => {
         try { await post(`/api/v1/studies/${study.id}/cancel`); out.textContent = 'cancelled'; out.className = 'ok'; } catch (e) { out.textContent = e.message; out.className = 'error'; }
       }, text: 'Cancel study' }), out) : null,
-      searchSection(study.search));
+      searchSection(study.search),
+      accuracySection(study.accuracy, study.id));
     fill(mapCard, h('h2', { text: 'Convergence map (this study)' }),
       h('p', { class: 'muted', text: 'Each cell is a run at (L, n_d): converged when it agrees with the next finer mesh (propagation distance within 0.5 %, arrival time at the probe within 0.1 %). Cells fill in as runs finish; hover a cell for the reason.' }),
-      convergenceGrid(study.convergence_map, study.runs, 'study-cmap', { tolerances: cl.tolerances, finished: study.status !== 'running' }));
+      // The map of the study's own L (an L search's plain-Coulomb runs have their own row of
+      // the refinement plan; a failure-regimes study's other regimes their own sections).
+      convergenceGrid(study.convergence_map, (study.runs || []).filter((r) => !r.regime || r.regime === 'regularised'), 'study-cmap', { tolerances: cl.tolerances, finished: study.status !== 'running' }));
     if (study.refinement && Object.keys(study.refinement).length) {
       mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [r.regime === 'coulomb' ? 'plain Coulomb' : `L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
     }
@@ -149,7 +156,7 @@ function runsTable(runs, finished) {
   const b = h('tbody');
   for (const r of runs.slice().sort((a, c) => c.L - a.L || a.n_d - c.n_d)) {
     b.append(h('tr', {},
-      h('td', { class: 'num', text: fmt(r.L) }), h('td', { class: 'num', text: fmt(r.n_d) }),
+      h('td', { class: 'num', text: r.regime ? `${fmt(r.L)} (${r.regime === 'coulomb' ? 'plain Coulomb: L unused' : r.regime})` : fmt(r.L) }), h('td', { class: 'num', text: fmt(r.n_d) }),
       h('td', {}, link(`#/jobs/${r.job_id}`, shortId(r.job_id)), ' ', badge(r.job_status)),
       h('td', { text: r.outcome || '—' }),
       h('td', {}, r.convergence ? statusBadge(r.convergence, finished) : '—'),

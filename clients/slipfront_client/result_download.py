@@ -3,6 +3,7 @@
 
 import hashlib
 import os
+from xml.sax.saxutils import escape as xml_escape
 
 from .api import API
 from .errors import ServerError
@@ -78,3 +79,15 @@ def download_result(api, job_id, output, log=None):
                 f"{size} bytes (sha256 {sha}); " + ("retrying from scratch" if attempt == 0 else "giving up"))
         os.remove(part)
     raise ServerError(f"download of job {job_id} does not match its sha256 {sha}")
+
+
+def write_xdmf(api, job_id, h5_path):
+    """Writes the XDMF sidecar of job `job_id` beside its downloaded result `h5_path`, as
+    H5_STEM.xdmf, pointing at the file by the name it was saved under. Returns its path."""
+    xdmf = os.path.splitext(h5_path)[0] + ".xdmf"
+    text = api.result_xdmf(job_id)
+    # The server names the file ID.h5 (its download name); the sidecar must name this one.
+    text = text.replace(f">{job_id}.h5:", f">{xml_escape(os.path.basename(h5_path))}:")
+    with open(xdmf, "w", encoding="utf-8") as f:
+        f.write(text)
+    return xdmf
