@@ -2,6 +2,7 @@
 
 #include "api/interface_reader.hpp"
 #include "api/material_reader.hpp"
+#include "api/run_annotations.hpp" // max_tags, max_tag_length
 
 namespace slipfront::api {
 
@@ -9,8 +10,6 @@ namespace {
 
 constexpr int max_threads = 256;
 constexpr std::size_t max_name_length = 256;
-constexpr std::size_t max_tags = 32;
-constexpr std::size_t max_tag_length = 64;
 constexpr std::size_t max_stations = 64;
 
 // "height" is a number > 0 or the string "auto" (see resolved_height in solver/simulation.hpp),

@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace slipfront::api {
@@ -78,7 +79,7 @@ nlohmann::json counterpart_document(const nlohmann::json& job);
 std::string counterpart_scene_hash(const nlohmann::json& canonical);
 
 // SHA-256 of arbitrary bytes / of a file's content (lower-case hex).
-std::string sha256_hex(const std::string& bytes);
+std::string sha256_hex(std::string_view bytes);
 std::string sha256_file(const std::string& path);
 // Of what is left to read from an open descriptor (to its end).
 std::string sha256_descriptor(int fd);

@@ -49,7 +49,7 @@ std::string final_hex(EVP_MD_CTX* context) {
 
 } // namespace
 
-std::string sha256_hex(const std::string& bytes) {
+std::string sha256_hex(std::string_view bytes) {
   DigestContext context = new_sha256_context();
   update(context.get(), bytes.data(), bytes.size());
   return final_hex(context.get());

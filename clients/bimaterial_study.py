@@ -48,7 +48,14 @@ def parse_args(argv):
     p.add_argument("--format", default="png", help="figure formats, e.g. png,pdf (default png)")
     p.add_argument("--fresh", action="store_true", help="recompute runs the server already has")
     p.add_argument("--timeout", type=float, help="give up waiting after this many seconds")
+    p.add_argument("--study-id", help="report on this existing BI study instead of creating one "
+                   "(a new build's runs are not reused: the code version is part of the reuse "
+                   "key)")
+    p.add_argument("--coulomb-ids", help="with --study-id: the Coulomb jobs (comma-separated), in "
+                   "the order of the ladder")
     args = p.parse_args(argv)
+    if bool(args.study_id) != bool(args.coulomb_ids):
+        p.error("--study-id and --coulomb-ids go together")
     if args.quick:
         args.L, args.ladder, args.coulomb = bm.QUICK_L, bm.QUICK_LADDER, bm.QUICK_COULOMB
         args.out = args.out or os.path.join(tempfile.mkdtemp(prefix="slipfront-bistudy-"),
@@ -77,10 +84,16 @@ def main(argv=None):
             log(f"server {url} (pid {server.proc.pid}, data {data_dir}, niced)")
         api = Api(url, token=args.token, timeout=60)
         base = bm.bi_scene(api, args.quick)
-        study = api.create_study(bm.study_body(base, args.L, args.ladder, args.quick, args.fresh))
-        log(f"created study {study['id']}: {progress_line(study)}")
-        coulomb_ids = bm.submit_coulomb(api, base, args.coulomb, args.quick, args.fresh)
-        log(f"submitted Coulomb runs {coulomb_ids}")
+        if args.study_id:
+            study = api.study(args.study_id)
+            coulomb_ids = [i.strip() for i in args.coulomb_ids.split(",") if i.strip()]
+            log(f"reporting on study {study['id']} and Coulomb runs {coulomb_ids}")
+        else:
+            study = api.create_study(bm.study_body(base, args.L, args.ladder, args.quick,
+                                                   args.fresh))
+            log(f"created study {study['id']}: {progress_line(study)}")
+            coulomb_ids = bm.submit_coulomb(api, base, args.coulomb, args.quick, args.fresh)
+            log(f"submitted Coulomb runs {coulomb_ids}")
         study = wait_study(api, study["id"], args.timeout)
         coulomb = bm.wait_jobs(api, coulomb_ids, log, timeout=args.timeout)
         wall = time.time() - t_start

@@ -6,7 +6,7 @@
 #   bash scripts/fuzz.sh                                  # CI budget: 25 s per target
 #   FUZZ_SECONDS=3600 bash scripts/fuzz.sh job_parser     # a longer run of one target
 #   FUZZ_JOBS=2 FUZZ_SECONDS=1800 bash scripts/fuzz.sh    # two processes per target
-# Targets: job_parser study_request query_string byte_range length_fit_record.
+# Targets: job_parser study_request query_string byte_range length_fit_record tar_reader.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,7 +14,7 @@ seconds="${FUZZ_SECONDS:-25}"
 jobs="${FUZZ_JOBS:-1}"
 build="${FUZZ_BUILD_DIR:-build-fuzz}"
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(job_parser study_request query_string byte_range length_fit_record)
+[ ${#targets[@]} -eq 0 ] && targets=(job_parser study_request query_string byte_range length_fit_record tar_reader)
 
 CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSLIPFRONT_FUZZ=ON -DSLIPFRONT_NATIVE=OFF >&2
@@ -25,6 +25,7 @@ for t in "${targets[@]}"; do
     job_parser | study_request) dict=tests/fuzz/job.dict max_len=4096 ;;
     query_string | byte_range) dict=tests/fuzz/query.dict max_len=512 ;;
     length_fit_record) dict=tests/fuzz/record.dict max_len=8192 ;;
+    tar_reader) dict=tests/fuzz/tar.dict max_len=8192 ;;
     *) echo "fuzz: unknown target $t" >&2; exit 2 ;;
   esac
   work="$build/corpus/$t"

@@ -61,6 +61,7 @@ void ServerApp::listen() {
   if (aec) throw std::runtime_error("--host " + config_.host + ": " + aec.message());
   SessionLimits limits;
   limits.max_body_bytes = config_.max_body_bytes;
+  limits.max_import_bytes = config_.max_import_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
   limits.max_connections = connection_cap(config_.max_connections);
   read_pool_ = std::make_unique<net::thread_pool>(2);
@@ -157,6 +158,8 @@ void ServerApp::start() {
     stats_.record_storage_error(what);
   });
   add_job_routes(router_, *context_);
+  add_job_keep_routes(router_, *context_);
+  add_archive_routes(router_, *context_);
   add_result_routes(router_, *context_);
   add_station_routes(router_, *context_);
   add_ops_routes(router_, *context_);

@@ -121,6 +121,9 @@ const std::vector<ServerSetting>& server_settings() {
        set_max_result_bytes},
       {"max-body-bytes", "N", "larger request bodies get 413 (default 1 MiB)",
        number<std::uint64_t>(&ServerConfig::max_body_bytes)},
+      {"max-import-bytes", "N",
+       "larger run archives (POST /imports) get 413 (default 1 GiB, held in memory)",
+       number<std::uint64_t>(&ServerConfig::max_import_bytes, std::uint64_t{1} << 20)},
       {"max-unsent-bytes", "N",
        "answers built in memory and not yet read, over all connections (default 256 MiB, at "
        "least 1 MiB)",

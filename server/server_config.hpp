@@ -21,6 +21,8 @@ struct ServerConfig {
   double max_memory_bytes = 0.0;    // 0 = 3/4 of physical memory shared by the workers
   double max_result_bytes = 20.0e9; // a job whose result-file estimate is above is refused
   std::uint64_t max_body_bytes = 1 << 20;
+  // The body of POST /imports (a tar of runs, held in memory while it is checked).
+  std::uint64_t max_import_bytes = std::uint64_t{1} << 30;
   // Answers built in memory and not yet read by their clients, over all connections.
   std::uint64_t max_unsent_bytes = std::uint64_t{256} << 20;
   // Run-table exports (GET /jobs?format=csv|ndjson) at once; more are answered 503.

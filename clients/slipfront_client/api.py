@@ -91,7 +91,7 @@ class Api:
     # -- the one place that talks HTTP --------------------------------------------------
 
     def request(self, method, path, *, params=None, json_body=None, headers=None,
-                stream=False, ok=(200,), idempotent=None):
+                stream=False, ok=(200,), idempotent=None, data=None):
         """Send a request; return the response when its status is in `ok`.
 
         `idempotent` (default: GET/HEAD) says whether a connection failure may be retried
@@ -108,7 +108,7 @@ class Api:
             try:
                 response = self.session.request(
                     method, self.url(path), params=params, json=json_body, headers=headers,
-                    stream=stream, timeout=self.timeout)
+                    stream=stream, timeout=self.timeout, data=data)
             except requests.RequestException as e:
                 connect_failures += 1
                 if idempotent and not last and connect_failures <= self.connect_retries:
@@ -183,6 +183,40 @@ class Api:
         response = self.request("POST", f"{API}/jobs/{job_id}/cancel", ok=(200, 202),
                                 idempotent=True)
         return response.json()
+
+    # Keep, annotate, share (docs/server.md): the owner's changes after submission.
+
+    def annotate(self, job_id, tags=None, note=None):
+        """PATCH /jobs/{id}: new tags (a list) and/or a new note; the job as it is now."""
+        body = {k: v for k, v in (("tags", tags), ("note", note)) if v is not None}
+        return self.request("PATCH", f"{API}/jobs/{job_id}", json_body=body,
+                            idempotent=True).json()
+
+    def archive(self, job_id, archived=True):
+        action = "archive" if archived else "restore"
+        return self.request("POST", f"{API}/jobs/{job_id}/{action}", idempotent=True).json()
+
+    def delete(self, job_id):
+        """DELETE /jobs/{id}: {id, deleted, result_deleted}."""
+        return self.request("DELETE", f"{API}/jobs/{job_id}").json()
+
+    def export_archive(self, path, ids=None, filters=None):
+        """GET /exports (ids, or the filters of GET /jobs) streamed into the file `path`."""
+        params = {"ids": ",".join(ids)} if ids else dict(filters or {})
+        response = self.request("GET", f"{API}/exports", params=params, stream=True)
+        size = 0
+        with open(path, "wb") as f:
+            for chunk in response.iter_content(1 << 20):
+                f.write(chunk)
+                size += len(chunk)
+        return size
+
+    def import_archive(self, path):
+        """POST /imports with the tar file at `path`: {imported: [{id, original_id, url}]}."""
+        with open(path, "rb") as f:
+            data = f.read()
+        return self.request("POST", f"{API}/imports", data=data, ok=(201,),
+                            headers={"Content-Type": "application/x-tar"}).json()
 
     def list_jobs(self, filters=None, limit=None, page_size=100):
         """Yield jobs newest first, following the pagination cursor until `limit` jobs

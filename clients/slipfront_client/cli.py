@@ -3,8 +3,8 @@
 import argparse
 import sys
 
-from . import (__version__, commands_compare, commands_fit, commands_jobs, commands_plot,
-               commands_study, config)
+from . import (__version__, commands_compare, commands_fit, commands_jobs, commands_keep,
+               commands_plot, commands_study, config)
 from .api import Api
 from .errors import EXIT_INTERRUPTED, EXIT_SERVER, ClientError
 
@@ -60,8 +60,11 @@ def build_parser():
     parser.add_argument("--version", action="version",
                         version=f"slipfront-client {__version__}")
     sub = parser.add_subparsers(dest="command", required=True,
-                                metavar="submit|status|list|cancel|download|stations|fit-length|study|compare|plot")
+                                metavar="submit|status|list|cancel|download|stations|tag|note|"
+                                        "archive|restore|delete|export-runs|import-runs|"
+                                        "fit-length|study|compare|plot")
     commands_jobs.add_parsers(sub, common)
+    commands_keep.add_parsers(sub, common)
     commands_fit.add_parsers(sub, common)
     commands_study.add_parsers(sub, common)
     commands_study.add_accuracy_parser(sub, common)

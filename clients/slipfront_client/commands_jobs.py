@@ -72,6 +72,8 @@ def add_parsers(sub, common):
     p.add_argument("--outcome", choices=["arrested", "running_at_end", "no_rupture", "diverged"])
     p.add_argument("--submitted-by")
     p.add_argument("--spec-sha256")
+    p.add_argument("--archived", choices=["exclude", "include", "only"],
+                   help="archived runs: left out (exclude, the default), with the others, or only")
     p.add_argument("--L-min", type=float)
     p.add_argument("--L-max", type=float)
     p.add_argument("--n-d-min", type=float)
@@ -193,7 +195,7 @@ def cmd_list(args, ctx):
     filters = {"status": args.status, "tag": args.tag, "name": args.name, "outcome": args.outcome,
                "submitted_by": args.submitted_by, "spec_sha256": args.spec_sha256,
                "L_min": args.L_min, "L_max": args.L_max, "n_d_min": args.n_d_min,
-               "n_d_max": args.n_d_max}
+               "n_d_max": args.n_d_max, "archived": args.archived}
     fields = [f for f in (args.fields or "").split(",") if f]
     if fields:
         filters["fields"] = ",".join(fields)

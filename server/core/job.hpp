@@ -63,13 +63,16 @@ struct Job {
   std::string code_version;
   std::string host;
   ResultFile result;
-  std::string cached_from;  // id of the job whose result this one reuses
-  int attempts = 0;         // how many times a worker started it
-  std::string scene_hash;   // api::scene_hash of the spec: the convergence map it belongs to
-  std::string study_id;     // the study that submitted it; "" = none
-  std::string executor;     // "local" or "slurm" once started; "" = not yet
-  std::string slurm_job_id; // its SLURM job while it runs in SLURM (and after); "" = none
-  std::string slurm_state;  // last SLURM state seen, with the reason: "PENDING (Resources)"
+  std::string cached_from;      // id of the job whose result this one reuses
+  int attempts = 0;             // how many times a worker started it
+  std::string scene_hash;       // api::scene_hash of the spec: the convergence map it belongs to
+  std::string study_id;         // the study that submitted it; "" = none
+  std::string executor;         // "local" or "slurm" once started; "" = not yet
+  std::string slurm_job_id;     // its SLURM job while it runs in SLURM (and after); "" = none
+  std::string slurm_state;      // last SLURM state seen, with the reason: "PENDING (Resources)"
+  std::string note;             // free text its owner keeps with it (api/run_annotations.hpp)
+  std::string archived_at;      // ISO 8601 when archived (hidden from listings); "" = not archived
+  nlohmann::json imported_from; // null, or {"server", "id", "exported_at"} of an imported run
 };
 
 } // namespace slipfront::server

@@ -14,6 +14,9 @@
 
 namespace slipfront::server {
 
+// Archived runs (docs/server.md, "Keep, annotate, share"): listed or not.
+enum class ArchivedRuns { include, exclude, only };
+
 struct JobFilter {
   std::vector<JobStatus> statuses; // any of these (empty = all)
   std::string tag;                 // jobs carrying this tag
@@ -23,6 +26,7 @@ struct JobFilter {
   std::string spec_sha256;
   std::string scene_hash;
   std::string study_id;
+  ArchivedRuns archived = ArchivedRuns::include;        // GET /jobs: exclude unless ?archived=...
   std::optional<double> L_min, L_max, n_d_min, n_d_max; // inclusive ranges
   std::optional<std::int64_t> before_seq;               // cursor: jobs older than this
   std::vector<Condition> conditions;                    // `where` (server/core/run_query.hpp)

@@ -47,7 +47,10 @@ const std::vector<std::string>& job_columns() {
                                                    "study_id",
                                                    "executor",
                                                    "slurm_job_id",
-                                                   "slurm_state"};
+                                                   "slurm_state",
+                                                   "note",
+                                                   "archived_at",
+                                                   "imported_from"};
   return columns;
 }
 
@@ -107,6 +110,13 @@ const std::vector<std::pair<std::string, Binder>>& new_job_columns() {
       {"cached_from", optional_text(&Job::cached_from)},
       {"scene_hash", optional_text(&Job::scene_hash)},
       {"study_id", optional_text(&Job::study_id)},
+      {"note", text(&Job::note)},
+      {"archived_at", optional_text(&Job::archived_at)},
+      {"imported_from",
+       [](Statement& s, int i, const Job& j) {
+         s.bind(i, j.imported_from.is_null() ? std::nullopt
+                                             : std::optional<std::string>(j.imported_from.dump()));
+       }},
   };
   return columns;
 }
@@ -173,6 +183,9 @@ Job read_job(const Statement& s) {
   job.executor = s.text("executor");
   job.slurm_job_id = s.text("slurm_job_id");
   job.slurm_state = s.text("slurm_state");
+  job.note = s.text("note");
+  job.archived_at = s.text("archived_at");
+  job.imported_from = parse_stored_json(s.text("imported_from"), "provenance of job " + job.id);
   return job;
 }
 

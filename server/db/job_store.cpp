@@ -120,6 +120,32 @@ void JobStore::update_progress(const std::string& id, const JobProgress& p) {
       .run();
 }
 
+void JobStore::write_metrics(Database& db, const std::string& id, const RunRecord& r) {
+  const api::MetricsRow row = api::metrics_row(r.metrics); // the one place it is derived
+  auto m =
+      db.prepare("INSERT OR REPLACE INTO metrics (job_id, " + metrics_columns() +
+                 ") SELECT ?1, L, n_d, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14 "
+                 "FROM jobs WHERE id = ?1");
+  m.bind(1, id)
+      .bind(2, row.arrest_position)
+      .bind(3, row.propagation_distance)
+      .bind(4, row.arrival_time_at_probe)
+      .bind(5, row.max_rupture_speed)
+      .bind(6, row.mean_rupture_speed)
+      .bind(7, row.max_slip_velocity)
+      .bind(8, row.outcome)
+      .bind(9, row.energy_error)
+      .bind(10, row.wall_time_s.value_or(r.wall_time_s));
+  if (row.steps)
+    m.bind(11, *row.steps);
+  else
+    m.bind_null(11);
+  m.bind(12, row.dt)
+      .bind(13, r.metrics.dump())
+      .bind(14, r.front.is_null() ? std::nullopt : std::optional<std::string>(r.front.dump()))
+      .run();
+}
+
 bool JobStore::finish(const std::string& id, const RunRecord& r) {
   if (!is_final(r.status))
     throw std::invalid_argument(std::string("finish() of job ") + id + " with status " +
@@ -151,30 +177,7 @@ bool JobStore::finish(const std::string& id, const RunRecord& r) {
   s.bind(10, row.simulated_time);
   s.run();
   if (s.changes() != 1) return false;
-  if (!r.metrics.is_null()) {
-    auto m =
-        db->prepare("INSERT OR REPLACE INTO metrics (job_id, " + metrics_columns() +
-                    ") SELECT ?1, L, n_d, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14 "
-                    "FROM jobs WHERE id = ?1");
-    m.bind(1, id)
-        .bind(2, row.arrest_position)
-        .bind(3, row.propagation_distance)
-        .bind(4, row.arrival_time_at_probe)
-        .bind(5, row.max_rupture_speed)
-        .bind(6, row.mean_rupture_speed)
-        .bind(7, row.max_slip_velocity)
-        .bind(8, row.outcome)
-        .bind(9, row.energy_error)
-        .bind(10, row.wall_time_s.value_or(r.wall_time_s));
-    if (row.steps)
-      m.bind(11, *row.steps);
-    else
-      m.bind_null(11);
-    m.bind(12, row.dt)
-        .bind(13, r.metrics.dump())
-        .bind(14, r.front.is_null() ? std::nullopt : std::optional<std::string>(r.front.dump()))
-        .run();
-  }
+  if (!r.metrics.is_null()) write_metrics(*db, id, r);
   tx.commit();
   return true;
 }

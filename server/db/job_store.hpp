@@ -27,7 +27,7 @@ namespace slipfront::server {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 8;
+  static constexpr int schema_version = 9;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).
@@ -82,6 +82,24 @@ public:
   std::vector<MalformedRow> malformed_rows();
   std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
 
+  // What an owner keeps with a run after submission (job_store_keep.cpp, docs/server.md
+  // "Keep, annotate, share"). Each returns false for an unknown job.
+  bool annotate(const std::string& id, const std::optional<std::vector<std::string>>& tags,
+                const std::optional<std::string>& note);
+  // archived_at "" restores the run (listed again).
+  bool set_archived(const std::string& id, const std::string& archived_at);
+  struct Removal {
+    enum class Kind { removed, not_found, not_final, in_study } kind = Kind::not_found;
+    std::string study_id;        // in_study: a study that holds the run
+    std::string orphaned_result; // removed: its result path if no other job refers to it
+  };
+  // Deletes a finished job and its metrics row in one transaction. A run of a study is not
+  // deleted (the study keeps its runs); a queued or running one neither.
+  Removal remove(const std::string& id);
+  // Inserts a finished run from an archive (status, result and metrics as given) under its
+  // id; false if that id is taken.
+  bool insert_finished(const Job& job, const RunRecord& record);
+
   std::string path() const { return db_.path(); }
 
   // The connection, shared with the other tables of the database (server/db/study_store.hpp).
@@ -92,6 +110,8 @@ public:
 
 private:
   std::optional<Job> query_one(const std::string& where, const std::vector<std::string>& args);
+  // The metrics row of a finished run, from its record (finish(), insert_finished()).
+  static void write_metrics(Database& db, const std::string& id, const RunRecord& record);
 
   StoreDb db_;
 };

@@ -16,6 +16,7 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m6_search_indexes()},
       {migrations::m7_study_idempotency_keys()},
       {migrations::m8_accuracy_studies()},
+      {migrations::m9_run_annotations()},
   };
   return list;
 }

@@ -142,6 +142,8 @@ ListQuery list_query(const JobFilter& f) {
   auto equal = [&](const char* column, const std::string& value) {
     if (!value.empty()) where += std::string(" AND ") + column + " = " + params.add(value);
   };
+  if (f.archived == ArchivedRuns::exclude) where += " AND j.archived_at IS NULL";
+  if (f.archived == ArchivedRuns::only) where += " AND j.archived_at IS NOT NULL";
   equal("j.name", f.name);
   equal("m.outcome", f.outcome);
   equal("j.submitted_by", f.submitted_by);

@@ -1,10 +1,13 @@
 #include "server/http/http_session.hpp"
 
 #include "server/core/log.hpp"
+#include "server/http/api_prefix.hpp"
 #include "server/http/responses.hpp"
 
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
+
+#include <algorithm>
 
 namespace slipfront::server {
 
@@ -41,7 +44,10 @@ void HttpSession::run() {
 
 void HttpSession::read_header() {
   parser_.emplace();
-  parser_->body_limit(limits_.max_body_bytes);
+  // The parser checks a Content-Length against its limit with the header, before the path is
+  // known: the larger of the two limits here, the request's own in on_header().
+  body_limit_ = std::max(limits_.max_body_bytes, limits_.max_import_bytes);
+  parser_->body_limit(body_limit_);
   parser_->header_limit(16 * 1024);
   arm_read_deadline();
   http::async_read_header(stream_, buffer_, *parser_,
@@ -75,15 +81,23 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
     return close();
   }
   if (ec == http::error::body_limit)
-    return reject(http::status::payload_too_large, "the body is larger than the limit of " +
-                                                       std::to_string(limits_.max_body_bytes) +
-                                                       " bytes");
+    return reject(http::status::payload_too_large,
+                  "the body is larger than the limit of " + std::to_string(body_limit_) + " bytes");
   if (ec == http::error::header_limit)
     return reject(http::status::request_header_fields_too_large, "the headers are too large");
   if (ec) return reject(http::status::bad_request, "malformed request: " + ec.message());
   if (parser_->is_done()) return on_body({}, 0); // no body
 
   auto& req = parser_->get();
+  // A run archive (POST /imports) may be larger than a JSON body.
+  const std::string_view target(req.target().data(), req.target().size());
+  const bool import = req.method() == http::verb::post &&
+                      target.substr(0, target.find('?')) == api_prefix + "/imports";
+  body_limit_ = import ? limits_.max_import_bytes : limits_.max_body_bytes;
+  if (const auto length = parser_->content_length(); length && *length > body_limit_)
+    return reject(http::status::payload_too_large,
+                  "the body is larger than the limit of " + std::to_string(body_limit_) + " bytes");
+  parser_->body_limit(body_limit_); // a chunked body is counted against it as it arrives
   if (beast::iequals(req[http::field::expect], "100-continue")) {
     // curl waits for this before sending larger bodies.
     auto cont = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
@@ -109,9 +123,8 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
   if (ec == beast::error::timeout)
     return reject(http::status::request_timeout, "the request body was not received in time");
   if (ec == http::error::body_limit)
-    return reject(http::status::payload_too_large, "the body is larger than the limit of " +
-                                                       std::to_string(limits_.max_body_bytes) +
-                                                       " bytes");
+    return reject(http::status::payload_too_large,
+                  "the body is larger than the limit of " + std::to_string(body_limit_) + " bytes");
   if (ec == http::error::end_of_stream || ec == net::error::connection_reset ||
       ec == net::error::eof)
     return close();

@@ -40,6 +40,7 @@ private:
 
 struct SessionLimits {
   std::uint64_t max_body_bytes = 1 << 20;
+  std::uint64_t max_import_bytes = std::uint64_t{1} << 30; // POST <api>/imports (run archives)
   std::chrono::seconds request_timeout{30}; // to receive a whole request (and idle keep-alive)
   std::chrono::seconds write_timeout{600};  // to send a whole response (large result files)
   int max_connections = 256; // open at once; more are answered 503 and closed at once
@@ -84,6 +85,7 @@ private:
   const Router& router_;
   ServerStats& stats_;
   SessionLimits limits_;
+  std::uint64_t body_limit_ = 0; // of the request being read
   std::chrono::steady_clock::time_point started_;
   std::array<char, 8192> discard_{};
   std::size_t discarded_ = 0;

@@ -48,9 +48,9 @@ JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& q) {
   JobFilter& f = result.filter;
   std::vector<api::FieldError>& errors = result.errors;
   static const std::set<std::string> known = {
-      "status", "tag",        "name",     "outcome", "submitted_by", "spec_sha256",
-      "L_min",  "L_max",      "n_d_min",  "n_d_max", "limit",        "cursor",
-      "fields", "scene_hash", "study_id", "where",   "sort",         "format"};
+      "status",   "tag",     "name",    "outcome", "submitted_by", "spec_sha256", "L_min",
+      "L_max",    "n_d_min", "n_d_max", "limit",   "cursor",       "fields",      "scene_hash",
+      "study_id", "where",   "sort",    "format",  "archived"};
   for (const auto& [key, value] : q)
     if (!known.count(key)) errors.push_back({"/query/" + key, "unknown query parameter"});
   if (auto it = q.find("status"); it != q.end())
@@ -71,6 +71,17 @@ JobFilterQuery parse_job_filter(const std::map<std::string, std::string>& q) {
   text("spec_sha256", f.spec_sha256);
   text("scene_hash", f.scene_hash);
   text("study_id", f.study_id);
+  // Archived runs are left out of listings and exports unless asked for.
+  f.archived = ArchivedRuns::exclude;
+  if (auto it = q.find("archived"); it != q.end()) {
+    if (it->second == "include")
+      f.archived = ArchivedRuns::include;
+    else if (it->second == "only")
+      f.archived = ArchivedRuns::only;
+    else if (it->second != "exclude")
+      errors.push_back(
+          {"/query/archived", "must be exclude, include or only, got '" + it->second + "'"});
+  }
   auto number = [&](const char* key, std::optional<double>& out) {
     if (auto it = q.find(key); it != q.end()) {
       out = parse_finite_double(it->second);

@@ -51,6 +51,9 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["executor"] = text_or_null(job.executor);
   j["slurm_job_id"] = text_or_null(job.slurm_job_id);
   j["slurm_state"] = text_or_null(job.slurm_state);
+  j["note"] = job.note;
+  j["archived_at"] = text_or_null(job.archived_at);
+  j["imported_from"] = job.imported_from;
   j["links"] = {{"self", api_prefix + "/jobs/" + job.id},
                 {"metrics", api_prefix + "/jobs/" + job.id + "/metrics"},
                 {"front", api_prefix + "/jobs/" + job.id + "/front"},

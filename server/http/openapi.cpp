@@ -333,6 +333,10 @@ const std::map<std::string, std::string>& path_tags() {
       {"/api/v1/jobs", "jobs"},
       {"/api/v1/jobs/{id}", "jobs"},
       {"/api/v1/jobs/{id}/cancel", "jobs"},
+      {"/api/v1/jobs/{id}/archive", "jobs"},
+      {"/api/v1/jobs/{id}/restore", "jobs"},
+      {"/api/v1/exports", "jobs"},
+      {"/api/v1/imports", "jobs"},
       {"/api/v1/job-defaults", "jobs"},
       {"/api/v1/schema/job.json", "jobs"},
       {"/api/v1/jobs/{id}/result.h5", "results"},
@@ -385,6 +389,7 @@ nlohmann::json openapi_document() {
   doc["components"]["schemas"]["StudyRequest"]["properties"]["priority"] = priority_schema();
   for (auto& parameter : doc["paths"]["/api/v1/jobs"]["post"]["parameters"])
     if (parameter["name"] == "priority") parameter["schema"] = priority_schema();
+  add_keep_share_paths(doc); // openapi_keep.cpp
   const nlohmann::json unavailable = {{"$ref", "#/components/responses/Unavailable"}};
   const nlohmann::json unsupported = {
       {"description", "The body's Content-Type is not application/json (Accept names it)"},
@@ -395,7 +400,9 @@ nlohmann::json openapi_document() {
     for (auto& [method, operation] : operations.items()) {
       operation["tags"] = {path_tags().at(path)};
       if (!operation["responses"].contains("503")) operation["responses"]["503"] = unavailable;
-      if (operation.contains("requestBody")) operation["responses"]["415"] = unsupported;
+      if (operation.contains("requestBody") &&
+          operation["requestBody"]["content"].contains("application/json"))
+        operation["responses"]["415"] = unsupported;
     }
   }
   return doc;

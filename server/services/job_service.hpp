@@ -53,6 +53,20 @@ struct CancelResult {
   std::optional<Job> job;
 };
 
+// The answer to an owner's change to a run after submission (job_service_keep.cpp).
+struct KeepResult {
+  enum class Kind {
+    done,
+    not_found,
+    forbidden, // a token file is configured and the run is another user's
+    not_final, // delete: the run is queued or running (cancel it first)
+    in_study,  // delete: a study holds the run (study_id); archive it instead
+  } kind = Kind::not_found;
+  std::optional<Job> job; // done: the run as it is now (delete: as it was)
+  std::string study_id;
+  bool result_deleted = false; // delete: its result file went with it (no other run shares it)
+};
+
 struct ServiceOptions {
   double max_memory_bytes = 8.0e9;
   double max_result_bytes = 20.0e9; // result-file estimate above which a job is refused
@@ -93,6 +107,17 @@ public:
   CancelResult cancel(const std::string& id, const std::string& user);
   // The stored rupture front of a job (null json if none); nullopt for an unknown job.
   std::optional<nlohmann::json> front(const std::string& id) { return store_.front(id); }
+
+  // Owner-only changes after submission (docs/server.md "Keep, annotate, share").
+  KeepResult annotate(const std::string& id, const std::string& user,
+                      const std::optional<std::vector<std::string>>& tags,
+                      const std::optional<std::string>& note);
+  KeepResult set_archived(const std::string& id, const std::string& user, bool archived);
+  // Deletes a finished run; its result file too once no other run (a cache hit) refers to it.
+  KeepResult remove(const std::string& id, const std::string& user);
+  // Stores a finished run read from an archive (services/run_archive.hpp) whose result file
+  // is already in place; false if its id is taken. Serialised with submissions.
+  bool insert_finished(const Job& job, const RunRecord& record);
 
   ServiceLoad load() const;
   // The number of jobs in the database by status.

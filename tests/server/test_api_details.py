@@ -76,7 +76,7 @@ class ApiDetails(unittest.TestCase):
         unknown = "0" * 32
         cases = {
             JOBS: {"GET", "HEAD", "POST"},
-            f"{JOBS}/{unknown}": {"GET", "HEAD"},
+            f"{JOBS}/{unknown}": {"DELETE", "GET", "HEAD", "PATCH"},
             f"{JOBS}/{unknown}/cancel": {"POST"},
             STUDIES: {"GET", "HEAD", "POST"},
             f"{STUDIES}/{unknown}/cancel": {"POST"},

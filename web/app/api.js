@@ -49,12 +49,17 @@ export async function get(url) {
 }
 
 export async function post(url, payload) {
+  return send('POST', url, payload);
+}
+
+// A write (POST, PATCH, DELETE) with the token; the answer's JSON, or an ApiError.
+export async function send(method, url, payload) {
   const headers = { Accept: 'application/json' };
   if (payload !== undefined) headers['Content-Type'] = 'application/json';
   const t = token();
   if (t) headers.Authorization = `Bearer ${t}`;
   const res = await fetch(url, {
-    method: 'POST', headers, cache: 'no-store',
+    method, headers, cache: 'no-store',
     body: payload === undefined ? undefined : JSON.stringify(payload),
   });
   const body = await parse(res);

@@ -8,6 +8,7 @@ import { belowText } from './run_labels.js';
 import { drawStations, hasStations } from './job_stations.js';
 import { cancelJob, frictionText, jobNd } from './jobs.js';
 import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
+import { keepCard } from './job_keep.js';
 
 const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
 
@@ -24,6 +25,7 @@ export async function jobPage(view, page, id) {
   const live = h('section', { class: 'card', id: 'job-live' });
   const cols = h('div', { class: 'cols' });
   const figs = h('section', { class: 'card figures', id: 'job-figures' });
+  const keep = h('section', { class: 'card', id: 'job-keep' });
   let job = null;
   let drawn = false;
 
@@ -115,9 +117,12 @@ export async function jobPage(view, page, id) {
     if (!changed && job) return;
     const wasFinal = job && FINAL.has(job.status);
     job = body;
-    if (!head.isConnected) view.append(head, live, cols, figs); // only for a job that exists
+    if (!head.isConnected) view.append(head, live, keep, cols, figs); // only for a job that exists
     renderHead();
     renderLive();
+    // Drawn once (a refresh would wipe what is being typed), and again after each change.
+    const renderKeep = () => keepCard(keep, job, (updated) => { job = updated; renderHead(); renderKeep(); renderDetails(); }, () => { location.hash = '#/jobs'; });
+    if (!keep.hasChildNodes()) renderKeep();
     if (!wasFinal) await renderDetails();
     if (job.status === 'succeeded' && !drawn) {
       drawn = true;

@@ -3,7 +3,7 @@
 import { h, clear, fmt, fmtDuration, badge, progressBar, shortId } from './dom.js';
 import { getJSON, post, qs } from './api.js';
 
-const FIELDS = 'id,name,tags,method,spec,status,progress,metrics,wall_time_s,cached_from,submitted_by,created_at,study_id,error';
+const FIELDS = 'id,name,tags,method,spec,status,progress,metrics,wall_time_s,cached_from,submitted_by,created_at,study_id,error,archived_at';
 
 export function jobL(job) { return job.spec?.friction?.L ?? null; }
 export function jobNd(job) { return job.spec?.geometry?.nodes_per_meter ?? null; }
@@ -24,7 +24,7 @@ export function frictionText(spec) {
 }
 
 const COLUMNS = [
-  { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', { title: j.name || '' }, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },
+  { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', { title: j.name || '' }, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, j.archived_at ? h('span', { class: 'tag archived', title: `archived ${j.archived_at}`, text: 'archived' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },
   { key: 'method', label: 'Method', value: (j) => j.method || 'fe', cell: (j) => h('td', { text: j.method === 'spectral_bi' ? 'BI' : 'FE', title: j.method }) },
   { key: 'L', label: 'L [m]', num: true, value: jobL, cell: (j) => h('td', { class: 'num', text: fmt(jobL(j)) }) },
   { key: 'n_d', label: 'n_d [1/m]', num: true, value: jobNd, cell: (j) => h('td', { class: 'num', text: fmt(jobNd(j)) }) },
@@ -61,18 +61,19 @@ export async function cancelJob(id, out) {
 }
 
 export function jobsPage(view, page) {
-  const state = { sort: 'created', dir: -1, filter: '', status: '', jobs: [], picked: new Set() }; // picked: ids to compare
+  const state = { sort: 'created', dir: -1, filter: '', status: '', archived: false, jobs: [], picked: new Set() }; // picked: ids to compare
   const messages = new Map();
   const filter = h('input', { type: 'search', id: 'job-filter', placeholder: 'filter: name, tag, id, user…', size: 30 });
   const status = h('select', { id: 'job-status' },
     ['', 'queued', 'running', 'succeeded', 'failed', 'cancelled'].map((s) => h('option', { value: s, text: s || 'any status' })));
+  const archived = h('input', { type: 'checkbox', id: 'job-archived' });
   const counter = h('span', { class: 'muted' });
   const message = h('span', { id: 'jobs-message' });
   const table = h('table', { class: 'grid', id: 'jobs-table' });
   const compare = h('button', { id: 'compare-selected', onclick: () => { location.hash = `#/compare?ids=${[...state.picked].join(',')}`; } });
   view.append(
     h('div', { class: 'pagehead' }, h('h1', { text: 'Jobs' }), h('a', { class: 'button', href: '#/submit', text: 'Submit a job' })),
-    h('div', { class: 'toolbar' }, filter, status, counter, compare, message),
+    h('div', { class: 'toolbar' }, filter, status, h('label', {}, archived, ' show archived'), counter, compare, message),
     h('div', { class: 'tablewrap' }, table));
 
   const render = () => {
@@ -113,7 +114,7 @@ export function jobsPage(view, page) {
   };
 
   const load = async () => {
-    const { body, changed } = await getJSON(`/api/v1/jobs${qs({ limit: 500, fields: FIELDS, status: state.status })}`);
+    const { body, changed } = await getJSON(`/api/v1/jobs${qs({ limit: 500, fields: FIELDS, status: state.status, archived: state.archived ? 'include' : '' })}`);
     message.textContent = '';
     if (!changed && state.jobs.length) return;
     state.jobs = body.jobs || [];
@@ -121,6 +122,7 @@ export function jobsPage(view, page) {
   };
   filter.addEventListener('input', () => { state.filter = filter.value; render(); });
   status.addEventListener('change', () => { state.status = status.value; load().catch(showError); });
+  archived.addEventListener('change', () => { state.archived = archived.checked; load().catch(showError); });
   const showError = (e) => { message.textContent = `listing failed: ${e.message}`; message.className = 'error'; };
   render();
   load().catch(showError);

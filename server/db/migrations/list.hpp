@@ -16,5 +16,6 @@ const char* m5_slurm_executor();
 const char* m6_search_indexes();
 const char* m7_study_idempotency_keys();
 const char* m8_accuracy_studies();
+const char* m9_run_annotations();
 
 } // namespace slipfront::server::migrations

@@ -1,0 +1,156 @@
+// GET /exports (a set of finished runs as one tar file) and POST /imports (such a file
+// stored here): docs/server.md "Export and import", the format in server/http/run_archive.hpp.
+#include "server/core/file_descriptor.hpp"
+#include "server/core/job_id.hpp"
+#include "server/http/handlers.hpp"
+#include "server/http/job_filter_query.hpp"
+#include "server/http/range_file.hpp"
+#include "server/http/responses.hpp"
+#include "server/http/run_archive.hpp"
+
+#include <boost/beast/http/basic_file_body.hpp>
+
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <variant>
+
+namespace slipfront::server {
+
+namespace {
+
+using RangeFileBody = http::basic_file_body<RangeFile>;
+
+// The runs an export asks for: ?ids=a,b,... or the filters of GET /jobs (a search, a study,
+// a tag). Either the jobs or the refusal.
+std::variant<std::vector<Job>, Response> runs_to_export(ServerContext& ctx, RequestContext& rc) {
+  const auto& req = rc.request;
+  std::vector<Job> jobs;
+  if (auto it = rc.query.find("ids"); it != rc.query.end()) {
+    if (rc.query.size() != 1)
+      return problem_response(req, http::status::bad_request, "invalid query parameters",
+                              {{"/query/ids", "give ids alone, or the filters of GET /jobs"}});
+    std::vector<std::string> ids;
+    for (const auto& id : split_commas(it->second)) // each run once, in the order given
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+    if (ids.empty() || ids.size() > max_archive_runs)
+      return problem_response(req, http::status::bad_request, "invalid query parameters",
+                              {{"/query/ids", "must list 1 to " + std::to_string(max_archive_runs) +
+                                                  " job ids, separated by commas"}});
+    for (const auto& id : ids) {
+      auto job = is_valid_job_id(id) ? ctx.service.get(id) : std::nullopt;
+      if (!job)
+        return problem_response(req, http::status::not_found, "no job with id " + id,
+                                {{"/query/ids", "no job with id " + id}});
+      jobs.push_back(std::move(*job));
+    }
+  } else {
+    auto query = parse_job_filter(rc.query);
+    if (rc.query.count("limit") || rc.query.count("cursor") || rc.query.count("fields") ||
+        rc.query.count("format"))
+      query.errors.push_back({"/query", "an export takes ids or filters (no limit, cursor, "
+                                        "fields or format)"});
+    if (!query.errors.empty())
+      return problem_response(req, http::status::bad_request, "invalid query parameters",
+                              query.errors);
+    if (rc.query.empty())
+      return problem_response(req, http::status::bad_request, "invalid query parameters",
+                              {{"/query", "name the runs: ids=..., study_id=..., tag=..., "
+                                          "where=... (the filters of GET /jobs)"}});
+    JobFilter& f = query.filter;
+    if (f.statuses.empty())
+      f.statuses = {JobStatus::succeeded, JobStatus::failed, JobStatus::cancelled};
+    f.limit = static_cast<int>(max_archive_runs);
+    JobPage page = ctx.service.list(f);
+    if (page.next_cursor || page.next_offset)
+      return problem_response(req, http::status::unprocessable_entity,
+                              "more than " + std::to_string(max_archive_runs) +
+                                  " runs match: narrow the search");
+    jobs = std::move(page.jobs);
+    if (jobs.empty())
+      return problem_response(req, http::status::not_found, "no finished run matches");
+  }
+  for (const Job& job : jobs)
+    if (!is_final(job.status))
+      return problem_response(req, http::status::conflict,
+                              "job " + job.id + " is " + to_string(job.status) +
+                                  ": only finished runs are exported");
+  return jobs;
+}
+
+Response export_archive(ServerContext& ctx, RequestContext& rc) {
+  const auto& req = rc.request;
+  auto chosen = runs_to_export(ctx, rc);
+  if (auto* refusal = std::get_if<Response>(&chosen)) return std::move(*refusal);
+  const auto& jobs = std::get<std::vector<Job>>(chosen);
+  // Written to a file of the data dir that has no name once opened: the answer streams from
+  // it and the space is freed when it is sent (or the server stops).
+  std::string name = (ctx.data_dir.empty() ? std::string(".") : ctx.data_dir) + "/export-XXXXXX";
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0)
+    return problem_response(req, http::status::internal_server_error,
+                            std::string("cannot create the archive: ") + std::strerror(errno));
+  ::unlink(name.c_str());
+  FileDescriptor file(fd);
+  try {
+    write_run_archive(fd, ctx.service, jobs);
+  } catch (const ArchiveRefusal& e) {
+    return problem_response(req, http::status::conflict, e.what());
+  }
+  if (::lseek(fd, 0, SEEK_SET) != 0)
+    return problem_response(req, http::status::internal_server_error,
+                            std::string("cannot read the archive: ") + std::strerror(errno));
+  beast::error_code ec;
+  RangeFile body;
+  body.adopt(file.release(), ec);
+  if (ec)
+    return problem_response(req, http::status::internal_server_error,
+                            "cannot read the archive: " + ec.message());
+  http::response<RangeFileBody> res{http::status::ok, req.version()};
+  res.set(http::field::server, "slipfront");
+  res.set(http::field::content_type, "application/x-tar");
+  res.set(http::field::content_disposition,
+          "attachment; filename=\"slipfront-runs-" + std::to_string(jobs.size()) + ".tar\"");
+  res.set(http::field::cache_control, "no-store");
+  res.body().reset(std::move(body), ec);
+  if (ec)
+    return problem_response(req, http::status::internal_server_error,
+                            "cannot read the archive: " + ec.message());
+  res.prepare_payload();
+  res.keep_alive(req.keep_alive());
+  return res;
+}
+
+Response import_archive(ServerContext& ctx, RequestContext& rc) {
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
+  try {
+    auto imported = import_run_archive(rc.request.body(), ctx.service, rc.user);
+    nlohmann::json runs = nlohmann::json::array();
+    for (const auto& run : imported)
+      runs.push_back({{"id", run.id},
+                      {"original_id", run.original_id},
+                      {"url", api_prefix + "/jobs/" + run.id}});
+    return json_response(rc.request, http::status::created,
+                         {{"imported", runs}, {"count", imported.size()}});
+  } catch (const ArchiveRefusal& e) {
+    const std::string where = e.where().empty() ? "" : e.where() + ": ";
+    return problem_response(rc.request, http::status::unprocessable_entity,
+                            "the archive is refused, nothing was stored: " + where + e.what(),
+                            {{e.where(), e.what()}});
+  }
+}
+
+} // namespace
+
+void add_archive_routes(Router& router, ServerContext& ctx) {
+  router.add(
+      http::verb::get, api_prefix + "/exports",
+      [&ctx](RequestContext& rc) { return export_archive(ctx, rc); }, Runs::export_pool);
+  router.add(http::verb::post, api_prefix + "/imports",
+             [&ctx](RequestContext& rc) { return import_archive(ctx, rc); });
+}
+
+} // namespace slipfront::server

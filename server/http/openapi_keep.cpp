@@ -1,0 +1,72 @@
+// The OpenAPI paths of "Keep, annotate, share" (docs/server.md): PATCH and DELETE of a job,
+// archive and restore, exports and imports of run archives, and the Job fields they add.
+// openapi_document() (openapi.cpp) merges them into the document.
+#include "server/http/handlers.hpp"
+
+namespace slipfront::server {
+
+namespace {
+const char* keep_paths = R"json({
+  "/api/v1/jobs/{id}": {
+    "patch": {"summary": "Change a run's tags and note after submission (its owner; 422 naming the field, nothing changed)", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "requestBody": {"required": true, "content": {"application/json": {"schema": {"type": "object", "additionalProperties": false, "minProperties": 1,
+        "properties": {"tags": {"type": "array", "maxItems": 32, "items": {"type": "string", "minLength": 1, "maxLength": 64}, "description": "replace the tags (no control characters)"},
+          "note": {"type": "string", "maxLength": 4096, "description": "free text; newlines and tabs allowed, other control characters not; \"\" clears it"}}}}}},
+      "responses": {"200": {"$ref": "#/components/responses/Job"}, "400": {"$ref": "#/components/responses/Problem"},
+        "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"}, "422": {"$ref": "#/components/responses/Problem"}}},
+    "delete": {"summary": "Delete a finished run and its result file (kept while a cache hit shares it); its owner", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"description": "Deleted", "content": {"application/json": {"schema": {"type": "object", "properties": {
+          "id": {"type": "string"}, "deleted": {"type": "boolean"}, "result_deleted": {"type": "boolean", "description": "false while another run (a cache hit) shares the file"}}}}}},
+        "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"},
+        "409": {"description": "Queued or running (cancel it first), or a run of a study (archive it instead)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
+  },
+  "/api/v1/jobs/{id}/archive": {
+    "post": {"summary": "Hide a run from listings and exports (never deleted; ?archived=include shows it); its owner", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"$ref": "#/components/responses/Job"}, "401": {"$ref": "#/components/responses/Problem"},
+        "403": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
+  },
+  "/api/v1/jobs/{id}/restore": {
+    "post": {"summary": "List an archived run again; its owner", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"$ref": "#/components/responses/Job"}, "401": {"$ref": "#/components/responses/Problem"},
+        "403": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
+  },
+  "/api/v1/exports": {
+    "get": {"summary": "Finished runs as one tar archive: manifest.json (SHA-256 of every member), runs/<id>/job.json, runs/<id>/result.h5 (docs/server.md, Export and import)",
+      "parameters": [{"name": "ids", "in": "query", "schema": {"type": "string"}, "description": "comma-separated job ids (1..1000); or instead the filters of GET /api/v1/jobs (study_id, tag, where, archived, ...)"}],
+      "responses": {"200": {"description": "The archive", "content": {"application/x-tar": {}}},
+        "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"},
+        "409": {"description": "A run is not finished, or its result file is missing or damaged", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+        "422": {"description": "More than 1000 runs match", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
+  },
+  "/api/v1/imports": {
+    "post": {"summary": "Store the runs of an export archive: every member checked against the manifest before anything is stored; runs keep their ids when free here", "security": [{"bearer": []}],
+      "requestBody": {"required": true, "content": {"application/x-tar": {"schema": {"type": "string", "format": "binary"}}}},
+      "responses": {"201": {"description": "Imported", "content": {"application/json": {"schema": {"type": "object", "properties": {
+          "imported": {"type": "array", "items": {"type": "object", "properties": {"id": {"type": "string"}, "original_id": {"type": "string"}, "url": {"type": "string"}}}},
+          "count": {"type": "integer"}}}}}},
+        "401": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},
+        "422": {"description": "Refused, nothing stored: the title names the member (a checksum that does not match, an unsafe name, a link, a truncated archive)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
+  }
+})json";
+
+const char* keep_job_fields = R"json({
+  "note": {"type": "string", "description": "free text its owner keeps with it (PATCH)"},
+  "archived_at": {"type": "string", "nullable": true, "description": "when it was archived; null = listed"},
+  "imported_from": {"type": "object", "nullable": true, "description": "an imported run: {server: {host, code_version}, id, submitted_by, exported_at}"}
+})json";
+} // namespace
+
+void add_keep_share_paths(nlohmann::json& doc) {
+  const nlohmann::json paths = nlohmann::json::parse(keep_paths);
+  for (const auto& [path, operations] : paths.items())
+    doc["paths"][path].update(operations);
+  doc["components"]["schemas"]["Job"]["properties"].update(nlohmann::json::parse(keep_job_fields));
+}
+
+} // namespace slipfront::server

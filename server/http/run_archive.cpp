@@ -1,0 +1,380 @@
+#include "server/http/run_archive.hpp"
+
+#include "api/free_text.hpp"
+#include "api/json_parse.hpp"
+#include "api/run_annotations.hpp"
+#include "server/core/clock.hpp"
+#include "server/core/file_descriptor.hpp"
+#include "server/core/job_id.hpp"
+#include "server/core/tar_archive.hpp"
+#include "server/http/job_json.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace slipfront::server {
+
+namespace {
+
+using nlohmann::json;
+
+std::string job_member(const std::string& id) {
+  return "runs/" + id + "/job.json";
+}
+std::string result_member(const std::string& id) {
+  return "runs/" + id + "/result.h5";
+}
+
+bool has_result(const Job& job) {
+  return job.status == JobStatus::succeeded && !job.result.path.empty();
+}
+
+OpenedResult open_intact(JobService& service, const Job& job) {
+  OpenedResult file = service.result_files().open(job.result);
+  if (file.state != OpenedResult::State::intact)
+    throw ArchiveRefusal(
+        job.id, "the result file of job " + job.id + " is " +
+                    (file.state == OpenedResult::State::missing ? "missing" : file.reason) +
+                    ": it cannot be exported");
+  return file;
+}
+
+} // namespace
+
+void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs) {
+  // The manifest comes first, so every file is checked (and its job.json made) before a byte
+  // is written; the result files are opened again, one at a time, when they are copied.
+  json runs = json::array(), files = json::array();
+  std::vector<std::string> job_texts;
+  for (const Job& job : jobs) {
+    json record = job_to_json(job);
+    record["front"] = service.front(job.id).value_or(json());
+    job_texts.push_back(record.dump(2) + "\n");
+    const std::string& text = job_texts.back();
+    files.push_back(
+        {{"name", job_member(job.id)}, {"size", text.size()}, {"sha256", api::sha256_hex(text)}});
+    json run = {{"id", job.id}, {"job", job_member(job.id)}, {"result", nullptr}};
+    if (has_result(job)) {
+      open_intact(service, job);
+      files.push_back({{"name", result_member(job.id)},
+                       {"size", job.result.size},
+                       {"sha256", job.result.sha256}});
+      run["result"] = result_member(job.id);
+    }
+    runs.push_back(std::move(run));
+  }
+  const json manifest = {
+      {"format", archive_format},
+      {"version", archive_version},
+      {"exported_at", now_iso8601()},
+      {"server", {{"host", host_name()}, {"code_version", service.options().code_version}}},
+      {"runs", std::move(runs)},
+      {"files", std::move(files)}};
+  TarWriter tar(fd);
+  tar.add("manifest.json", manifest.dump(2) + "\n");
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    tar.add(job_member(jobs[i].id), job_texts[i]);
+    if (has_result(jobs[i])) {
+      OpenedResult file = open_intact(service, jobs[i]);
+      tar.add_from(result_member(jobs[i].id), file.fd.get(), file.size);
+    }
+  }
+  tar.finish();
+}
+
+namespace {
+
+// A job.json read field by field; every refusal names the member and the JSON pointer.
+class RecordReader {
+public:
+  RecordReader(const json& record, std::string member)
+      : record_(record), member_(std::move(member)) {}
+
+  [[noreturn]] void refuse(const std::string& key, const std::string& reason) const {
+    throw ArchiveRefusal(member_ + "#/" + key, reason);
+  }
+  const json& field(const std::string& key) const {
+    static const json null;
+    auto it = record_.find(key);
+    return it == record_.end() ? null : *it;
+  }
+  // A string of at most max_length bytes without control characters, or "" for null.
+  std::string text(const std::string& key, std::size_t max_length = 256) const {
+    const json& v = field(key);
+    if (v.is_null()) return {};
+    if (!v.is_string() || v.get_ref<const std::string&>().size() > max_length)
+      refuse(key, "must be a string of at most " + std::to_string(max_length) + " bytes");
+    if (auto reason = api::free_text_error(v.get_ref<const std::string&>())) refuse(key, *reason);
+    return v.get<std::string>();
+  }
+  double number(const json& v, const std::string& key) const {
+    if (v.is_null()) return 0.0;
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
+      refuse(key, "must be a finite number >= 0 or null");
+    return v.get<double>();
+  }
+
+private:
+  const json& record_;
+  std::string member_;
+};
+
+struct PendingRun {
+  Job job;
+  RunRecord record;
+  std::string_view result; // the result file's bytes ("" = none)
+};
+
+// The run of one manifest entry, checked; nothing stored.
+PendingRun read_run(const json& entry, const std::map<std::string, std::string_view>& members,
+                    const std::map<std::string, json>& listed, const json& origin) {
+  if (!entry.is_object() || !entry.value("id", json()).is_string() ||
+      !entry.value("job", json()).is_string())
+    throw ArchiveRefusal("manifest.json#/runs", "each run needs \"id\" and \"job\" (strings)");
+  const std::string original_id = entry["id"].get<std::string>();
+  const std::string name = entry["job"].get<std::string>();
+  auto member = members.find(name);
+  if (member == members.end())
+    throw ArchiveRefusal(name, "the manifest names it but the archive does not hold it");
+  auto parsed = api::parse_bounded_json(member->second);
+  if (!parsed.ok() || !parsed.value.is_object())
+    throw ArchiveRefusal(name, "not a JSON object: " + parsed.error.reason);
+  const json& record = parsed.value;
+  RecordReader in(record, name);
+  if (in.text("id", 64) != original_id) in.refuse("id", "is not the manifest's " + original_id);
+
+  PendingRun run;
+  Job& job = run.job;
+  const auto status = parse_status(in.text("status", 16));
+  if (!status || !is_final(*status))
+    in.refuse("status", "must be succeeded, failed or cancelled (only finished runs move)");
+  job.status = *status;
+  api::ValidationLimits limits;
+  limits.max_memory_bytes = std::numeric_limits<double>::infinity(); // not run here
+  auto spec = api::parse_job(in.field("spec"), limits);
+  if (!spec.ok())
+    in.refuse("spec" + spec.errors.front().pointer, "invalid spec: " + spec.errors.front().reason);
+  job.spec = spec.spec->canonical;
+  job.spec_sha256 = spec.spec->sha256;
+  job.scene_hash = api::scene_hash(spec.spec->canonical);
+  job.L = spec.spec->params.friction.L;
+  job.n_d = spec.spec->params.geometry.nodes_per_meter;
+  job.memory_estimate_bytes = spec.spec->memory_estimate_bytes;
+  job.name = in.text("name");
+  json kept = {{"tags", in.field("tags").is_null() ? json::array() : in.field("tags")},
+               {"note", in.field("note").is_null() ? json("") : in.field("note")}};
+  auto annotations = api::parse_annotations(kept);
+  if (!annotations.ok())
+    in.refuse(annotations.errors.front().pointer.substr(1), annotations.errors.front().reason);
+  job.tags = annotations.annotations.tags.value_or(std::vector<std::string>());
+  job.note = annotations.annotations.note.value_or("");
+  job.created_at = in.text("created_at", 64);
+  job.started_at = in.text("started_at", 64);
+  job.finished_at = in.text("finished_at", 64);
+  if (job.created_at.empty()) in.refuse("created_at", "must be a time (ISO 8601)");
+  job.error = in.text("error", 4096);
+  job.code_version = in.text("code_version");
+  job.host = in.text("host");
+  job.wall_time_s = in.number(in.field("wall_time_s"), "wall_time_s");
+  const json& progress = in.field("progress");
+  if (progress.is_object()) {
+    job.progress.fraction = in.number(progress.value("fraction", json()), "progress/fraction");
+    job.progress.time = in.number(progress.value("time", json()), "progress/time");
+    job.progress.duration = in.number(progress.value("duration", json()), "progress/duration");
+    job.progress.steps =
+        static_cast<std::int64_t>(in.number(progress.value("steps", json()), "progress/steps"));
+  }
+  const json& metrics = in.field("metrics");
+  if (!metrics.is_null() && !metrics.is_object()) in.refuse("metrics", "must be an object or null");
+  job.imported_from = {{"server", origin.value("server", json())},
+                       {"id", original_id},
+                       {"submitted_by", in.text("submitted_by")},
+                       {"exported_at", origin.value("exported_at", json())}};
+  if (!in.field("imported_from").is_null())
+    job.imported_from["imported_from"] = in.field("imported_from");
+
+  const json& result_name = entry.value("result", json());
+  if (job.status == JobStatus::succeeded) {
+    if (!result_name.is_string())
+      throw ArchiveRefusal("manifest.json#/runs",
+                           "run " + original_id + " succeeded but has no \"result\" member");
+    const std::string result = result_name.get<std::string>();
+    auto file = members.find(result);
+    auto listing = listed.find(result);
+    if (file == members.end() || listing == listed.end())
+      throw ArchiveRefusal(result, "the manifest names it but the archive does not hold it");
+    const json& stated = in.field("result");
+    if (!stated.is_object() || stated.value("sha256", json()) != listing->second["sha256"])
+      in.refuse("result/sha256", "is not the SHA-256 of " + result + " in the manifest");
+    run.result = file->second;
+    job.result.size = file->second.size();
+    job.result.sha256 = listing->second["sha256"].get<std::string>();
+  } else if (!result_name.is_null()) {
+    throw ArchiveRefusal("manifest.json#/runs",
+                         "run " + original_id + " did not succeed but names a result file");
+  }
+  job.id = original_id;
+  run.record.status = job.status;
+  run.record.metrics = metrics;
+  run.record.front = in.field("front");
+  run.record.wall_time_s = job.wall_time_s;
+  run.record.finished_at = job.finished_at;
+  run.record.error = job.error;
+  return run;
+}
+
+// Every member but the manifest is listed in it, every listed file is there with its size and
+// SHA-256. Returns the listing by name.
+std::map<std::string, json> check_files(const json& manifest,
+                                        const std::map<std::string, std::string_view>& members) {
+  const json& files = manifest.value("files", json());
+  if (!files.is_array() || files.size() > 2 * max_archive_runs)
+    throw ArchiveRefusal("manifest.json#/files", "must be an array of at most " +
+                                                     std::to_string(2 * max_archive_runs) +
+                                                     " files");
+  std::map<std::string, json> listed;
+  for (const json& f : files) {
+    if (!f.is_object() || !f.value("name", json()).is_string() ||
+        !f.value("sha256", json()).is_string() || !f.value("size", json()).is_number_unsigned())
+      throw ArchiveRefusal("manifest.json#/files",
+                           "each file needs \"name\", \"size\" and \"sha256\"");
+    listed[f["name"].get<std::string>()] = f;
+  }
+  for (const auto& [name, content] : members)
+    if (name != "manifest.json" && !listed.contains(name))
+      throw ArchiveRefusal(name, "not listed in manifest.json: the archive was altered");
+  for (const auto& [name, f] : listed) {
+    auto member = members.find(name);
+    if (member == members.end())
+      throw ArchiveRefusal(name, "listed in manifest.json but not in the archive");
+    if (member->second.size() != f["size"].get<std::uint64_t>())
+      throw ArchiveRefusal(name, std::to_string(member->second.size()) +
+                                     " bytes, the manifest says " + f["size"].dump() +
+                                     ": the archive was altered or damaged");
+    if (api::sha256_hex(member->second) != f["sha256"].get<std::string>())
+      throw ArchiveRefusal(name, "its SHA-256 is not the manifest's: the archive was altered "
+                                 "or damaged");
+  }
+  return listed;
+}
+
+// Writes `bytes` to a new file at `path` (never over an existing one) through a temporary
+// name the start-up clean-up removes (".tmp").
+void write_new_file(const std::string& path, std::string_view bytes) {
+  const std::string temporary = path + ".import.tmp";
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot create " + temporary + ": " + std::strerror(errno));
+  FileDescriptor owned(fd);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const std::string reason = std::strerror(errno);
+      ::unlink(temporary.c_str());
+      throw std::runtime_error("cannot write " + temporary + ": " + reason);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 || ::link(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(temporary.c_str());
+    throw std::runtime_error("cannot store " + path + ": " + reason);
+  }
+  ::unlink(temporary.c_str());
+}
+
+// The id a run gets here: its own if neither a job nor a result file has it, else a new one.
+std::string free_id(JobService& service, const std::string& wanted) {
+  auto taken = [&](const std::string& id) {
+    return service.get(id).has_value() ||
+           std::filesystem::exists(
+               service.result_files().absolute_path({result_relative_path(id), 0, ""}));
+  };
+  if (is_valid_job_id(wanted) && !taken(wanted)) return wanted;
+  std::string id = new_job_id();
+  while (taken(id))
+    id = new_job_id();
+  return id;
+}
+
+void store_run(JobService& service, PendingRun& run, const std::string& user) {
+  Job& job = run.job;
+  job.submitted_by = user;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    job.id = free_id(service, attempt == 0 ? job.id : std::string());
+    job.result.path =
+        job.status == JobStatus::succeeded ? result_relative_path(job.id) : std::string();
+    const std::string path = service.result_files().absolute_path(job.result);
+    if (!job.result.path.empty()) {
+      try {
+        write_new_file(path, run.result);
+      } catch (const std::exception&) {
+        if (std::filesystem::exists(path)) continue; // taken in between: another id
+        throw;
+      }
+    }
+    run.record.result = job.result;
+    if (service.insert_finished(job, run.record)) return;
+    if (!job.result.path.empty()) std::filesystem::remove(path);
+  }
+  throw std::runtime_error("no free id for imported run " + job.id);
+}
+
+} // namespace
+
+std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService& service,
+                                            const std::string& user) {
+  std::vector<TarMember> members;
+  try {
+    members = read_tar(archive, {2 * max_archive_runs + 1});
+  } catch (const TarError& e) {
+    throw ArchiveRefusal("", e.what());
+  }
+  std::map<std::string, std::string_view> by_name;
+  for (const auto& m : members)
+    by_name[m.name] = m.content;
+  auto manifest_member = by_name.find("manifest.json");
+  if (manifest_member == by_name.end())
+    throw ArchiveRefusal("manifest.json", "the archive has no manifest.json");
+  auto parsed = api::parse_bounded_json(manifest_member->second);
+  if (!parsed.ok() || !parsed.value.is_object())
+    throw ArchiveRefusal("manifest.json", "not a JSON object: " + parsed.error.reason);
+  const json& manifest = parsed.value;
+  if (manifest.value("format", json()) != archive_format ||
+      manifest.value("version", json()) != archive_version)
+    throw ArchiveRefusal("manifest.json#/format", std::string("not a run archive (format \"") +
+                                                      archive_format + "\", version " +
+                                                      std::to_string(archive_version) + ")");
+  const auto listed = check_files(manifest, by_name);
+  const json& runs = manifest.value("runs", json());
+  if (!runs.is_array() || runs.empty() || runs.size() > max_archive_runs)
+    throw ArchiveRefusal("manifest.json#/runs",
+                         "must be an array of 1 to " + std::to_string(max_archive_runs) + " runs");
+  std::vector<PendingRun> pending;
+  std::set<std::string> ids;
+  for (const json& entry : runs) {
+    pending.push_back(read_run(entry, by_name, listed, manifest));
+    if (!ids.insert(pending.back().job.id).second)
+      throw ArchiveRefusal("manifest.json#/runs", "run " + pending.back().job.id + " given twice");
+  }
+  // Everything checked: store.
+  std::vector<ImportedRun> imported;
+  for (auto& run : pending) {
+    const std::string original = run.job.id;
+    store_run(service, run, user);
+    imported.push_back({run.job.id, original});
+  }
+  return imported;
+}
+
+} // namespace slipfront::server

@@ -1,0 +1,53 @@
+// Run archives (docs/server.md "Export and import"): a set of finished runs as one tar file
+// (server/core/tar_archive.hpp) that another server imports, or a paper keeps.
+//
+//   manifest.json          format, version, the exporting server, the runs, and every other
+//                          member with its size and SHA-256
+//   runs/<id>/job.json     the run as GET /jobs/{id} shows it (spec, metrics, provenance,
+//                          tags, note), with its rupture front
+//   runs/<id>/result.h5    its result file (succeeded runs)
+#pragma once
+
+#include "server/core/job.hpp"
+#include "server/services/job_service.hpp"
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace slipfront::server {
+
+constexpr std::size_t max_archive_runs = 1000;
+constexpr const char* archive_format = "slipfront-runs";
+constexpr int archive_version = 1;
+
+// An archive refused: `where` names the member (and the JSON pointer inside it, after '#').
+class ArchiveRefusal : public std::runtime_error {
+public:
+  ArchiveRefusal(std::string where, const std::string& reason)
+      : std::runtime_error(reason), where_(std::move(where)) {}
+  const std::string& where() const { return where_; }
+
+private:
+  std::string where_;
+};
+
+// Writes the archive of `jobs` (finished runs) to `fd`. Throws ArchiveRefusal when a run's
+// result file is missing or damaged (where = the job id).
+void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs);
+
+struct ImportedRun {
+  std::string id;          // on this server
+  std::string original_id; // in the archive
+};
+
+// Checks every member of `archive` against the manifest (names, sizes, SHA-256) and every
+// run's job.json before it stores anything, then stores the runs for `user`: each keeps its
+// id if it is free here, else gets a new one, and records where it came from
+// (`imported_from`). Throws ArchiveRefusal naming what does not hold.
+std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService& service,
+                                            const std::string& user);
+
+} // namespace slipfront::server

@@ -1,0 +1,119 @@
+"""slipfront-client tag, note, archive, restore, delete, export-runs and import-runs against
+two real `slipfront serve` processes (ephemeral loopback ports, temporary data dirs): what the
+commands change is what the server then answers, and an export imported into the second
+server gives back the same result file, byte for byte.
+
+    /usr/bin/python3 tests/clients/test_keep_share.py --binary build/slipfront
+"""
+
+import hashlib
+import json
+import os
+import shutil
+import sys
+import tempfile
+import unittest
+
+import requests
+
+from harness import TINY, Server, binary_from_argv, run_client
+
+BINARY = None
+
+
+class ClientKeepShare(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.server = Server(BINARY, args=["--workers", "1"]).start()
+        cls.other = Server(BINARY, args=["--workers", "1"]).start()
+        cls.tmp = tempfile.mkdtemp(prefix="slipfront-client-keep-")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.server.stop()
+        cls.other.stop()
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def client(self, *args, server=None, stdin=None):
+        return run_client(*args, server=(server or self.server).base, stdin=stdin)
+
+    def submit(self, name, L):
+        job = dict(json.loads(json.dumps(TINY)), name=name, friction={"L": L})
+        path = os.path.join(self.tmp, name + ".json")
+        with open(path, "w") as f:
+            json.dump(job, f)
+        r = self.client("submit", path, "--wait")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return r.stdout.strip().splitlines()[-1]
+
+    def job(self, job_id, server=None):
+        return requests.get(f"{(server or self.server).base}/api/v1/jobs/{job_id}",
+                            timeout=10).json()
+
+    def test_tag_note_archive_restore_delete(self):
+        job_id = self.submit("client-keep", 6.1e-4)
+        r = self.client("tag", job_id, "fig-2", "keep")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.job(job_id)["tags"], ["fig-2", "keep"])
+        r = self.client("note", job_id, "-", stdin="first line\nsecond line\n")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.job(job_id)["note"], "first line\nsecond line\n")
+        r = self.client("tag", job_id, "bad\ttag")
+        self.assertEqual(r.returncode, 2, r.stdout)
+        self.assertIn("/tags/0", r.stderr)
+        self.assertEqual(self.client("archive", job_id).returncode, 0)
+        listed = self.client("list", "--name", "client-keep", "--json")
+        self.assertEqual(json.loads(listed.stdout), [])
+        listed = self.client("list", "--name", "client-keep", "--archived", "only", "--json")
+        self.assertEqual([j["id"] for j in json.loads(listed.stdout)], [job_id])
+        self.assertEqual(self.client("restore", job_id).returncode, 0)
+        self.assertIsNone(self.job(job_id)["archived_at"])
+        r = self.client("delete", job_id, stdin="n\n")
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(self.job(job_id)["id"], job_id)
+        r = self.client("delete", job_id, stdin="")  # no answer: not deleted
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(self.job(job_id)["id"], job_id)
+        r = self.client("delete", job_id, "--yes")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("with its result file", r.stdout)
+        self.assertFalse(os.path.exists(os.path.join(self.server.data_dir, "results",
+                                                     job_id + ".h5")))
+
+    def test_export_runs_then_import_runs(self):
+        first = self.submit("client-export-1", 6.3e-4)
+        second = self.submit("client-export-2", 6.5e-4)
+        self.assertEqual(self.client("tag", first, "share").returncode, 0)
+        self.assertEqual(self.client("tag", second, "share").returncode, 0)
+        archive = os.path.join(self.tmp, "runs.tar")
+        r = self.client("export-runs", "--tag", "share", "-o", archive)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.client("export-runs", "--tag", "share", "-o", archive)
+        self.assertEqual(r.returncode, 2, "an existing archive was overwritten")
+        r = self.client("import-runs", archive, "--json", server=self.other)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        imported = {run["original_id"]: run["id"] for run in json.loads(r.stdout)["imported"]}
+        self.assertEqual(set(imported), {first, second})
+        for original, copy in imported.items():
+            mine = requests.get(f"{self.server.base}/api/v1/jobs/{original}/result.h5",
+                                timeout=30).content
+            theirs = requests.get(f"{self.other.base}/api/v1/jobs/{copy}/result.h5",
+                                  timeout=30).content
+            self.assertEqual(hashlib.sha256(theirs).hexdigest(),
+                             hashlib.sha256(mine).hexdigest())
+            self.assertEqual(self.job(copy, self.other)["imported_from"]["id"], original)
+        # A damaged archive: refused (exit 2) naming the member, nothing stored.
+        with open(archive, "rb") as f:
+            data = bytearray(f.read())
+        data[-2048] ^= 0xFF  # inside the last result file's content
+        damaged = os.path.join(self.tmp, "damaged.tar")
+        with open(damaged, "wb") as f:
+            f.write(bytes(data))
+        r = self.client("import-runs", damaged, server=self.other)
+        self.assertEqual(r.returncode, 2, r.stdout)
+        self.assertIn("result.h5", r.stderr)
+
+
+if __name__ == "__main__":
+    BINARY, rest = binary_from_argv(sys.argv[1:])
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
