@@ -4,8 +4,8 @@ named, plain Coulomb (when given) in black."""
 
 import matplotlib.pyplot as plt
 
-from .common import clip_speed_axis, ramp
-from .velocity import signal_window, velocity_at
+from .common import ramp
+from .velocity import velocity_and_speed_panels
 
 
 def plot_length_convergence(results, L_c=None, coulomb=None, positions=(6.0, 10.0), title=None):
@@ -26,34 +26,13 @@ def plot_length_convergence(results, L_c=None, coulomb=None, positions=(6.0, 10.
         return (name + (" (L_c)" if at_lc else ""), 2.2 if at_lc else 1.0,
                 ":" if L == "coulomb" else "-")
 
-    for ax, x in zip(axes, positions):
-        samples = []
-        for L, r, colour in lines:
-            sample = velocity_at(r, x)
-            if sample is None:
-                continue
-            _, t, v = sample
-            samples.append((t, v))
-            label, lw, ls = style(L, r)
-            ax.plot(t, v * 1e3, color=colour, lw=lw, ls=ls, label=label)
-        window = signal_window(samples) if samples else None
-        if window:
-            ax.set_xlim(*window)
-        ax.set_title(f"(a) |V| at x1 = {x:g} m", fontsize="medium")
-        ax.set_xlabel("t [s]")
-        ax.set_ylabel("|V| [mm/s]")
-    ax = axes[-1]
+    curves = []
     for L, r, colour in lines:
         label, lw, ls = style(L, r)
-        ax.plot(r.front_x1, r.rupture_speed, color=colour, lw=lw, ls=ls, label=label)
-    if lines:
-        c_s, c_p = lines[0][1].wave_speeds()
-        clip_speed_axis(ax, c_p)
-        for c, name in ((c_s, "c_s"), (c_p, "c_p")):
-            ax.axhline(c, color="grey", ls=":", lw=0.8)
+        curves.append((r, {"color": colour, "lw": lw, "ls": ls, "label": label}))
+    velocity_and_speed_panels(axes, curves, positions)
+    ax = axes[-1]
     ax.set_title("(b) rupture speed (c_s, c_p dotted grey)", fontsize="medium")
-    ax.set_xlabel("x1 [m]")
-    ax.set_ylabel(r"$V_r$ [m/s]")
     ax.legend(fontsize="x-small")
     if title:
         fig.suptitle(title)

@@ -4,8 +4,8 @@ meshes (the paper's colour ramp); the V_r axis stops a little above c_p."""
 
 import matplotlib.pyplot as plt
 
-from .common import clip_speed_axis, ramp
-from .velocity import signal_window, velocity_at
+from .common import ramp
+from .velocity import velocity_and_speed_panels
 
 
 def plot_mesh_convergence(results, positions=(6.0, 10.0), title=None):
@@ -16,36 +16,18 @@ def plot_mesh_convergence(results, positions=(6.0, 10.0), title=None):
                              squeeze=False, constrained_layout=True)
     axes = list(axes[0])
     data = {"n_d": [float(r.n_d or 0) for r in runs], "velocity": {}, "speed": {}}
-    for ax, x in zip(axes, positions):
-        samples = []
-        for colour, r in zip(palette, runs):
-            sample = velocity_at(r, x)
-            if sample is None:
-                continue
-            _, t, v = sample
-            samples.append((t, v))
-            data["velocity"].setdefault(float(r.n_d or 0), {})[x] = v
-            ax.plot(t, v * 1e3, color=colour, lw=1.0, label=f"n_d = {float(r.n_d or 0):g}")
-        window = signal_window(samples) if samples else None
-        if window:
-            ax.set_xlim(*window)
-        ax.set_title(f"(a) |V| at x1 = {x:g} m", fontsize="medium")
-        ax.set_xlabel("t [s]")
-        ax.set_ylabel("|V| [mm/s]")
-    ax = axes[-1]
-    for colour, r in zip(palette, runs):
+    curves = [(r, {"color": colour, "lw": 1.0, "label": f"n_d = {float(r.n_d or 0):g}"})
+              for colour, r in zip(palette, runs)]
+    for r, v in zip(runs, velocity_and_speed_panels(axes, curves, positions)):
+        if v:
+            data["velocity"][float(r.n_d or 0)] = v
         data["speed"][float(r.n_d or 0)] = r.rupture_speed
-        ax.plot(r.front_x1, r.rupture_speed, color=colour, lw=1.0,
-                label=f"n_d = {float(r.n_d or 0):g}")
+    ax = axes[-1]
     if runs:
         c_s, c_p = runs[0].wave_speeds()
-        clip_speed_axis(ax, c_p)
         for c, name in ((c_s, "c_s"), (c_p, "c_p")):
-            ax.axhline(c, color="grey", ls=":", lw=0.8)
             ax.text(ax.get_xlim()[0], c, f" {name}", va="bottom", fontsize="x-small", color="grey")
     ax.set_title("(b) rupture speed", fontsize="medium")
-    ax.set_xlabel("x1 [m]")
-    ax.set_ylabel(r"$V_r$ [m/s]")
     ax.legend(fontsize="x-small")
     if title:
         fig.suptitle(title)

@@ -72,3 +72,38 @@ def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True, labels=
     if title:
         fig.suptitle(title)
     return fig, data
+
+
+def velocity_and_speed_panels(axes, curves, positions):
+    """|V| against time at each of `positions` (one axis each, zoomed to the signal) and V_r
+    against x1 on the last axis, the V_r axis cut a little above c_p with c_s and c_p dotted.
+    `curves`: [(result, plot keyword arguments)]. Returns, per curve, {x1: |V| samples}."""
+    from .common import clip_speed_axis
+    drawn = [{} for _ in curves]
+    for ax, x in zip(axes, positions):
+        samples = []
+        for k, (r, style) in enumerate(curves):
+            sample = velocity_at(r, x)
+            if sample is None:
+                continue
+            _, t, v = sample
+            samples.append((t, v))
+            drawn[k][x] = v
+            ax.plot(t, v * 1e3, **style)
+        window = signal_window(samples) if samples else None
+        if window:
+            ax.set_xlim(*window)
+        ax.set_title(f"(a) |V| at x1 = {x:g} m", fontsize="medium")
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("|V| [mm/s]")
+    ax = axes[-1]
+    for r, style in curves:
+        ax.plot(r.front_x1, r.rupture_speed, **style)
+    if curves:
+        c_s, c_p = curves[0][0].wave_speeds()
+        clip_speed_axis(ax, c_p)
+        for c in (c_s, c_p):
+            ax.axhline(c, color="grey", ls=":", lw=0.8)
+    ax.set_xlabel("x1 [m]")
+    ax.set_ylabel(r"$V_r$ [m/s]")
+    return drawn
