@@ -208,10 +208,8 @@ std::size_t accuracy_start(const AccuracyTarget& target, const std::vector<doubl
   std::size_t start = 0;
   for (std::size_t k = 1; k + 1 < rungs.size(); ++k) {
     if (std::isnan(rungs[k - 1].value) || std::isnan(rungs[k].value)) continue;
-    // Richardson needs k - 2 measured too; estimate_at only looks there when k >= 2.
-    const bool before_known = k < 2 || !std::isnan(rungs[k - 2].value);
-    const Estimate e = before_known ? estimate_at(rungs, k, quantised)
-                                    : estimate_at({rungs[k - 1], rungs[k]}, 1, quantised);
+    // An unmeasured mesh below k is NaN: estimate_at then falls back to the last refinement.
+    const Estimate e = estimate_at(rungs, k, quantised);
     if (meets(e.error, rungs[k].value, target.tolerance)) break;
     start = k;
     why = "the database has " + mesh_text(rungs[k - 1].n_d) + " and " + mesh_text(rungs[k].n_d) +

@@ -34,13 +34,19 @@ struct Planned {
   bool submit_now;
 };
 
+// The job one run of the request would be, validated (a placeholder study id): how the
+// creation steps below read the base's canonical spec and parameters.
+api::ParseResult validate_run(const StudyRequest& r, JobService& jobs, double n_d) {
+  return jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], n_d));
+}
+
 // An L search compares the arrival time where every run's front arrives (docs/metrics.md
 // "Convergence status"): unless the base has stations, its runs get 32 evenly over the domain,
 // their rupture threshold the front's own. Written into the stored request, so a restart and
 // an idempotent replay see the same runs.
 void add_search_stations(StudyRequest& r, JobService& jobs) {
   if (!r.search || r.base.contains("stations")) return;
-  auto base = jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], 10));
+  auto base = validate_run(r, jobs, 10);
   if (!base.spec) return; // its errors are reported by check_run
   const json& canonical = base.spec->canonical;
   const double x_min = canonical["geometry"]["x_min"].get<double>();
@@ -68,17 +74,14 @@ void prepare_accuracy(StudyRequest& r, JobService& jobs, StudyStore& studies) {
       json bi = api::counterpart_document(chosen);
       StudyRequest trial = r;
       trial.base = bi;
-      const bool applies = jobs.validate(run_document(trial, std::string(32, '0'), json::object(),
-                                                      "", r.L[0], r.n_d[0]))
-                               .spec.has_value();
+      const bool applies = validate_run(trial, jobs, r.n_d[0]).spec.has_value();
       if (applies || r.method_choice == "spectral_bi") chosen = std::move(bi);
     }
     r.base = chosen;
     r.body["base"] = chosen;
   }
   if (r.accuracy_start) return;
-  auto base =
-      jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], r.n_d[0]));
+  auto base = validate_run(r, jobs, r.n_d[0]);
   if (!base.spec) return; // its errors are reported by check_run
   std::vector<api::StudyRun> known;
   for (const auto& row : studies.scene_runs(api::scene_hash(base.spec->canonical)))
@@ -94,7 +97,7 @@ void prepare_accuracy(StudyRequest& r, JobService& jobs, StudyStore& studies) {
 // stored request.
 void decide_search_coulomb(StudyRequest& r, JobService& jobs) {
   if (!r.search || r.search->coulomb) return;
-  auto base = jobs.validate(run_document(r, std::string(32, '0'), json::object(), "", r.L[0], 10));
+  auto base = validate_run(r, jobs, 10);
   if (!base.spec) return; // its errors are reported by check_run
   std::string why;
   r.search->coulomb = coulomb_well_posed(base.spec->params, why);
