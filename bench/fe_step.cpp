@@ -19,11 +19,11 @@ namespace {
 
 using namespace slipfront;
 
-SimulationParams scene(double n_d, int which, double height) {
+SimulationParams scene(double n_d, int which, double height, int threads) {
   SimulationParams p;
   p.geometry.nodes_per_meter = n_d;
   p.geometry.height = height;
-  p.threads = 1;
+  p.threads = threads;
   if (which > 0) {
     p.lower.side = LowerSide::elastic;
     p.lower.material = p.material;
@@ -37,13 +37,14 @@ SimulationParams scene(double n_d, int which, double height) {
   return p;
 }
 
-// args: n_d, scene, steps per trip, height of each block [m].
+// args: n_d, scene, steps per trip, height of each block [m], threads.
 void fe_step(benchmark::State& state) {
+  const int threads = int(state.range(4));
   const SimulationParams p =
-      scene(double(state.range(0)), int(state.range(1)), double(state.range(3)));
+      scene(double(state.range(0)), int(state.range(1)), double(state.range(3)), threads);
   fe::MeshStepper mesh(p);
   mesh.set_skip_quiet(false);
-  ThreadTeam team(1);
+  ThreadTeam team(threads);
   const std::vector<bool> energy(std::size_t(state.range(2)), false);
   for (int k = 0; k < 20; ++k) // the rupture under way
     mesh.advance(team, energy);
@@ -57,19 +58,24 @@ void fe_step(benchmark::State& state) {
 } // namespace
 
 BENCHMARK(fe_step)
-    ->ArgNames({"n_d", "scene", "steps", "h"})
-    ->Args({20, 0, 4, 20})
-    ->Args({20, 1, 4, 20})
-    ->Args({20, 2, 4, 20})
-    ->Args({20, 0, 4, 40}) // one block as many nodes as the two: the cost of the state's size
-    ->Args({40, 0, 4, 20})
-    ->Args({40, 1, 4, 20})
-    ->Args({40, 2, 4, 20})
-    ->Args({40, 0, 1, 20})
-    ->Args({40, 1, 1, 20})
-    ->Args({40, 0, 4, 40})
-    ->Args({40, 0, 4, 1}) // low blocks: the interface row's share
-    ->Args({40, 1, 4, 1})
+    ->ArgNames({"n_d", "scene", "steps", "h", "threads"})
+    ->Args({20, 0, 4, 20, 1})
+    ->Args({20, 1, 4, 20, 1})
+    ->Args({20, 2, 4, 20, 1})
+    ->Args({20, 0, 4, 40, 1}) // one block as many nodes as the two: the cost of the state's size
+    ->Args({40, 0, 4, 20, 1})
+    ->Args({40, 1, 4, 20, 1})
+    ->Args({40, 2, 4, 20, 1})
+    ->Args({40, 0, 1, 20, 1})
+    ->Args({40, 1, 1, 20, 1})
+    ->Args({40, 0, 4, 40, 1})
+    ->Args({40, 0, 4, 1, 1}) // low blocks: the interface row's share
+    ->Args({40, 1, 4, 1, 1})
+    // as a run on two cores steps: 2 threads, 4 steps each per trip
+    ->Args({20, 0, 8, 20, 2})
+    ->Args({20, 1, 8, 20, 2})
+    ->Args({40, 0, 8, 20, 2})
+    ->Args({40, 1, 8, 20, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -247,7 +247,8 @@ void ElasticBlock::finish_displacement_row(int j) {
     w_.x.refresh_ghosts(j);
     w_.y.refresh_ghosts(j);
   }
-  columns_[j] = trim_column_range(u_, v_, j, next_columns_[j]);
+  // Without skipping the ranges are not read: do not scan the row for its zeros.
+  columns_[j] = skip_quiet_ ? trim_column_range(u_, v_, j, next_columns_[j]) : ColumnRange{0, nx_};
 }
 
 void ElasticBlock::update_displacement_row(int j) {
