@@ -6,11 +6,12 @@
     /usr/bin/python3 clients/reproduce_paper.py --server http://127.0.0.1:8080
     /usr/bin/python3 clients/reproduce_paper.py --quick              # CI-short, asserts the maps
 
-Starts `slipfront serve` in a temporary data dir (or uses --server), submits three studies
+Starts `slipfront serve` in a temporary data dir (or uses --server), submits four studies
 of the same scene: two convergence studies over the paper's L (POST /api/v1/studies: L x the
 n_d ladder, refined by the server until two successive meshes agree or the cap is reached), one
-by FE and one by the spectral boundary integral (`"base": {"method": "spectral_bi"}`), and a BI
-L search (`"convergence": {"search": {"from": 3.2e-6, "factor": 2}}`, docs/studies-api.md
+by FE and one by the spectral boundary integral (`"base": {"method": "spectral_bi"}`), an FE
+study with the vanishing mesh-scale damping at L = 5e-6 m (where the undamped lattice does not
+converge; docs/small-l-study.md), and a BI L search (`"convergence": {"search": {"from": 3.2e-6, "factor": 2}}`, docs/studies-api.md
 "L search") that finds L_c without an L list. It waits with progress, downloads the result
 files it draws, and writes a Markdown report (default docs/reproduction.md) that leads with the
 answer by each method (BI from the L search, FE from its convergence study), the paper's L_c
@@ -38,8 +39,8 @@ from slipfront_client.api import Api  # noqa: E402
 from slipfront_client.local_server import Server, default_binary, log  # noqa: E402
 from slipfront_client.reproduction import (  # noqa: E402
     BI_LADDER, FULL_L, FULL_LADDER, QUICK_BASE, QUICK_BI_LADDER, QUICK_L, QUICK_LADDER,
-    QUICK_SEARCH, SEARCH, loadavg, progress_line, report, search_body, study_body, study_wall,
-    wait_study)
+    DAMPED, QUICK_SEARCH, SEARCH, damped_body, loadavg, progress_line, report, search_body,
+    study_body, study_wall, wait_study)
 
 
 def parse_args(argv):
@@ -54,6 +55,10 @@ def parse_args(argv):
     p.add_argument("--bi-study-id", help="report on this existing BI study instead of creating one")
     p.add_argument("--search-study-id", help="report on this existing BI L search instead of "
                    "creating one")
+    p.add_argument("--damped-study-id", help="report on this existing FE study with the mesh "
+                   "damping instead of creating one")
+    p.add_argument("--no-damped", action="store_true",
+                   help="leave out the FE study with the mesh damping at L = 5e-6 m")
     p.add_argument("--quick", action="store_true", help="CI-short version with shape checks")
     p.add_argument("--n-d-max", type=int, default=None, help="cap of the FE n_d ladder (default 160; quick 10)")
     p.add_argument("--bi-n-d-max", type=int, default=None,
@@ -65,12 +70,14 @@ def parse_args(argv):
     args = p.parse_args(argv)
     if args.quick:
         args.L, args.ladder, args.base, args.search = QUICK_L, QUICK_LADDER, QUICK_BASE, QUICK_SEARCH
+        args.damped = None
         args.n_d_max = args.n_d_max or max(QUICK_LADDER)
         args.bi_ladder, args.bi_n_d_max = QUICK_BI_LADDER, args.bi_n_d_max or max(QUICK_BI_LADDER)
         args.out = args.out or os.path.join(tempfile.mkdtemp(prefix="slipfront-repro-"),
                                             "reproduction_quick.md")
     else:
         args.L, args.ladder, args.base, args.search = FULL_L, FULL_LADDER, None, SEARCH
+        args.damped = None if args.no_damped else DAMPED
         args.n_d_max = args.n_d_max or 160
         args.bi_ladder, args.bi_n_d_max = BI_LADDER, args.bi_n_d_max or max(BI_LADDER)
         args.out = args.out or os.path.join(REPO, "docs", "reproduction.md")
@@ -80,6 +87,7 @@ def parse_args(argv):
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     args.script_t0 = time.time()
+    args.load_at_start = loadavg()
     server = None
     tmp = None
     try:
@@ -96,13 +104,17 @@ def main(argv=None):
             log(f"server {url} (pid {server.proc.pid}, data {data_dir})")
         api = Api(url, token=args.token, timeout=60)
         studies = {}
-        for kind, given in (("fe", args.study_id), ("spectral_bi", args.bi_study_id),
-                            ("search", args.search_study_id)):
+        kinds = [("fe", args.study_id), ("spectral_bi", args.bi_study_id),
+                 ("search", args.search_study_id)]
+        if args.damped or args.damped_study_id:
+            kinds.append(("damped", args.damped_study_id))
+        for kind, given in kinds:
             if given:
                 studies[kind] = api.study(given)
                 log(f"using {kind} study {given}")
             else:
-                body = search_body(args) if kind == "search" else study_body(args, kind)
+                body = (search_body(args) if kind == "search" else damped_body(args)
+                        if kind == "damped" else study_body(args, kind))
                 studies[kind] = api.create_study(body)
                 log(f"created {kind} study {studies[kind]['id']}: {progress_line(studies[kind])}")
         t0 = time.time()
@@ -117,7 +129,9 @@ def main(argv=None):
         speed = [api.get_json(f"/api/v1/studies/{s['id']}/speed-accuracy") for s in (study, bi_study)]
         bi = {"study": bi_study, "speed_acc": speed[1], "wall": study_wall(bi_study)}
         search = {"study": studies["search"], "wall": study_wall(studies["search"])}
-        return report(args, api, study, speed[0], wall, server, bi, search)
+        damped = ({"study": studies["damped"], "wall": study_wall(studies["damped"])}
+                  if "damped" in studies else None)
+        return report(args, api, study, speed[0], wall, server, bi, search, damped)
     finally:
         if server:
             server.stop()

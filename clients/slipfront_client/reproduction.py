@@ -22,16 +22,16 @@ from .local_server import log
 from .reproduction_measures import chosen_run, figure2_run, runs_by_L
 from .reproduction_plan import (
     BI_LADDER, FE_ONLY, FINAL_JOB, FULL_L, FULL_LADDER, QUICK_BASE, QUICK_BI_LADDER, QUICK_L,
-    QUICK_LADDER, QUICK_SEARCH, SEARCH, bi_base, search_body, study_body)
+    DAMPED, QUICK_LADDER, QUICK_SEARCH, SEARCH, bi_base, damped_body, search_body, study_body)
 from .reproduction_figures import MESH_L, loader, make_paper_figures
 from .reproduction_checks import check_search
 from .reproduction_report import check_shape, cost_rows, make_figures, write_report
 from .plots import common
 
 # What clients/reproduce_paper.py and the tests use (the plan's names are re-exported).
-__all__ = ["BI_LADDER", "FE_ONLY", "FINAL_JOB", "FULL_L", "FULL_LADDER", "QUICK_BASE",
+__all__ = ["BI_LADDER", "DAMPED", "FE_ONLY", "FINAL_JOB", "FULL_L", "FULL_LADDER", "QUICK_BASE",
            "QUICK_BI_LADDER", "QUICK_L", "QUICK_LADDER", "QUICK_SEARCH", "SEARCH", "bi_base",
-           "cost_rows", "loadavg", "progress_line", "report", "search_body", "study_body",
+           "cost_rows", "damped_body", "loadavg", "progress_line", "report", "search_body", "study_body",
            "study_wall", "wait_study"]
 
 
@@ -102,15 +102,18 @@ def job_metrics(api, study):
     return metrics
 
 
-def report(args, api, study, speed_acc, wall, server, bi=None, search=None):
+def report(args, api, study, speed_acc, wall, server, bi=None, search=None, damped=None):
     """Write the report of the FE `study`, the BI study `bi` = {"study", "speed_acc",
-    "wall"} and the BI L search `search` = {"study", "wall"}; in quick mode check the maps'
-    shape, the search and the figures. Returns the exit code."""
+    "wall"}, the BI L search `search` = {"study", "wall"} and the damped FE study `damped` =
+    {"study", "wall"} (or None); in quick mode check the maps' shape, the search and the
+    figures. Returns the exit code."""
     metrics = job_metrics(api, study)
     bi = dict(bi or {})
     bi["metrics"] = job_metrics(api, bi.get("study"))
     search = dict(search or {})
     search["metrics"] = job_metrics(api, search.get("study"))
+    damped = dict(damped or {})
+    damped["metrics"] = job_metrics(api, damped.get("study"))
     bi["run_sum"] = sum(float(m.get("wall_time_s") or 0) for m in bi["metrics"].values())
     rows, bi["rows_source"] = cost_rows(speed_acc, bi.get("speed_acc"))
     out = os.path.abspath(args.out)
@@ -128,6 +131,15 @@ def report(args, api, study, speed_acc, wall, server, bi=None, search=None):
             continue  # nothing to draw
         path = results_mod.resolve_source(r["job_id"], lambda: api, cache, log)
         results[L] = results_mod.load_result(path)
+        if not conv:
+            results[L].note = "not converged"
+    extra = []  # the damped FE study's finest run of each L, beside the undamped ones
+    for L in runs_by_L(damped.get("study") or {}):
+        r, conv = chosen_run(damped["study"], L)
+        if r is not None and (r.get("outcome") or "") != "no_rupture":
+            extra.append(results_mod.load_result(
+                results_mod.resolve_source(r["job_id"], lambda: api, cache, log)))
+            extra[-1].note = "" if conv else "not converged"
     fig2_run = figure2_run(study)
     fig2 = (fig2_run, None)
     if fig2_run is not None:
@@ -137,7 +149,7 @@ def report(args, api, study, speed_acc, wall, server, bi=None, search=None):
                     results_mod.resolve_source(fig2_run["job_id"], lambda: api, cache, log)))
     formats = [f.strip() for f in args.format.split(",") if f.strip()]
     figures = make_figures(study, bi.get("study"), rows, chosen, results, fig_dir, formats, log,
-                           fig2[1])
+                           fig2[1], extra)
     captions = {}
 
     def save(fig, stem, caption):
@@ -152,14 +164,16 @@ def report(args, api, study, speed_acc, wall, server, bi=None, search=None):
     timing_load = getattr(args, "loadavg", loadavg())
     run_sum = sum(float(m.get("wall_time_s") or 0) for m in metrics.values())
     cmd = "/usr/bin/python3 clients/reproduce_paper.py" + (" --quick" if args.quick else "") + (
-        f" --n-d-max {args.n_d_max}" if not args.quick else "")
+        f" --n-d-max {args.n_d_max}" if not args.quick and args.n_d_max != 160 else "")
     timing = {"wall": wall, "run_sum": run_sum, "n_runs": len(metrics),
               "n_cached": sum(1 for r in study.get("runs") or [] if r.get("cached_from")),
               "nproc": len(os.sched_getaffinity(0)), "loadavg": timing_load, "cpu": cpu_model(),
               "workers": args.workers if server else "(external server)",
               "finished_utc": datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M"),
-              "command": cmd, "script_wall": time.time() - getattr(args, "script_t0", time.time())}
-    write_report(out, args, study, bi, chosen, results, metrics, figures, timing, fig2, search)
+              "command": cmd, "script_wall": time.time() - getattr(args, "script_t0", time.time()),
+              "load_at_start": getattr(args, "load_at_start", None)}
+    write_report(out, args, study, bi, chosen, results, metrics, figures, timing, fig2, search,
+                 damped)
     log(f"wrote {out}")
     log(f"study wall {wall:.1f} s; sum of run wall times {run_sum:.1f} s; L_c {study.get('L_c')}; "
         f"spectral {study.get('spectral_critical_length')}")

@@ -16,6 +16,9 @@ QUICK_BASE = {"geometry": {"width": 20, "x_min": -5, "height": 8}, "time": {"dur
 SEARCH = {"from": 3.2e-6, "factor": 2}
 QUICK_SEARCH = {"from": 5e-5, "factor": 4, "floor": 1e-6}
 # FE-only fields: an error in a spectral_bi spec (docs/spectral-bi.md, Options).
+# Where the undamped FE lattice does not converge (the paper's smallest L, docs/small-l-study.md):
+# the same scene by FE with the vanishing mesh-scale damping, a short ladder.
+DAMPED = {"L": [5e-6], "n_d": [20, 40, 80], "n_d_max": 80, "mesh_damping": 0.1}
 FE_ONLY = {"geometry": ("height", "top_boundary"), "time": ("safety_factor",)}
 FINAL_JOB = ("succeeded", "failed", "cancelled")
 
@@ -56,6 +59,21 @@ def search_body(args):
             "base": bi_base(args.base),
             "convergence": {"search": dict(args.search), "n_d": args.bi_ladder,
                             "n_d_max": args.bi_n_d_max}}
+    if args.fresh:
+        body["fresh"] = True
+    return body
+
+
+def damped_body(args):
+    """The FE study with the mesh-scale damping (`args.damped`: L, n_d, n_d_max, mesh_damping)
+    on the same scene: FE's answer where the undamped lattice does not converge."""
+    d = args.damped
+    base = json.loads(json.dumps(args.base or {}))
+    base.setdefault("fe", {})["mesh_damping"] = d["mesh_damping"]
+    body = {"name": "reproduction FE, mesh damping" + (" (quick)" if args.quick else ""),
+            "tags": ["reproduction"] + (["quick"] if args.quick else []),
+            "base": base,
+            "convergence": {"L": d["L"], "n_d": d["n_d"], "n_d_max": d["n_d_max"]}}
     if args.fresh:
         body["fresh"] = True
     return body

@@ -9,7 +9,7 @@ from .analysis import merge_rows, rows_from_speed_accuracy, has_across_methods
 from .report import converged_n_d, fmt
 from .reproduction_measures import comparison_rows, differences, runs_by_L, runs_table
 from .reproduction_plan import QUICK_L, QUICK_LADDER, study_body
-from .reproduction_story import fe_lines, paper_lines, search_lines
+from .reproduction_story import damped_lines, fe_lines, paper_lines, search_lines
 
 
 # -- report -------------------------------------------------------------------------------
@@ -25,9 +25,11 @@ def cost_rows(speed_acc, bi_speed_acc=None):
                       rows_from_speed_accuracy(bi_speed_acc or {}, "spectral_bi")), "runs"
 
 
-def make_figures(study, bi_study, rows, chosen, results, fig_dir, formats, log_fn, event=None):
-    """The maps, the FE drawn runs, the filter and the cost chart; with `event` (the Result of
-    the paper's Fig. 2 run) its x1-t map, |V| at x1 = 6 and 10 m and rupture speed."""
+def make_figures(study, bi_study, rows, chosen, results, fig_dir, formats, log_fn, event=None,
+                 extra=()):
+    """The maps, the FE drawn runs (and the `extra` Results beside them: the damped FE runs),
+    the filter and the cost chart; with `event` (the Result of the paper's Fig. 2 run) its
+    x1-t map, |V| at x1 = 6 and 10 m and rupture speed."""
     from slipfront_client.plots import common, convergence, velocity, speed, filter_response, cost
     from slipfront_client.plots import slip_map
     made = {}
@@ -49,9 +51,10 @@ def make_figures(study, bi_study, rows, chosen, results, fig_dir, formats, log_f
 
     drawn = [results[L] for L in sorted(results, reverse=True)]
     if drawn:
-        fig, _ = velocity.plot_velocity(drawn, (6.0, 10.0), "Slip velocity, drawn run of each L")
+        fig, _ = velocity.plot_velocity(drawn + list(extra), (6.0, 10.0),
+                                        "Slip velocity, drawn run of each L")
         save(fig, "velocity")
-        fig, _ = speed.plot_speed(drawn, "Rupture speed, drawn run of each L")
+        fig, _ = speed.plot_speed(drawn + list(extra), "Rupture speed, drawn run of each L")
         save(fig, "speed")
         ref = event or results.get(5e-5) or drawn[0]
         fig, _ = slip_map.plot_map(ref, [6.0, 10.0], None, f"|V|, {ref.label()}")
@@ -97,10 +100,11 @@ def map_table_lines(study):
 
 
 def write_report(path, args, study, bi, chosen, results, metrics, figures, timing,
-                 fig2=(None, None), search=None):
+                 fig2=(None, None), search=None, damped=None):
     """`bi`: {"study", "metrics", "wall", "rows_source"} of the spectral BI study (or None);
     `search`: {"study", "metrics", "wall", "captions", "notes"} of the BI L search and the
-    paper figures drawn from the studies (or None)."""
+    paper figures drawn from the studies (or None); `damped`: {"study", "metrics", "wall"} of
+    the FE study with the mesh damping (or None)."""
     rel = os.path.relpath
     out_dir = os.path.dirname(os.path.abspath(path))
     by_L = runs_by_L(study)
@@ -139,7 +143,11 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
                               len(search.get("metrics") or {}),
                               sum(float(m.get("wall_time_s") or 0)
                                   for m in (search.get("metrics") or {}).values())))
-    lines.extend(fe_lines(study, metrics, args.n_d_max))
+    lines.extend(fe_lines(study, metrics, args.n_d_max, bi_study))
+    damped = damped or {}
+    if damped.get("study"):
+        lines.extend(damped_lines(damped["study"], damped.get("metrics") or {}, bi_study,
+                                  damped.get("wall")))
     if bi_study:
         add(f"- **BI, convergence study over the paper's L: {report_mod.verdict_text(bi_study)}** "
             f"(study `{bi_study.get('id')}`): its L stop at {min(runs_by_L(bi_study)):g} m, above "
@@ -166,11 +174,16 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
 
     add("## How it was made\n")
     add("```sh\n" + timing["command"] + "\n```\n")
+    if not args.study_id:
+        add(f"Whole script, start to report: **{fmt(timing.get('script_wall'))} s** wall "
+            f"(load average at its start: {timing.get('load_at_start') or 'not recorded'}).\n")
     add(f"FE study request: `{json.dumps(study.get('request') or study_body(args))}`\n")
     if bi_study:
         add(f"BI study request: `{json.dumps(bi_study.get('request') or study_body(args, 'spectral_bi'))}`\n")
     if search.get("study"):
         add(f"BI L search request: `{json.dumps(search['study'].get('request') or {})}`\n")
+    if damped.get("study"):
+        add(f"FE study with the mesh damping: `{json.dumps(damped['study'].get('request') or {})}`\n")
     add(f"- FE n_d ladder {args.ladder}, cap n_d_max = {args.n_d_max}"
         + (" (the paper's ladder goes to 160; capped here to bound the run time)"
            if not args.quick and args.n_d_max < 160 else "")
@@ -181,10 +194,15 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     if bi_study:
         add(f"- Wall clock of the BI study: **{fmt(bi.get('wall'))} s**; sum of its runs' wall "
             f"times: **{bi.get('run_sum', 0):.1f} s** over {len(bi.get('metrics') or {})} runs. "
-            "The studies (FE, BI and the L search) ran at the same time on the same workers.")
+            "The studies (FE, BI, the L search"
+            + (" and the damped FE study" if damped.get("study") else "")
+            + ") ran at the same time on the same workers.")
     add(f"- Machine: `nproc` = {timing['nproc']}, CPU {timing['cpu']}; server workers: "
-        f"{timing['workers']}; load average (1, 5, 15 min) when the study finished: "
-        f"{timing['loadavg']} — other work shared the machine when it exceeds the workers, "
+        f"{timing['workers']}; load average (1, 5, 15 min) "
+        + (f"when the script started: {timing['load_at_start']}, "
+           if timing.get("load_at_start") and not args.study_id else "")
+        + f"when the study finished: {timing['loadavg']} (the server's own two workers make "
+        "about 2) — other work shared the machine when it exceeds the workers, "
         "and the wall times are then upper bounds.\n")
 
     # values table

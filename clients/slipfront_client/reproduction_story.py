@@ -11,6 +11,11 @@ V_STAR = 1e-4  # the paper scene's V* [m/s] (docs/physics.md)
 PAPER_TOLERANCES = "0.5 % on the propagation distance, 0.1 % on the arrival time at x1 = 11 m"
 
 
+def _rounded(change):
+    """A relative change with the rounding noise of equal node positions set to 0."""
+    return 0.0 if change < 1e-12 else change
+
+
 def _same(a, b):
     return a is not None and b is not None and abs(float(a) - float(b)) <= 1e-9 * abs(float(b))
 
@@ -47,7 +52,8 @@ def search_lines(search_study, wall, n_runs, run_sum=None):
              f"{fmt(s.get('factor'))}, L tried: {', '.join(fmt(L) for L in s.get('searched_L') or [])}; "
              f"{n_runs} runs in {fmt(wall)} s wall, {fmt(run_sum)} s summed over its runs (study "
              f"`{search_study.get('id')}`; it shared the two workers with the FE and BI studies, "
-             "so its wall time is mostly waiting for FE runs).",
+             "so its wall time is mostly waiting for FE runs; alone on the idle machine the "
+             "same search takes 19.7 s, docs/studies-api.md \"L search\").",
              f"  Server's reason: {s.get('reason')}", ""]
     if s.get("steps"):
         lines += ["Each searched L against the next smaller one (the rule of docs/metrics.md "
@@ -62,11 +68,26 @@ def search_lines(search_study, wall, n_runs, run_sum=None):
     return lines
 
 
-def fe_lines(study, metrics, n_d_max):
-    """The FE answer from its convergence study, and where and why it stops: each L without a
-    mesh-converged run, its last refinement's change and what that run cost."""
+def fe_lines(study, metrics, n_d_max, bi_study=None):
+    """The FE answer from its convergence study: where FE converges, how it agrees with BI
+    (the server's cross-method rows); where it stops, each L without a mesh-converged run,
+    its last refinement's change and what that run cost."""
     lines = [f"- **FE, convergence study: {verdict_text(study)}** (study `{study.get('id')}`; "
              f"mesh cap n_d_max = {n_d_max})."]
+    rows = [r for r in study.get("cross_method") or (bi_study or {}).get("cross_method") or []
+            if (r.get("fe") or {}).get("propagation_distance")
+            and (r.get("spectral_bi") or {}).get("propagation_distance")
+            and converged_n_d(study, float(r["L"])) is not None]
+    if rows:
+        agree = [r for r in rows if r.get("agree")]
+        diffs = [r.get("differences") or {} for r in rows]
+        lines.append(
+            "  - Where FE converges it agrees with BI: L = "
+            + ", ".join(f"{fmt(r['L'])}" for r in sorted(rows, key=lambda r: -float(r["L"])))
+            + f" m, {len(agree)} of {len(rows)} within the rule (propagation distance at most "
+            f"{percent(max(float(d.get('propagation_distance') or 0) for d in diffs))} apart, "
+            f"arrival time at most {percent(max(float(d.get('arrival_time_at_probe') or 0) for d in diffs))}; "
+            "table \"Same L, both methods\").")
     for L, runs in sorted(runs_by_L(study).items(), reverse=True):
         ok = [r for r in runs if r.get("job_status") == "succeeded" and not r.get("regime")]
         if converged_n_d(study, L) is not None or len(ok) < 2:
@@ -80,7 +101,10 @@ def fe_lines(study, metrics, n_d_max):
                      f"{fmt(float(b['n_d']))} still changed the propagation distance by "
                      f"{percent(change[0])} and the arrival time by {percent(change[1])}; that "
                      f"n_d = {fmt(float(b['n_d']))} run took {fmt(mb.get('wall_time_s'))} s "
-                     "(the next mesh has 4× the nodes and twice the steps).")
+                     "(the next mesh has 4× the nodes and twice the steps). Why: the "
+                     "undamped lattice with nodal friction has a growing interface mode (rate "
+                     "≈ 0.14 c_s/dx, faster on finer meshes) that Prakash–Clifton at this L "
+                     "does not damp (docs/small-l-study.md); the BI method has no such mode.")
     lines.append("")
     return lines
 
@@ -167,3 +191,52 @@ def filter_rule_line(study, search_study, L_c):
             + (f"; ours: {f20[0]:.3g} Hz" if f20 else "") + ") — and our "
             f"L_c = {fmt(L_c)} m that of an event with content up to "
             f"{frequency_of(L_c, V_STAR, v):.3g} Hz.")
+
+
+def damped_lines(damped_study, metrics, bi_study, wall):
+    """FE with the vanishing mesh-scale damping where the undamped lattice stops: its verdict
+    per L (converged from which mesh, or the last refinement's change) and its finest run
+    against BI's reference run of the same L."""
+    runs = runs_by_L(damped_study)
+    zeta = ((damped_study.get("request") or {}).get("base") or {}).get("fe", {}).get("mesh_damping")
+    lines = [f"- **FE with the mesh damping** (`fe.mesh_damping` = {fmt(zeta)}: a damping force "
+             "∝ dx that vanishes under refinement and removes the undamped lattice's growing "
+             "interface mode, docs/small-l-study.md; study "
+             f"`{damped_study.get('id')}`, {fmt(wall)} s wall):"]
+    bi_ref = {}
+    for r in sorted((bi_study or {}).get("runs") or [], key=lambda r: float(r["n_d"])):
+        m = r.get("_metrics") or {}
+        if (not r.get("regime") and m and converged_n_d(bi_study, float(r["L"])) is not None
+                and float(r["n_d"]) >= converged_n_d(bi_study, float(r["L"]))):
+            bi_ref[float(r["L"])] = m  # the finest (last) run of each L
+    for L, rs in sorted(runs.items(), reverse=True):
+        ok = [r for r in rs if r.get("job_status") == "succeeded"]
+        if not ok:
+            continue
+        nd = converged_n_d(damped_study, L)
+        finest = metrics.get(ok[-1]["job_id"]) or {}
+        text = (f"mesh-converged from n_d = {fmt(nd)}" if nd is not None else
+                "not mesh-converged up to n_d = " + fmt(float(ok[-1]["n_d"])))
+        if nd is None and len(ok) >= 2:
+            prev = metrics.get(ok[-2]["job_id"]) or {}
+            ch = [_rounded(abs(float(finest[k]) - float(prev[k])) / abs(float(finest[k])))
+                  if finest.get(k) and prev.get(k) else None
+                  for k in ("propagation_distance", "arrival_time_at_probe")]
+            text += (f" (the last refinement still changed the propagation distance by "
+                     f"{percent(ch[0])} and the arrival time by {percent(ch[1])})")
+        ref = bi_ref.get(L)
+        against = ""
+        if ref and finest.get("propagation_distance") and ref.get("propagation_distance"):
+            d = [abs(float(finest[k]) - float(ref[k])) / abs(float(ref[k]))
+                 if finest.get(k) and ref.get(k) else None
+                 for k in ("propagation_distance", "arrival_time_at_probe")]
+            against = (f"; its n_d = {fmt(float(ok[-1]['n_d']))} run against BI's "
+                       f"mesh-converged run of the same L: propagation distance "
+                       f"{fmt(finest.get('propagation_distance'), 5)} / "
+                       f"{fmt(ref.get('propagation_distance'), 5)} m ({percent(d[0])}), arrival "
+                       f"time {fmt(finest.get('arrival_time_at_probe'), 6)} / "
+                       f"{fmt(ref.get('arrival_time_at_probe'), 6)} s ({percent(d[1])}); "
+                       f"that run took {fmt(finest.get('wall_time_s'))} s")
+        lines.append(f"  - L = {fmt(L)} m: {text}{against}.")
+    lines.append("")
+    return lines

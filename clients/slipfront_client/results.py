@@ -30,6 +30,7 @@ class Result:
     rupture_speed: np.ndarray  # NaN where undefined
     spec: dict = field(default_factory=dict)
     metrics: dict = field(default_factory=dict)
+    note: str = ""            # shown after the label on figures, e.g. "not converged"
 
     @property
     def L(self):
@@ -46,7 +47,8 @@ class Result:
     def label(self):
         """What tells this run from others on one figure (run_label): 'FE, L = 5e-05 m,
         n_d = 40'."""
-        return run_label(self.spec, self.metrics)
+        label = run_label(self.spec, self.metrics)
+        return f"{label} ({self.note})" if self.note else label
 
     def wave_speeds(self):
         """(c_s, c_p) of the run's material (plane strain), in either form of the job's
@@ -102,8 +104,9 @@ def run_label(spec, metrics=None):
     spec = spec or {}
     method = spec.get("method") or (metrics or {}).get("method") or "fe"
     n_d = (spec.get("geometry") or {}).get("nodes_per_meter")
+    damping = (spec.get("fe") or {}).get("mesh_damping")
     parts = [METHODS.get(method, method), below_label(spec), friction_label(spec.get("friction")),
-             f"n_d = {_number(n_d)}"]
+             f"mesh damping {_number(damping)}" if damping else "", f"n_d = {_number(n_d)}"]
     return ", ".join(p for p in parts if p)
 
 

@@ -47,6 +47,15 @@ class RunLabels(unittest.TestCase):
         self.assertNotEqual(fe, bi)  # the same scene by both methods reads apart
         self.assertEqual(result(paper("fe")).label(), fe)
 
+    def test_mesh_damping_and_a_note_are_named(self):
+        damped = {**paper("fe", 5e-6, 80), "fe": {"mesh_damping": 0.1}}
+        self.assertEqual(run_label(damped), "FE, L = 5e-06 m, mesh damping 0.1, n_d = 80")
+        self.assertEqual(run_label({**paper("fe"), "fe": {"mesh_damping": 0}}),
+                         "FE, L = 5e-05 m, n_d = 40")  # the undamped default reads as before
+        r = result(paper("fe", 5e-6, 160))
+        r.note = "not converged"
+        self.assertEqual(r.label(), "FE, L = 5e-06 m, n_d = 160 (not converged)")
+
     def test_method_from_the_metrics_or_fe_by_default(self):
         spec = paper("fe")
         del spec["method"]

@@ -48,6 +48,41 @@ class Spectrum(unittest.TestCase):
         self.assertAlmostEqual(f[int(np.argmax(p[1:])) + 1], 5.0, places=6)
 
 
+class MeasuredFilter(unittest.TestCase):
+    @staticmethod
+    def record(strength, t):
+        """A Result holding `strength` at a single node x1 = 6 m."""
+        from slipfront_client.results import Result
+        s = np.asarray(strength, float)[:, None]
+        x = np.array([6.0])
+        return Result("made-up.h5", x, t, np.zeros_like(s), s, x, x, x)
+
+    def test_half_amplitude_frequency_of_a_known_low_pass_filter(self):
+        # The reference: a pulse with content up to 20 Hz; the run: the same pulse through a
+        # first-order low-pass filter of corner f_c = 3 Hz, applied exactly in frequency
+        # (|H| = 1/sqrt(1 + (f/f_c)^2) = 1/2 at f = sqrt(3) f_c = 5.196 Hz).
+        dt, n = 0.025, 1024
+        t = np.arange(n) * dt
+        pulse = np.exp(-0.5 * ((t - 12.8) / 0.02) ** 2)
+        f = np.fft.rfftfreq(n, dt)
+        filtered = np.fft.irfft(np.fft.rfft(pulse) / (1 + 1j * f / 3.0), n)
+        # offset and the record of the reference a little longer and finer: resampled on the
+        # coarser step over the time both cover
+        t_fine = np.arange(2 * n + 40) * dt / 2
+        reference = self.record(11.0 + np.interp(t_fine, t, pulse), t_fine)
+        run = self.record(11.0 + filtered, t)
+        fr, ratio = strength_spectrum.amplitude_against(run, reference, 6.0, smooth_bins=1)
+        self.assertAlmostEqual(fr[-1], 0.5 / dt, delta=fr[1])  # on the coarser step: 20 Hz
+        half = strength_spectrum.half_amplitude_frequency(fr, ratio)
+        self.assertAlmostEqual(half, np.sqrt(3) * 3.0, delta=2 * (fr[1] - fr[0]))
+
+    def test_half_amplitude_frequency_is_none_when_the_ratio_stays_above_half(self):
+        f = np.linspace(0, 20, 11)
+        self.assertIsNone(strength_spectrum.half_amplitude_frequency(f, np.full(11, 0.9)))
+        ratio = np.array([1, 1, 0.4, 0.6, 0.3, 0.2, 0.1, 0.1, 0.1, 0.1, 0.1])
+        self.assertEqual(strength_spectrum.half_amplitude_frequency(f, ratio), 8.0)
+
+
 class DrawnRuns(unittest.TestCase):
     def test_coarsest_converged_run_of_each_L_without_coulomb_or_no_rupture(self):
         bi = {"runs": [run("a", 1e-3, 10, outcome="no_rupture"), run("b", 1e-5, 10, "not_converged"),
@@ -71,6 +106,17 @@ class SearchBody(unittest.TestCase):
         self.assertEqual(body["convergence"], {"search": {"from": 3.2e-6, "factor": 2},
                                                "n_d": [10, 20], "n_d_max": 320})
         self.assertEqual(body["base"], {"geometry": {"width": 20}, "method": "spectral_bi"})
+
+
+class DampedBody(unittest.TestCase):
+    def test_damped_study_is_fe_with_the_mesh_damping_on_the_same_scene(self):
+        args = types.SimpleNamespace(quick=False, base={"geometry": {"height": 8}},
+                                     damped=reproduction.DAMPED, fresh=True)
+        body = reproduction.damped_body(args)
+        self.assertEqual(body["base"], {"geometry": {"height": 8}, "fe": {"mesh_damping": 0.1}})
+        self.assertEqual(body["convergence"], {"L": [5e-6], "n_d": [20, 40, 80], "n_d_max": 80})
+        self.assertTrue(body["fresh"])
+        self.assertEqual(args.base, {"geometry": {"height": 8}})  # not changed in place
 
 
 if __name__ == "__main__":

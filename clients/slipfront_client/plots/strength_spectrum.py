@@ -27,6 +27,33 @@ def power_spectrum(t, signal):
     return np.fft.rfftfreq(y.size, dt), np.abs(np.fft.rfft(y)) ** 2
 
 
+def amplitude_against(result, reference, x1=6.0, smooth_bins=5):
+    """(f, A/A_ref): the amplitude spectrum of tau_s at `x1` of `result` over that of
+    `reference` (the plain-Coulomb run: what the event is without the regularisation), both
+    resampled on the coarser output step over the time both records cover, the ratio
+    smoothed geometrically over `smooth_bins` neighbouring frequencies."""
+    (t_a, s_a), (t_b, s_b) = strength_at(result, x1), strength_at(reference, x1)
+    dt = max(float(t_a[1] - t_a[0]), float(t_b[1] - t_b[0]))
+    grid = np.arange(0.0, min(float(t_a[-1]), float(t_b[-1])), dt)
+    f, p_a = power_spectrum(grid, np.interp(grid, t_a, s_a))
+    _, p_b = power_spectrum(grid, np.interp(grid, t_b, s_b))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_ratio = 0.5 * np.log(p_a / p_b)
+    log_ratio[~np.isfinite(log_ratio)] = 0.0
+    kernel = np.ones(smooth_bins) / smooth_bins
+    return f, np.exp(np.convolve(log_ratio, kernel, mode="same"))
+
+
+def half_amplitude_frequency(f, ratio):
+    """The lowest frequency above which the amplitude ratio stays below 1/2 (the run has lost
+    half the reference's amplitude there), or None if it never does below the Nyquist."""
+    above = np.nonzero(ratio >= 0.5)[0]
+    if above.size == 0:
+        return float(f[1])
+    last = int(above[-1])
+    return float(f[last + 1]) if last + 1 < f.size else None
+
+
 def plot_strength_spectrum(results, meshes, x1=6.0, v_star=1e-4, slip_velocity=3e-3, title=None):
     """`results`: {L: Result}; `meshes`: {label: highest frequency [Hz]}."""
     Ls = sorted(results, reverse=True)

@@ -10,6 +10,7 @@ import matplotlib.pyplot as plt
 from .common import colours, method_style
 
 SIGNAL_FRACTION = 0.01
+MAX_INSIDE_LEGEND = 4  # more runs than this: one legend beside the panels, not over them
 
 
 def velocity_at(result, x1):
@@ -42,7 +43,9 @@ def signal_window(samples, fraction=SIGNAL_FRACTION, pad=0.15):
 def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True, labels=None):
     """One panel per position; one line per run, named by `labels` (default: each run's
     label). Positions outside a run are skipped."""
-    fig, axes = plt.subplots(len(positions), 1, figsize=(6.4, 2.6 * len(positions) + 0.6),
+    wide = len(results) > MAX_INSIDE_LEGEND
+    fig, axes = plt.subplots(len(positions), 1,
+                             figsize=(6.4 + (4.0 if wide else 0.0), 2.6 * len(positions) + 0.6),
                              squeeze=False, constrained_layout=True)
     data = {}
     palette = colours(len(results))
@@ -66,7 +69,10 @@ def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True, labels=
                      fontsize="medium")
         ax.set_xlabel("t [s]")
         if ax.lines:
-            ax.legend(fontsize="small")
+            if len(results) <= MAX_INSIDE_LEGEND:
+                ax.legend(fontsize="small")
+            elif ax is axes[0, 0]:  # many runs: one legend, beside the first panel
+                ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.02, 1.0))
         else:
             ax.text(0.5, 0.5, "outside every run's domain", transform=ax.transAxes, ha="center")
     if title:
