@@ -157,6 +157,26 @@ class WebCompare(BrowserCase):
         self.assertIn("the runs of study", self.css("#compare-source")[0].text)
         self.assert_no_console_errors("compare view of a study")
 
+    def test_a_running_run_appears_when_it_finishes(self):
+        # A run that takes some seconds (FE, n_d = 60, one thread: ~10 s idle) beside a
+        # finished one: the page says it is still running (or queued), then draws it without a
+        # reload once it has finished.
+        r = self.server.submit({"friction": {"L": 1e-4}, "geometry": {"nodes_per_meter": 60},
+                                "threads": 1, "name": "a slower run"})
+        self.assertEqual(r.status_code, 201, r.text)
+        slow, fe = r.json()["id"], self.runs["fe"]["id"]
+        self.open(f"/#/compare?ids={fe},{slow}")
+        self.wait(lambda d: len(self.css("#compare-running")) == 1, message="the running note")
+        self.assertIn("a slower run", self.css("#compare-running")[0].text)
+        job = self.server.wait_status(slow, {"succeeded", "failed"}, 180)
+        self.assertEqual(job["status"], "succeeded", job)
+        self.wait(lambda d: not self.css("#compare-running") and self.chart_ready("#cmp-vr")
+                  and len(self.legend("#cmp-vr")) == 2, timeout=30,
+                  message="the finished run drawn without a reload")
+        outcome = self.css("#compare-table tr[data-field='metrics.outcome'] td")
+        self.assertEqual([c.text for c in outcome[:2]], ["arrested", "arrested"])
+        self.assert_no_console_errors("compare view while a run finishes")
+
     def test_nothing_picked_says_how_to_pick(self):
         self.open("/#/compare")
         self.wait(lambda d: len(self.css("#compare-empty")) == 1)

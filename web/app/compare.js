@@ -3,13 +3,15 @@
 // spec and metrics with the fields that differ highlighted, then their figures overlaid
 // (compare_figures.js), each run in its colour and its method's line style, named by what
 // tells it from the others (run_labels.js).
-import { h, fill, fmt, badge, link, shortId } from './dom.js';
+import { h, clear, fill, fmt, badge, link, shortId } from './dom.js';
 import { get, qs } from './api.js';
 import { PALETTE } from './plots.js';
 import { cellText, compareLabels, compareRows, methodStyle } from './run_labels.js';
 import { drawCompareFigures } from './compare_figures.js';
 
 export const MAX_RUNS = 12; // overlaid curves beyond this read as noise
+export const POLL_MS = 3000; // while a compared run is queued or running
+const FINAL = new Set(['succeeded', 'failed', 'cancelled']);
 const JOB_ID = /^[0-9a-f]{32}$/;
 // The rows shown even when every run has the same value (the others: a check box away).
 const KEY_ROWS = new Set(['run.name', 'run.status', 'spec.method', 'spec.friction.L', 'spec.geometry.nodes_per_meter',
@@ -92,9 +94,25 @@ function compareTable(runs, rows, showAll) {
   return h('div', { class: 'tablewrap' }, h('table', { class: 'grid compare', id: 'compare-table' }, h('thead', {}, head), body));
 }
 
+// The page; while some of the runs are queued or running it asks again every POLL_MS and
+// draws the page anew when one of them changes state (the figures need the finished runs).
 export async function comparePage(view, page, params) {
+  let picked = await pickRuns(params);
+  await drawComparison(view, params, picked);
+  const state = (p) => p.jobs.map((j) => `${j.id}:${j.status}`).join(',');
+  if (picked.jobs.every((j) => FINAL.has(j.status))) return;
+  page.every(POLL_MS, async () => {
+    const next = await pickRuns(params);
+    if (state(next) === state(picked)) return;
+    picked = next;
+    clear(view);
+    await drawComparison(view, params, picked);
+    if (picked.jobs.every((j) => FINAL.has(j.status))) page.stop();
+  });
+}
+
+async function drawComparison(view, params, { jobs, source, notes, study }) {
   view.append(h('div', { class: 'pagehead' }, h('h1', { text: 'Compare runs' })), picker(params));
-  const { jobs, source, notes, study } = await pickRuns(params);
   for (const n of notes) view.append(h('p', { class: 'error', text: n }));
   if (!jobs.length) {
     view.append(h('section', { class: 'card', id: 'compare-empty' }, h('p', { text: source ? `No runs in ${source}.` : 'Pick the runs to compare: tick them in the jobs list and press “Compare selected”, follow “Compare these runs” on a study page, or give job ids or a search above.' }),
@@ -102,6 +120,11 @@ export async function comparePage(view, page, params) {
     return;
   }
   const shown = jobs.slice(0, MAX_RUNS);
+  const active = shown.filter((j) => !FINAL.has(j.status));
+  if (active.length) {
+    view.append(h('p', { class: 'muted', id: 'compare-running',
+      text: `${active.length} of the runs ${active.length === 1 ? 'is' : 'are'} still ${active.map((j) => j.status).includes('running') ? 'running' : 'queued'} (${active.map((j) => j.name || shortId(j.id)).join(', ')}): their metrics and curves appear when they finish; this page refreshes by itself.` }));
+  }
   const rows = compareRows(shown);
   const labels = compareLabels(shown, rows);
   const runs = shown.map((job, i) => ({ job, label: labels[i], color: PALETTE[i % PALETTE.length], style: methodStyle(job.method || job.spec?.method) }));
