@@ -74,8 +74,10 @@ BENCHMARK(fe_step)
     // as a run on two cores steps: 2 threads, 4 steps each per trip
     ->Args({20, 0, 8, 20, 2})
     ->Args({20, 1, 8, 20, 2})
+    ->Args({20, 0, 8, 40, 2})
     ->Args({40, 0, 8, 20, 2})
     ->Args({40, 1, 8, 20, 2})
+    ->Args({40, 0, 8, 40, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
