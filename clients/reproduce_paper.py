@@ -11,8 +11,9 @@ of the same scene: two convergence studies over the paper's L (POST /api/v1/stud
 n_d ladder, refined by the server until two successive meshes agree or the cap is reached), one
 by FE and one by the spectral boundary integral (`"base": {"method": "spectral_bi"}`), an FE
 study with the vanishing mesh-scale damping at L = 5e-6 m (where the undamped lattice does not
-converge; docs/small-l-study.md), and a BI L search (`"convergence": {"search": {"from": 3.2e-6, "factor": 2}}`, docs/studies-api.md
-"L search") that finds L_c without an L list. It waits with progress, downloads the result
+converge; docs/small-l-study.md), and a BI L search
+(`"convergence": {"search": {"from": 3.2e-6, "factor": 2}}`, docs/studies-api.md "L search")
+that finds L_c without an L list. It waits with progress, downloads the result
 files it draws, and writes a Markdown report (default docs/reproduction.md) that leads with the
 answer by each method (BI from the L search, FE from its convergence study), the paper's L_c
 beside ours with the measured reason they differ, then every figure of the paper (Fig. 2-6)

@@ -29,10 +29,10 @@ from .reproduction_report import check_shape, cost_rows, make_figures, write_rep
 from .plots import common
 
 # What clients/reproduce_paper.py and the tests use (the plan's names are re-exported).
-__all__ = ["BI_LADDER", "DAMPED", "FE_ONLY", "FINAL_JOB", "FULL_L", "FULL_LADDER", "QUICK_BASE",
-           "QUICK_BI_LADDER", "QUICK_L", "QUICK_LADDER", "QUICK_SEARCH", "SEARCH", "bi_base",
-           "cost_rows", "damped_body", "loadavg", "progress_line", "report", "search_body", "study_body",
-           "study_wall", "wait_study"]
+__all__ = ["BI_LADDER", "DAMPED", "FE_ONLY", "FINAL_JOB", "FULL_L", "FULL_LADDER",
+           "QUICK_BASE", "QUICK_BI_LADDER", "QUICK_L", "QUICK_LADDER", "QUICK_SEARCH", "SEARCH",
+           "bi_base", "cost_rows", "damped_body", "loadavg", "progress_line", "report",
+           "search_body", "study_body", "study_wall", "wait_study"]
 
 
 def progress_line(study):

@@ -11,9 +11,9 @@ import numpy as np
 
 from . import results as results_mod
 from .report import fmt
+from .reproduction_story import V_STAR
 
 MESH_L = 5e-6  # the paper's Fig. 3
-V_STAR = 1e-4  # the paper scene's V* [m/s] (docs/physics.md)
 
 
 def succeeded(runs):

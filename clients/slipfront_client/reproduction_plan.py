@@ -15,10 +15,10 @@ QUICK_BASE = {"geometry": {"width": 20, "x_min": -5, "height": 8}, "time": {"dur
 # quick: the small scene from 5e-5 m by 4 down to a floor, a few seconds.
 SEARCH = {"from": 3.2e-6, "factor": 2}
 QUICK_SEARCH = {"from": 5e-5, "factor": 4, "floor": 1e-6}
-# FE-only fields: an error in a spectral_bi spec (docs/spectral-bi.md, Options).
 # Where the undamped FE lattice does not converge (the paper's smallest L, docs/small-l-study.md):
 # the same scene by FE with the vanishing mesh-scale damping, a short ladder.
 DAMPED = {"L": [5e-6], "n_d": [20, 40, 80], "n_d_max": 80, "mesh_damping": 0.1}
+# FE-only fields: an error in a spectral_bi spec (docs/spectral-bi.md, Options).
 FE_ONLY = {"geometry": ("height", "top_boundary"), "time": ("safety_factor",)}
 FINAL_JOB = ("succeeded", "failed", "cancelled")
 

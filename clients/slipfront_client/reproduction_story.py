@@ -11,9 +11,20 @@ V_STAR = 1e-4  # the paper scene's V* [m/s] (docs/physics.md)
 PAPER_TOLERANCES = "0.5 % on the propagation distance, 0.1 % on the arrival time at x1 = 11 m"
 
 
-def _rounded(change):
-    """A relative change with the rounding noise of equal node positions set to 0."""
-    return 0.0 if change < 1e-12 else change
+CHANGE_KEYS = ("propagation_distance", "arrival_time_at_probe")
+
+
+def relative_changes(new, old):
+    """|new - old| / |new| of each of CHANGE_KEYS between two runs' metrics (None where either
+    lacks it); rounding noise (equal node positions) is 0."""
+    out = []
+    for k in CHANGE_KEYS:
+        if not (new.get(k) and old.get(k)):
+            out.append(None)
+            continue
+        change = abs(float(new[k]) - float(old[k])) / abs(float(new[k]))
+        out.append(0.0 if change < 1e-12 else change)
+    return out
 
 
 def _same(a, b):
@@ -94,8 +105,7 @@ def fe_lines(study, metrics, n_d_max, bi_study=None):
             continue
         a, b = ok[-2], ok[-1]
         ma, mb = (metrics.get(r["job_id"]) or {} for r in (a, b))
-        change = [abs(float(mb[k]) - float(ma[k])) / abs(float(mb[k])) if mb.get(k) and ma.get(k)
-                  else None for k in ("propagation_distance", "arrival_time_at_probe")]
+        change = relative_changes(mb, ma)
         lines.append(f"  - L = {fmt(L)} m: **not mesh-converged up to the cap** n_d = "
                      f"{fmt(float(b['n_d']))}: the last refinement n_d = {fmt(float(a['n_d']))} → "
                      f"{fmt(float(b['n_d']))} still changed the propagation distance by "
@@ -219,17 +229,13 @@ def damped_lines(damped_study, metrics, bi_study, wall):
                 "not mesh-converged up to n_d = " + fmt(float(ok[-1]["n_d"])))
         if nd is None and len(ok) >= 2:
             prev = metrics.get(ok[-2]["job_id"]) or {}
-            ch = [_rounded(abs(float(finest[k]) - float(prev[k])) / abs(float(finest[k])))
-                  if finest.get(k) and prev.get(k) else None
-                  for k in ("propagation_distance", "arrival_time_at_probe")]
+            ch = relative_changes(finest, prev)
             text += (f" (the last refinement still changed the propagation distance by "
                      f"{percent(ch[0])} and the arrival time by {percent(ch[1])})")
         ref = bi_ref.get(L)
         against = ""
         if ref and finest.get("propagation_distance") and ref.get("propagation_distance"):
-            d = [abs(float(finest[k]) - float(ref[k])) / abs(float(ref[k]))
-                 if finest.get(k) and ref.get(k) else None
-                 for k in ("propagation_distance", "arrival_time_at_probe")]
+            d = relative_changes(ref, finest)  # against BI: relative to BI's value
             against = (f"; its n_d = {fmt(float(ok[-1]['n_d']))} run against BI's "
                        f"mesh-converged run of the same L: propagation distance "
                        f"{fmt(finest.get('propagation_distance'), 5)} / "

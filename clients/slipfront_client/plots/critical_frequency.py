@@ -46,9 +46,9 @@ def plot_critical_frequency(points, L_c=None, paper_L_c=1e-5, v_star=1e-4, title
               label=f"rule L_c(f): A/A0 = {ATTENUATION:g} at f, |V| = {v:.3g} m/s")
     ax.fill_between(f, critical_length(f, v_star, v), top, color="grey", alpha=0.12,
                     label="L > L_c(f): L acts on the event")
-    for colour, (label, L, fr, lc, _) in zip(ramp(len(points), "viridis_r"), points):
-        ax.plot([fr], [lc], "o", color=colour, label=label)
     colours = dict(zip([p[1] for p in points], ramp(len(points), "viridis_r")))
+    for label, L, fr, lc, _ in points:
+        ax.plot([fr], [lc], "o", color=colours[L], label=label)
     found = [h for h in halves if h[2]]
     if halves:
         ax.loglog(f, critical_length(f, v_star, v, 0.5), color="grey", ls=":",

@@ -46,7 +46,8 @@ def amplitude_against(result, reference, x1=6.0, smooth_bins=5):
 
 def half_amplitude_frequency(f, ratio):
     """The lowest frequency above which the amplitude ratio stays below 1/2 (the run has lost
-    half the reference's amplitude there), or None if it never does below the Nyquist."""
+    half the reference's amplitude there): the first non-zero frequency if the ratio is below
+    1/2 everywhere, None if it is not below 1/2 at the Nyquist frequency."""
     above = np.nonzero(ratio >= 0.5)[0]
     if above.size == 0:
         return float(f[1])
