@@ -63,13 +63,14 @@ void ServerApp::listen() {
   limits.max_body_bytes = config_.max_body_bytes;
   limits.max_import_bytes = config_.max_import_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
+  limits.send_timeout = std::chrono::seconds(config_.send_timeout_s);
   limits.max_connections = connection_cap(config_.max_connections);
   read_pool_ = std::make_unique<net::thread_pool>(2);
   write_pool_ = std::make_unique<net::thread_pool>(2);
   export_pool_ = std::make_unique<BoundedPool>(config_.max_exports);
   limits.pools = {read_pool_.get(), write_pool_.get(), export_pool_.get()};
   // Answers built in memory and not yet read by their clients, over all connections.
-  limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
+  limits.unsent = std::make_shared<ByteBudget>(config_.max_unsent_bytes, 64 * 1024);
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);
@@ -154,6 +155,7 @@ void ServerApp::start() {
   context_.reset(new ServerContext{*service_, stats_, tokens_, config_.data_dir, executor_->slots(),
                                    config_.retry_after_s, draining_, *studies_,
                                    config_.min_free_bytes, executor_->name()});
+  context_->export_bytes = std::make_shared<ByteBudget>(config_.max_export_bytes);
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
     stats_.record_storage_error(what);
   });

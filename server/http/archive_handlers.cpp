@@ -1,7 +1,10 @@
 // GET /exports (a set of finished runs as one tar file) and POST /imports (such a file
 // stored here): docs/server.md "Export and import", the format in server/http/run_archive.hpp.
+#include "api/number_text.hpp"
+#include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
 #include "server/core/job_id.hpp"
+#include "server/core/storage_error.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/job_filter_query.hpp"
 #include "server/http/range_file.hpp"
@@ -16,6 +19,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <variant>
 
 namespace slipfront::server {
@@ -81,34 +85,76 @@ std::variant<std::vector<Job>, Response> runs_to_export(ServerContext& ctx, Requ
   return jobs;
 }
 
+// The disk an archive of `size` bytes would take: nullopt when it may be written, else the
+// refusal (422 past the whole bound, 503 while other archives hold it or the disk is short).
+std::optional<Response> refuse_archive_space(ServerContext& ctx, const Request& req,
+                                             std::uint64_t size,
+                                             std::optional<ByteReservation>& reserved) {
+  const std::uint64_t limit = ctx.export_bytes->limit();
+  if (size > limit)
+    return problem_response(req, http::status::unprocessable_entity,
+                            "the archive would take " + std::to_string(size) +
+                                " bytes, more than this server writes for exports "
+                                "(--max-export-bytes " +
+                                std::to_string(limit) + "): export fewer runs at a time");
+  reserved = ByteReservation::take(ctx.export_bytes, size);
+  if (!reserved)
+    return unavailable_response(req,
+                                "archives not yet read by their clients take " +
+                                    std::to_string(ctx.export_bytes->held()) + " of the " +
+                                    std::to_string(limit) +
+                                    " bytes this server writes for exports "
+                                    "(--max-export-bytes); retry later",
+                                ctx.retry_after_s);
+  if (!leaves_free(ctx.data_dir, size, ctx.min_free_bytes))
+    return unavailable_response(req,
+                                "the data dir's disk has too little free space for an archive of " +
+                                    std::to_string(size) + " bytes (--min-free-bytes " +
+                                    api::number_text(ctx.min_free_bytes) + "); retry later",
+                                ctx.retry_after_s);
+  return std::nullopt;
+}
+
 Response export_archive(ServerContext& ctx, RequestContext& rc) {
+  // Exports may take much disk and bandwidth: on a shared server they need a token, as writes do.
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
   auto chosen = runs_to_export(ctx, rc);
   if (auto* refusal = std::get_if<Response>(&chosen)) return std::move(*refusal);
   const auto& jobs = std::get<std::vector<Job>>(chosen);
+  ArchivePlan plan;
+  try {
+    plan = plan_run_archive(ctx.service, jobs);
+  } catch (const ArchiveRefusal& e) {
+    return problem_response(req, http::status::conflict, e.what());
+  }
+  // Its exact size is known: reserved before a byte is written, released when the file the
+  // answer streams from is closed (sent, or its client cut after --send-timeout-s).
+  std::optional<ByteReservation> reserved;
+  if (auto refusal = refuse_archive_space(ctx, req, plan.size, reserved))
+    return std::move(*refusal);
   // Written to a file of the data dir that has no name once opened: the answer streams from
   // it and the space is freed when it is sent (or the server stops).
   std::string name = (ctx.data_dir.empty() ? std::string(".") : ctx.data_dir) + "/export-XXXXXX";
   const int fd = ::mkstemp(name.data());
   if (fd < 0)
-    return problem_response(req, http::status::internal_server_error,
-                            std::string("cannot create the archive: ") + std::strerror(errno));
+    throw StorageError(std::string("cannot create the archive: ") + std::strerror(errno), true);
   ::unlink(name.c_str());
   FileDescriptor file(fd);
   try {
-    write_run_archive(fd, ctx.service, jobs);
+    write_run_archive(fd, ctx.service, jobs, plan);
   } catch (const ArchiveRefusal& e) {
     return problem_response(req, http::status::conflict, e.what());
   }
   if (::lseek(fd, 0, SEEK_SET) != 0)
-    return problem_response(req, http::status::internal_server_error,
-                            std::string("cannot read the archive: ") + std::strerror(errno));
+    throw StorageError(std::string("cannot read the archive: ") + std::strerror(errno), true);
   beast::error_code ec;
   RangeFile body;
   body.adopt(file.release(), ec);
   if (ec)
     return problem_response(req, http::status::internal_server_error,
                             "cannot read the archive: " + ec.message());
+  body.hold(std::move(*reserved));
   http::response<RangeFileBody> res{http::status::ok, req.version()};
   res.set(http::field::server, "slipfront");
   res.set(http::field::content_type, "application/x-tar");

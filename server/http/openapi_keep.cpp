@@ -37,12 +37,13 @@ const char* keep_paths = R"json({
         "403": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
   },
   "/api/v1/exports": {
-    "get": {"summary": "Finished runs as one tar archive: manifest.json (SHA-256 of every member), runs/<id>/job.json, runs/<id>/result.h5 (docs/server.md, Export and import)",
+    "get": {"summary": "Finished runs as one tar archive: manifest.json (SHA-256 of every member), runs/<id>/job.json, runs/<id>/result.h5 (docs/server.md, Export and import); a token on a server with a token file", "security": [{"bearer": []}],
       "parameters": [{"name": "ids", "in": "query", "schema": {"type": "string"}, "description": "comma-separated job ids (1..1000); or instead the filters of GET /api/v1/jobs (study_id, tag, where, archived, ...)"}],
       "responses": {"200": {"description": "The archive", "content": {"application/x-tar": {}}},
-        "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"},
+        "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"},
         "409": {"description": "A run is not finished, or its result file is missing or damaged", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
-        "422": {"description": "More than 1000 runs match", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
+        "422": {"description": "More than 1000 runs match, or the archive is larger than --max-export-bytes", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   },
   "/api/v1/imports": {
     "post": {"summary": "Store the runs of an export archive: every member checked against the manifest before anything is stored; runs keep their ids when free here", "security": [{"bearer": []}],

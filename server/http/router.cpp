@@ -152,11 +152,10 @@ Response Router::answer(const Request& request) const {
         return problem_response(request, http::status::internal_server_error,
                                 "internal error (the server log has the details)");
       if (record_storage_error_) record_storage_error_(e.what());
-      auto res = problem_response(request, http::status::service_unavailable,
+      return unavailable_response(request,
                                   "the server's storage cannot take writes now (disk full or I/O "
-                                  "error); retry later");
-      res.set(http::field::retry_after, std::to_string(retry_after_s_));
-      return res;
+                                  "error); retry later",
+                                  retry_after_s_);
     } catch (const std::exception& e) {
       log_error(request_line(request) + ": " + e.what());
       // The exception's text may quote internals (SQL, library messages): it goes to the

@@ -50,24 +50,27 @@ OpenedResult open_intact(JobService& service, const Job& job) {
 
 } // namespace
 
-void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs) {
-  // The manifest comes first, so every file is checked (and its job.json made) before a byte
-  // is written; the result files are opened again, one at a time, when they are copied.
+ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs) {
+  // Every file is checked (and every job.json made) before a byte is written; the result
+  // files are opened again, one at a time, when they are copied.
+  ArchivePlan plan;
   json runs = json::array(), files = json::array();
-  std::vector<std::string> job_texts;
+  std::vector<std::uint64_t> sizes;
   for (const Job& job : jobs) {
     json record = job_to_json(job);
     record["front"] = service.front(job.id).value_or(json());
-    job_texts.push_back(record.dump(2) + "\n");
-    const std::string& text = job_texts.back();
+    plan.job_texts.push_back(record.dump(2) + "\n");
+    const std::string& text = plan.job_texts.back();
     files.push_back(
         {{"name", job_member(job.id)}, {"size", text.size()}, {"sha256", api::sha256_hex(text)}});
+    sizes.push_back(text.size());
     json run = {{"id", job.id}, {"job", job_member(job.id)}, {"result", nullptr}};
     if (has_result(job)) {
       open_intact(service, job);
       files.push_back({{"name", result_member(job.id)},
                        {"size", job.result.size},
                        {"sha256", job.result.sha256}});
+      sizes.push_back(job.result.size);
       run["result"] = result_member(job.id);
     }
     runs.push_back(std::move(run));
@@ -79,10 +82,18 @@ void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs
       {"server", {{"host", host_name()}, {"code_version", service.options().code_version}}},
       {"runs", std::move(runs)},
       {"files", std::move(files)}};
+  plan.manifest = manifest.dump(2) + "\n";
+  sizes.push_back(plan.manifest.size());
+  plan.size = TarWriter::archive_size(sizes);
+  return plan;
+}
+
+void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
+                       const ArchivePlan& plan) {
   TarWriter tar(fd);
-  tar.add("manifest.json", manifest.dump(2) + "\n");
+  tar.add("manifest.json", plan.manifest);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    tar.add(job_member(jobs[i].id), job_texts[i]);
+    tar.add(job_member(jobs[i].id), plan.job_texts[i]);
     if (has_result(jobs[i])) {
       OpenedResult file = open_intact(service, jobs[i]);
       tar.add_from(result_member(jobs[i].id), file.fd.get(), file.size);

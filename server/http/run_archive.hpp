@@ -12,6 +12,7 @@
 #include "server/services/job_service.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -34,9 +35,19 @@ private:
   std::string where_;
 };
 
-// Writes the archive of `jobs` (finished runs) to `fd`. Throws ArchiveRefusal when a run's
-// result file is missing or damaged (where = the job id).
-void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs);
+// What the archive of `jobs` (finished runs) holds besides the result files, made before a
+// byte is written, and its exact size in bytes: the disk it will take is reserved first.
+struct ArchivePlan {
+  std::string manifest;
+  std::vector<std::string> job_texts; // runs/<id>/job.json of each job, in order
+  std::uint64_t size = 0;
+};
+// Throws ArchiveRefusal when a run's result file is missing or damaged (where = the job id).
+ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs);
+// Writes the archive of `jobs` as planned to `fd`. Throws ArchiveRefusal as above (a file
+// damaged since), StorageError when the disk refuses the bytes.
+void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
+                       const ArchivePlan& plan);
 
 struct ImportedRun {
   std::string id;          // on this server
