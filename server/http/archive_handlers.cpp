@@ -1,5 +1,6 @@
 // GET /exports (a set of finished runs as one tar file) and POST /imports (such a file
 // stored here): docs/server.md "Export and import", the format in server/http/run_archive.hpp.
+#include "api/json_fields.hpp"
 #include "api/number_text.hpp"
 #include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
@@ -182,10 +183,12 @@ Response import_archive(ServerContext& ctx, RequestContext& rc) {
     return json_response(rc.request, http::status::created,
                          {{"imported", runs}, {"count", imported.size()}});
   } catch (const ArchiveRefusal& e) {
-    const std::string where = e.where().empty() ? "" : e.where() + ": ";
+    // A member name comes from the client: a long one is cut, as other echoed values are.
+    const std::string where = api::cut_text(e.where(), 300);
     return problem_response(rc.request, http::status::unprocessable_entity,
-                            "the archive is refused, nothing was stored: " + where + e.what(),
-                            {{e.where(), e.what()}});
+                            "the archive is refused, nothing was stored: " +
+                                (where.empty() ? "" : where + ": ") + e.what(),
+                            {{where, e.what()}});
   }
 }
 

@@ -1,6 +1,7 @@
 #include "server/http/run_archive.hpp"
 
 #include "api/free_text.hpp"
+#include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
 #include "api/run_annotations.hpp"
 #include "server/core/clock.hpp"
@@ -152,7 +153,16 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
       !entry.value("job", json()).is_string())
     throw ArchiveRefusal("manifest.json#/runs", "each run needs \"id\" and \"job\" (strings)");
   const std::string original_id = entry["id"].get<std::string>();
+  if (!is_safe_member_name(original_id) || original_id.find('/') != std::string::npos)
+    throw ArchiveRefusal("manifest.json#/runs", "run id " + api::describe_value(original_id) +
+                                                    " is not a name of plain characters");
   const std::string name = entry["job"].get<std::string>();
+  // Each run has its own members, used once: a member named by many runs would be stored
+  // many times, and the bytes stored would no longer be bounded by the bytes uploaded.
+  if (name != job_member(original_id))
+    throw ArchiveRefusal("manifest.json#/runs",
+                         "the job of run " + original_id + " must be its own member " +
+                             job_member(original_id) + ", not " + api::describe_value(name));
   auto member = members.find(name);
   if (member == members.end())
     throw ArchiveRefusal(name, "the manifest names it but the archive does not hold it");
@@ -219,6 +229,11 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
       throw ArchiveRefusal("manifest.json#/runs",
                            "run " + original_id + " succeeded but has no \"result\" member");
     const std::string result = result_name.get<std::string>();
+    if (result != result_member(original_id))
+      throw ArchiveRefusal("manifest.json#/runs",
+                           "the result of run " + original_id + " must be its own member " +
+                               result_member(original_id) + " (one member holds one run's " +
+                               "result), not " + api::describe_value(result));
     auto file = members.find(result);
     auto listing = listed.find(result);
     if (file == members.end() || listing == listed.end())
@@ -258,7 +273,9 @@ std::map<std::string, json> check_files(const json& manifest,
         !f.value("sha256", json()).is_string() || !f.value("size", json()).is_number_unsigned())
       throw ArchiveRefusal("manifest.json#/files",
                            "each file needs \"name\", \"size\" and \"sha256\"");
-    listed[f["name"].get<std::string>()] = f;
+    if (!listed.emplace(f["name"].get<std::string>(), f).second)
+      throw ArchiveRefusal("manifest.json#/files",
+                           api::describe_value(f["name"]) + " is listed twice");
   }
   for (const auto& [name, content] : members)
     if (name != "manifest.json" && !listed.contains(name))

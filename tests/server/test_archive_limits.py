@@ -197,6 +197,69 @@ class UnreadExports(unittest.TestCase):
                 s.close()
 
 
+class Imports(unittest.TestCase):
+    """What an import stores: each run's own result member once, all runs or none."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.target = Server(BINARY, args=["--workers", "1", "--token-file",
+                                          TOKEN_FILE.name]).start()
+        cls.five = export(RUN_IDS[:5])
+
+    @classmethod
+    def tearDownClass(cls):
+        code = cls.target.terminate()
+        cls.target.cleanup()
+        assert code == 0, code
+
+    def post(self, archive, headers=ALICE, server=None):
+        server = server or self.target
+        return server.post("/api/v1/imports", data=archive, headers=headers, timeout=120)
+
+    def assert_refused(self, archive, where):
+        before = imported_counts(self.target.data_dir)
+        files = sorted(os.listdir(os.path.join(self.target.data_dir, "results")))
+        r = self.post(archive)
+        self.assertEqual(r.status_code, 422, r.content[:500])
+        self.assertIn(where, r.json()["detail"])
+        self.assertEqual(imported_counts(self.target.data_dir), before, "a refused archive stored")
+        self.assertEqual(sorted(os.listdir(os.path.join(self.target.data_dir, "results"))), files,
+                         "a refused archive wrote result files")
+        return r.json()["detail"]
+
+    def test_one_result_member_named_by_many_runs_is_refused(self):
+        """Before: 201, and the one member was written once per run naming it."""
+        files = members(self.five)
+        manifest = json.loads(files["manifest.json"])
+        shared = files[f"runs/{RUN_IDS[0]}/result.h5"]
+        files = {n: d for n, d in files.items() if not n.endswith("/result.h5")}
+        files["shared/result.h5"] = shared
+        for run in manifest["runs"]:
+            run["result"] = "shared/result.h5"
+        files["manifest.json"] = json.dumps(manifest).encode()
+        detail = self.assert_refused(resign(files), "must be its own member")
+        self.assertIn(f"runs/{RUN_IDS[0]}/result.h5", detail)
+        # One run's own member named by another run: refused the same way.
+        files = members(self.five)
+        manifest = json.loads(files["manifest.json"])
+        manifest["runs"][1]["result"] = manifest["runs"][0]["result"]
+        del files[f"runs/{RUN_IDS[1]}/result.h5"]
+        files["manifest.json"] = json.dumps(manifest).encode()
+        self.assert_refused(resign(files), "must be its own member")
+
+    def test_an_import_writes_no_more_than_it_uploads(self):
+        results = os.path.join(self.target.data_dir, "results")
+        before = set(os.listdir(results))
+        archive = export(RUN_IDS[:10])
+        r = self.post(archive)
+        self.assertEqual(r.status_code, 201, r.content[:500])
+        self.assertEqual(r.json()["count"], 10)
+        written = sum(os.path.getsize(os.path.join(results, n))
+                      for n in set(os.listdir(results)) - before)
+        self.assertLessEqual(written, len(archive))
+        self.assertEqual(stray_files(self.target.data_dir), [])
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
     parser.add_argument("--binary", required=True)
