@@ -133,7 +133,13 @@ void ServerApp::start() {
   so.code_version = code_version_;
   so.auth_enabled = tokens_.has_value();
   so.data_dir = config_.data_dir;
+  so.min_free_bytes = config_.min_free_bytes;
   service_ = std::make_unique<JobService>(so, *store_, *queue_, running_);
+  // Imports a crash interrupted: their files no row refers to go.
+  const InterruptedChanges interrupted = service_->recover_result_files();
+  if (interrupted.intents > 0)
+    log_info("recovery: " + std::to_string(interrupted.intents) + " import(s) were interrupted; " +
+             std::to_string(interrupted.undone) + " of their result files removed");
 
   WorkerOptions wo;
   wo.workers = config_.workers;

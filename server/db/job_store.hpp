@@ -8,6 +8,7 @@
 #include "server/core/job_filter.hpp"
 #include "server/core/run_record.hpp"
 #include "server/db/database.hpp"
+#include "server/db/file_intents.hpp"
 #include "server/db/malformed_rows.hpp"
 #include "server/db/migrations.hpp"
 #include "server/db/run_query_sql.hpp"
@@ -27,7 +28,7 @@ namespace slipfront::server {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 9;
+  static constexpr int schema_version = 10;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).
@@ -96,9 +97,22 @@ public:
   // Deletes a finished job and its metrics row in one transaction. A run of a study is not
   // deleted (the study keeps its runs); a queued or running one neither.
   Removal remove(const std::string& id);
-  // Inserts a finished run from an archive (status, result and metrics as given) under its
-  // id; false if that id is taken.
-  bool insert_finished(const Job& job, const RunRecord& record);
+
+  // The result files and the rows in step (job_store_files.cpp, server/db/file_intents.hpp).
+  struct FinishedRun {
+    Job job;
+    RunRecord record;
+  };
+  // Records, in a transaction of its own, that the result files `paths` are about to be
+  // created (kind "import") or removed ("delete"); returns the intent's id.
+  std::int64_t record_file_intent(const std::string& kind, const std::vector<std::string>& paths);
+  void forget_file_intent(std::int64_t id);
+  std::vector<FileIntent> file_intents();
+  ResultReferences result_references();
+  // Inserts finished runs from an archive (status, result and metrics as given) under their
+  // ids and forgets the intent `intent` (0: none), all in one transaction; false (and
+  // nothing changed) if one of the ids is taken.
+  bool insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent);
 
   std::string path() const { return db_.path(); }
 

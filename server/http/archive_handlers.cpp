@@ -173,19 +173,22 @@ Response export_archive(ServerContext& ctx, RequestContext& rc) {
 
 Response import_archive(ServerContext& ctx, RequestContext& rc) {
   if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
+  const auto& req = rc.request;
   try {
-    auto imported = import_run_archive(rc.request.body(), ctx.service, rc.user);
+    const ImportResult imported = import_run_archive(req.body(), ctx.service, rc.user);
+    if (imported.kind == ImportResult::Kind::no_space)
+      return unavailable_response(req, imported.reason + "; nothing was stored, retry later",
+                                  ctx.retry_after_s);
     nlohmann::json runs = nlohmann::json::array();
-    for (const auto& run : imported)
-      runs.push_back({{"id", run.id},
-                      {"original_id", run.original_id},
-                      {"url", api_prefix + "/jobs/" + run.id}});
-    return json_response(rc.request, http::status::created,
-                         {{"imported", runs}, {"count", imported.size()}});
+    for (const auto& [id, original_id] : imported.ids)
+      runs.push_back(
+          {{"id", id}, {"original_id", original_id}, {"url", api_prefix + "/jobs/" + id}});
+    return json_response(req, http::status::created,
+                         {{"imported", runs}, {"count", imported.ids.size()}});
   } catch (const ArchiveRefusal& e) {
     // A member name comes from the client: a long one is cut, as other echoed values are.
     const std::string where = api::cut_text(e.where(), 300);
-    return problem_response(rc.request, http::status::unprocessable_entity,
+    return problem_response(req, http::status::unprocessable_entity,
                             "the archive is refused, nothing was stored: " +
                                 (where.empty() ? "" : where + ": ") + e.what(),
                             {{where, e.what()}});

@@ -140,15 +140,9 @@ private:
   std::string member_;
 };
 
-struct PendingRun {
-  Job job;
-  RunRecord record;
-  std::string_view result; // the result file's bytes ("" = none)
-};
-
 // The run of one manifest entry, checked; nothing stored.
-PendingRun read_run(const json& entry, const std::map<std::string, std::string_view>& members,
-                    const std::map<std::string, json>& listed, const json& origin) {
+RunToImport read_run(const json& entry, const std::map<std::string, std::string_view>& members,
+                     const std::map<std::string, json>& listed, const json& origin) {
   if (!entry.is_object() || !entry.value("id", json()).is_string() ||
       !entry.value("job", json()).is_string())
     throw ArchiveRefusal("manifest.json#/runs", "each run needs \"id\" and \"job\" (strings)");
@@ -173,7 +167,7 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
   RecordReader in(record, name);
   if (in.text("id", 64) != original_id) in.refuse("id", "is not the manifest's " + original_id);
 
-  PendingRun run;
+  RunToImport run;
   Job& job = run.job;
   const auto status = parse_status(in.text("status", 16));
   if (!status || !is_final(*status))
@@ -242,6 +236,7 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
     if (!stated.is_object() || stated.value("sha256", json()) != listing->second["sha256"])
       in.refuse("result/sha256", "is not the SHA-256 of " + result + " in the manifest");
     run.result = file->second;
+    run.member = result;
     job.result.size = file->second.size();
     job.result.sha256 = listing->second["sha256"].get<std::string>();
   } else if (!result_name.is_null()) {
@@ -295,73 +290,10 @@ std::map<std::string, json> check_files(const json& manifest,
   return listed;
 }
 
-// Writes `bytes` to a new file at `path` (never over an existing one) through a temporary
-// name the start-up clean-up removes (".tmp").
-void write_new_file(const std::string& path, std::string_view bytes) {
-  const std::string temporary = path + ".import.tmp";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot create " + temporary + ": " + std::strerror(errno));
-  FileDescriptor owned(fd);
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const std::string reason = std::strerror(errno);
-      ::unlink(temporary.c_str());
-      throw std::runtime_error("cannot write " + temporary + ": " + reason);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::link(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(temporary.c_str());
-    throw std::runtime_error("cannot store " + path + ": " + reason);
-  }
-  ::unlink(temporary.c_str());
-}
-
-// The id a run gets here: its own if neither a job nor a result file has it, else a new one.
-std::string free_id(JobService& service, const std::string& wanted) {
-  auto taken = [&](const std::string& id) {
-    return service.get(id).has_value() ||
-           std::filesystem::exists(
-               service.result_files().absolute_path({result_relative_path(id), 0, ""}));
-  };
-  if (is_valid_job_id(wanted) && !taken(wanted)) return wanted;
-  std::string id = new_job_id();
-  while (taken(id))
-    id = new_job_id();
-  return id;
-}
-
-void store_run(JobService& service, PendingRun& run, const std::string& user) {
-  Job& job = run.job;
-  job.submitted_by = user;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    job.id = free_id(service, attempt == 0 ? job.id : std::string());
-    job.result.path =
-        job.status == JobStatus::succeeded ? result_relative_path(job.id) : std::string();
-    const std::string path = service.result_files().absolute_path(job.result);
-    if (!job.result.path.empty()) {
-      try {
-        write_new_file(path, run.result);
-      } catch (const std::exception&) {
-        if (std::filesystem::exists(path)) continue; // taken in between: another id
-        throw;
-      }
-    }
-    run.record.result = job.result;
-    if (service.insert_finished(job, run.record)) return;
-    if (!job.result.path.empty()) std::filesystem::remove(path);
-  }
-  throw std::runtime_error("no free id for imported run " + job.id);
-}
-
 } // namespace
 
-std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService& service,
-                                            const std::string& user) {
+ImportResult import_run_archive(std::string_view archive, JobService& service,
+                                const std::string& user) {
   std::vector<TarMember> members;
   try {
     members = read_tar(archive, {2 * max_archive_runs + 1});
@@ -388,21 +320,15 @@ std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService
   if (!runs.is_array() || runs.empty() || runs.size() > max_archive_runs)
     throw ArchiveRefusal("manifest.json#/runs",
                          "must be an array of 1 to " + std::to_string(max_archive_runs) + " runs");
-  std::vector<PendingRun> pending;
+  std::vector<RunToImport> pending;
   std::set<std::string> ids;
   for (const json& entry : runs) {
     pending.push_back(read_run(entry, by_name, listed, manifest));
     if (!ids.insert(pending.back().job.id).second)
       throw ArchiveRefusal("manifest.json#/runs", "run " + pending.back().job.id + " given twice");
   }
-  // Everything checked: store.
-  std::vector<ImportedRun> imported;
-  for (auto& run : pending) {
-    const std::string original = run.job.id;
-    store_run(service, run, user);
-    imported.push_back({run.job.id, original});
-  }
-  return imported;
+  // Everything checked: store, all runs or none.
+  return service.import_runs(std::move(pending), user);
 }
 
 } // namespace slipfront::server

@@ -49,16 +49,12 @@ ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs);
 void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
                        const ArchivePlan& plan);
 
-struct ImportedRun {
-  std::string id;          // on this server
-  std::string original_id; // in the archive
-};
-
 // Checks every member of `archive` against the manifest (names, sizes, SHA-256) and every
-// run's job.json before it stores anything, then stores the runs for `user`: each keeps its
-// id if it is free here, else gets a new one, and records where it came from
-// (`imported_from`). Throws ArchiveRefusal naming what does not hold.
-std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService& service,
-                                            const std::string& user);
+// run's job.json before it stores anything, then stores the runs for `user`, all of them or
+// none (JobService::import_runs): each keeps its id if it is free here, else gets a new one,
+// and records where it came from (`imported_from`). Throws ArchiveRefusal naming what does
+// not hold, StorageError when the disk refuses a write.
+ImportResult import_run_archive(std::string_view archive, JobService& service,
+                                const std::string& user);
 
 } // namespace slipfront::server

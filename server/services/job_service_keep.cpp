@@ -65,9 +65,4 @@ KeepResult JobService::remove(const std::string& id, const std::string& user) {
   return {Kind::done, job, {}, result_deleted};
 }
 
-bool JobService::insert_finished(const Job& job, const RunRecord& record) {
-  std::lock_guard lock(submit_mutex_);
-  return store_.insert_finished(job, record);
-}
-
 } // namespace slipfront::server

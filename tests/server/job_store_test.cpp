@@ -367,3 +367,39 @@ TEST(JobStore, SearchOnArrestPositionUsesItsIndex) {
   }
   EXPECT_NE(plan.find("metrics_arrest_position"), std::string::npos) << plan;
 }
+
+// An import's rows go in together with the end of its intent, or nothing does (services/
+// run_import.cpp relies on it: the intent names the files to remove after a failure).
+TEST(JobStore, ImportedRunsAreInsertedAllOrNone) {
+  TempDir dir("slipfront-store-");
+  JobStore store(dir.file("jobs.db"));
+  Job taken = make_job("here");
+  store.insert(taken);
+  std::vector<JobStore::FinishedRun> runs;
+  for (const char* name : {"first", "second"}) {
+    JobStore::FinishedRun run{make_job(name), success()};
+    run.job.status = JobStatus::succeeded;
+    run.job.result = {result_relative_path(run.job.id), 1234, "abc"};
+    run.record.result = run.job.result;
+    runs.push_back(run);
+  }
+  const auto intent =
+      store.record_file_intent("import", {runs[0].job.result.path, runs[1].job.result.path});
+  auto clash = runs;
+  clash[1].job.id = taken.id; // taken meanwhile: the whole import is refused
+  EXPECT_FALSE(store.insert_finished(clash, intent));
+  EXPECT_FALSE(store.get(runs[0].job.id).has_value());
+  ASSERT_EQ(store.file_intents().size(), 1u);
+  EXPECT_EQ(store.file_intents()[0].paths.size(), 2u);
+  EXPECT_EQ(store.result_references().paths.count(runs[0].job.result.path), 0u);
+
+  EXPECT_TRUE(store.insert_finished(runs, intent));
+  EXPECT_TRUE(store.file_intents().empty());
+  for (const auto& run : runs) {
+    auto got = store.get(run.job.id);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_EQ(got->status, JobStatus::succeeded);
+    EXPECT_EQ(got->result.path, run.job.result.path);
+    EXPECT_EQ(store.result_references().paths.count(run.job.result.path), 1u);
+  }
+}
