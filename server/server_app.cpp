@@ -135,11 +135,18 @@ void ServerApp::start() {
   so.data_dir = config_.data_dir;
   so.min_free_bytes = config_.min_free_bytes;
   service_ = std::make_unique<JobService>(so, *store_, *queue_, running_);
-  // Imports a crash interrupted: their files no row refers to go.
-  const InterruptedChanges interrupted = service_->recover_result_files();
-  if (interrupted.intents > 0)
-    log_info("recovery: " + std::to_string(interrupted.intents) + " import(s) were interrupted; " +
-             std::to_string(interrupted.undone) + " of their result files removed");
+  // Imports and deletes a crash interrupted, and any result file no row refers to.
+  const StrayResults stray = service_->recover_result_files();
+  if (stray.intents > 0)
+    log_info("recovery: " + std::to_string(stray.intents) +
+             " import(s) or delete(s) were interrupted; " + std::to_string(stray.undone) +
+             " of their result files removed");
+  constexpr std::size_t named = 20; // then a count
+  for (std::size_t i = 0; i < stray.removed.size() && i < named; ++i)
+    log_info("recovery: " + stray.removed[i].path + " removed: no job refers to it");
+  if (stray.removed.size() > named)
+    log_info("recovery: " + std::to_string(stray.removed.size() - named) +
+             " more result files no job refers to removed");
 
   WorkerOptions wo;
   wo.workers = config_.workers;

@@ -1,4 +1,4 @@
-// What keeps the result files of data dir and the rows of its database in step
+// What keeps the result files of the data dir and the rows of its database in step
 // (docs/reliability.md "What bounds the disk"): the intents of changes that touch both (an
 // import links files then inserts their rows, a delete removes a row then its file), and the
 // result paths the rows refer to. Free functions on a connection, so that `slipfront check`

@@ -93,9 +93,12 @@ public:
     enum class Kind { removed, not_found, not_final, in_study } kind = Kind::not_found;
     std::string study_id;        // in_study: a study that holds the run
     std::string orphaned_result; // removed: its result path if no other job refers to it
+    std::int64_t intent = 0;     // removed with an orphaned result: the intent to remove it
   };
   // Deletes a finished job and its metrics row in one transaction. A run of a study is not
-  // deleted (the study keeps its runs); a queued or running one neither.
+  // deleted (the study keeps its runs); a queued or running one neither. When its result
+  // file goes with it, the same transaction records the intent to remove the file
+  // (forget_file_intent() once it is gone; start-up removes it otherwise).
   Removal remove(const std::string& id);
 
   // The result files and the rows in step (job_store_files.cpp, server/db/file_intents.hpp).

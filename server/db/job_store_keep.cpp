@@ -1,5 +1,6 @@
 // The JobStore calls behind "Keep, annotate, share" (docs/server.md): tags and note edited
 // after submission, archive and restore, delete.
+#include "server/core/clock.hpp"
 #include "server/db/job_rows.hpp"
 #include "server/db/job_store.hpp"
 
@@ -50,7 +51,10 @@ JobStore::Removal JobStore::remove(const std::string& id) {
     // A cache hit shares the file of the run it reused: the file goes with the last of them.
     auto users = db->prepare("SELECT count(*) FROM jobs WHERE result_path = ?1");
     users.bind(1, result_path);
-    if (users.step() && users.integer(0) == 0) removal.orphaned_result = result_path;
+    if (users.step() && users.integer(0) == 0) {
+      removal.orphaned_result = result_path;
+      removal.intent = insert_file_intent(*db, "delete", {result_path}, now_iso8601());
+    }
   }
   tx.commit();
   return removal;

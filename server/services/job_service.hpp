@@ -88,9 +88,10 @@ struct ImportResult {
 };
 
 // What start-up found and removed in results/ (JobService::recover_result_files).
-struct InterruptedChanges {
-  int intents = 0; // interrupted imports
-  int undone = 0;  // their files removed
+struct StrayResults {
+  int intents = 0;                  // interrupted imports and deletes
+  int undone = 0;                   // their files removed
+  std::vector<StrayResult> removed; // other files no row referred to
 };
 
 struct ServiceOptions {
@@ -147,9 +148,9 @@ public:
   // each keeps its id if free here, else gets a new one. Throws StorageError when the disk
   // refuses a write (nothing stays).
   ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user);
-  // At start-up, before the server answers: removes the files of imports a crash
-  // interrupted.
-  InterruptedChanges recover_result_files();
+  // At start-up, before the server answers: removes the files of imports and deletes a
+  // crash interrupted, and every other file of results/ no row refers to.
+  StrayResults recover_result_files();
 
   ServiceLoad load() const;
   // The number of jobs in the database by status.

@@ -7,7 +7,8 @@
 //   3. one transaction: every row, and the intent forgotten.
 //
 // A crash before 3 commits leaves an intent naming files no row refers to: the next start
-// removes them (and every temporary file).
+// removes them (and every temporary file). A delete records its intent in the transaction
+// that deletes the row, then removes the file, then forgets the intent.
 #include "server/core/clock.hpp"
 #include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
@@ -150,8 +151,8 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
   return out;
 }
 
-InterruptedChanges JobService::recover_result_files() {
-  InterruptedChanges out;
+StrayResults JobService::recover_result_files() {
+  StrayResults out;
   const ResultReferences refs = store_.result_references();
   // Changes a crash interrupted: their files no row refers to go.
   for (const FileIntent& intent : store_.file_intents()) {
@@ -162,6 +163,12 @@ InterruptedChanges JobService::recover_result_files() {
       }
     store_.forget_file_intent(intent.id);
     ++out.intents;
+  }
+  // Any other file without a row (left by an older version, or copied in by hand).
+  for (const StrayResult& stray : find_stray_results(options_.data_dir, refs)) {
+    std::error_code ec;
+    fs::remove(result_files_.absolute_path({stray.path, 0, ""}), ec);
+    if (!ec) out.removed.push_back(stray);
   }
   return out;
 }

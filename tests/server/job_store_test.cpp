@@ -403,3 +403,34 @@ TEST(JobStore, ImportedRunsAreInsertedAllOrNone) {
     EXPECT_EQ(store.result_references().paths.count(run.job.result.path), 1u);
   }
 }
+
+// A delete whose result file goes with the row records, in the same transaction, the intent
+// to remove that file: a crash before the file is gone leaves the intent for start-up.
+TEST(JobStore, DeletingTheLastRunOfAResultRecordsTheIntentToRemoveIt) {
+  TempDir dir("slipfront-store-");
+  JobStore store(dir.file("jobs.db"));
+  JobStore::FinishedRun own{make_job("own"), success()};
+  own.job.status = JobStatus::succeeded;
+  own.job.result = {result_relative_path(own.job.id), 1234, "abc"};
+  own.record.result = own.job.result;
+  JobStore::FinishedRun sharer = own; // a cache hit of it: the same file
+  sharer.job.id = new_job_id();
+  ASSERT_TRUE(store.insert_finished({own, sharer}, 0));
+
+  auto first = store.remove(own.job.id);
+  EXPECT_EQ(first.kind, JobStore::Removal::Kind::removed);
+  EXPECT_TRUE(first.orphaned_result.empty()); // the cache hit still refers to it
+  EXPECT_EQ(first.intent, 0);
+  EXPECT_TRUE(store.file_intents().empty());
+
+  auto last = store.remove(sharer.job.id);
+  EXPECT_EQ(last.orphaned_result, own.job.result.path);
+  ASSERT_NE(last.intent, 0);
+  const auto intents = store.file_intents();
+  ASSERT_EQ(intents.size(), 1u);
+  EXPECT_EQ(intents[0].kind, "delete");
+  EXPECT_EQ(intents[0].paths, std::vector<std::string>{own.job.result.path});
+  EXPECT_EQ(store.result_references().paths.count(own.job.result.path), 0u);
+  store.forget_file_intent(last.intent);
+  EXPECT_TRUE(store.file_intents().empty());
+}

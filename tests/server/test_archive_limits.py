@@ -325,10 +325,10 @@ class ImportOnAFullDisk(unittest.TestCase):
             self.assertEqual(code, 0)
 
 
-class KilledDuringImports(unittest.TestCase):
-    """SIGKILL while an import runs: after the restart it is there whole or not at all, and no
-    result file is left without a row. Before: part of an import stayed, and files without a
-    row in 5 of 15 kills during imports."""
+class KilledDuringImportsAndDeletes(unittest.TestCase):
+    """SIGKILL while an import or deletes run: after the restart an import is there whole or
+    not at all, and no result file is left without a row. Before: part of an import stayed,
+    and files without a row in 5 of 15 kills during imports, 2 during deletes."""
 
     def test_sigkill_leaves_whole_imports_and_no_stray_file(self):
         archive = export(RUN_IDS[:40])
@@ -340,13 +340,20 @@ class KilledDuringImports(unittest.TestCase):
         r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120)
         self.assertEqual(r.status_code, 201, r.content[:300])
         took = time.monotonic() - started
-        landed = {"import": 0}
+        landed = {"import": 0, "delete": 0}
         try:
             for i in range(int(os.environ.get("SLIPFRONT_KILL_ITERATIONS", "6"))):
-                kind = "import"
+                kind = "delete" if i % 3 == 2 else "import"
                 before = imported_counts(data_dir)
-                work = lambda s=server: s.post("/api/v1/imports", data=archive,
-                                                headers=ALICE, timeout=120)
+                if kind == "import":
+                    work = lambda s=server: s.post("/api/v1/imports", data=archive,
+                                                    headers=ALICE, timeout=120)
+                else:
+                    ids = [j["id"] for j in server.get(
+                        JOBS, params={"limit": 1000}).json()["jobs"]][:40]
+                    work = lambda s=server, ids=ids: [
+                        s.session.delete(s.url(f"{JOBS}/{i}"), headers=ALICE, timeout=30)
+                        for i in ids]
                 done = threading.Event()
 
                 def run(work=work, done=done):
@@ -364,7 +371,8 @@ class KilledDuringImports(unittest.TestCase):
                     landed[kind] += 1
                 server = Server(BINARY, data_dir=data_dir, args=args).start()
                 count = imported_counts(data_dir)
-                self.assertIn(count, (before, before + 40), f"kill {i}: {before} -> {count}")
+                if kind == "import":
+                    self.assertIn(count, (before, before + 40), f"kill {i}: {before} -> {count}")
                 self.assertEqual(stray_files(data_dir), [], f"kill {i} ({kind})")
                 with sqlite3.connect(os.path.join(data_dir, "slipfront.db")) as db:
                     self.assertEqual(db.execute("PRAGMA integrity_check").fetchone()[0], "ok")
@@ -373,6 +381,34 @@ class KilledDuringImports(unittest.TestCase):
                                                                 job["id"] + ".h5")), job["id"])
             print(f"SIGKILLs that landed during the work: {landed}", file=sys.stderr)
             self.assertGreater(landed["import"], 0, "no kill landed during an import")
+        finally:
+            server.kill()
+            server.own_dir = True
+            server.cleanup()
+
+    def test_check_reports_and_start_up_removes_files_without_a_row(self):
+        """Before: `slipfront check` said ok, and start-up kept them for ever."""
+        server = Server(BINARY, args=["--workers", "1"]).start()
+        data_dir = server.data_dir
+        try:
+            self.assertEqual(server.terminate(), 0)
+            results = os.path.join(data_dir, "results")
+            stray = ["0123456789abcdef0123456789abcdef.h5", "notes.txt"]
+            for name in stray:
+                with open(os.path.join(results, name), "wb") as f:
+                    f.write(b"x" * 1000)
+            check = subprocess.run([BINARY, "check", data_dir], capture_output=True, text=True,
+                                   timeout=60)
+            self.assertEqual(check.returncode, 1, check.stdout + check.stderr)
+            for name in stray:
+                self.assertIn(f"results/{name}: no job refers to it", check.stdout)
+            server = Server(BINARY, data_dir=data_dir, args=["--workers", "1"]).start()
+            self.assertEqual(os.listdir(results), [])
+            self.assertIn("results/notes.txt removed: no job refers to it", server.read_log())
+            self.assertEqual(server.terminate(), 0)
+            check = subprocess.run([BINARY, "check", data_dir], capture_output=True, text=True,
+                                   timeout=60)
+            self.assertEqual((check.returncode, check.stdout.strip()), (0, "ok"))
         finally:
             server.kill()
             server.own_dir = True
