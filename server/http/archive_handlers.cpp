@@ -179,6 +179,8 @@ Response import_archive(ServerContext& ctx, RequestContext& rc) {
     if (imported.kind == ImportResult::Kind::no_space)
       return unavailable_response(req, imported.reason + "; nothing was stored, retry later",
                                   ctx.retry_after_s);
+    if (imported.kind == ImportResult::Kind::refused)
+      throw ArchiveRefusal(imported.where, imported.reason);
     nlohmann::json runs = nlohmann::json::array();
     for (const auto& [id, original_id] : imported.ids)
       runs.push_back(

@@ -82,8 +82,10 @@ struct ImportResult {
   enum class Kind {
     imported, // every run stored
     no_space, // 503: the disk would fall below --min-free-bytes; nothing stored
+    refused,  // 422: a result file is not what its run says (`where`: its member)
   } kind = Kind::imported;
   std::vector<std::pair<std::string, std::string>> ids; // (id here, id in the archive)
+  std::string where;
   std::string reason;
 };
 
@@ -145,8 +147,10 @@ public:
   // Deletes a finished run; its result file too once no other run (a cache hit) refers to it.
   KeepResult remove(const std::string& id, const std::string& user);
   // Stores the runs of an archive for `user`, all of them or none (services/run_import.cpp):
-  // each keeps its id if free here, else gets a new one. Throws StorageError when the disk
-  // refuses a write (nothing stays).
+  // each keeps its id if free here, else gets a new one. Each result file is opened with the
+  // HDF5 API and checked against docs/hdf5-layout.md and the spec of its run before anything
+  // is stored (refused otherwise). Throws StorageError when the disk refuses a write (nothing
+  // stays).
   ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user);
   // At start-up, before the server answers: removes the files of imports and deletes a
   // crash interrupted, and every other file of results/ no row refers to.

@@ -9,6 +9,9 @@
 // A crash before 3 commits leaves an intent naming files no row refers to: the next start
 // removes them (and every temporary file). A delete records its intent in the transaction
 // that deletes the row, then removes the file, then forgets the intent.
+#include "api/job_spec.hpp"
+#include "api/json_parse.hpp"
+#include "api/result_check.hpp"
 #include "server/core/clock.hpp"
 #include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
@@ -23,6 +26,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <set>
 #include <system_error>
 
@@ -64,8 +69,36 @@ void remove_quietly(const std::string& path) {
   fs::remove(path, ec);
 }
 
+// Thrown to undo an import whose result file is refused.
+struct ImportRefused {};
+
 std::string temporary_name(const std::string& path) {
   return path + ".import.tmp"; // ".tmp": start-up removes it whatever happened
+}
+
+// Why the result file at `path` is not the result of `job`, or nullopt when it is: the layout
+// of docs/hdf5-layout.md (api/result_check.hpp), and its `spec` attribute the job's physics
+// and output settings, as this server reads them.
+std::optional<std::string> not_the_result_of(const Job& job, const std::string& path) {
+  const nlohmann::json& stations = job.spec.value("stations", nlohmann::json());
+  const bool has_stations =
+      stations.is_object() && stations.value("x1", nlohmann::json::array()).size() > 0;
+  std::string why;
+  const auto spec_text = api::check_result_layout(path, has_stations, why);
+  if (!spec_text) return why;
+  const auto parsed = api::parse_bounded_json(*spec_text);
+  if (!parsed.ok()) return std::string("its spec attribute is not JSON");
+  api::ValidationLimits limits;
+  limits.max_memory_bytes = std::numeric_limits<double>::infinity(); // not run here
+  const auto spec = api::parse_job(parsed.value, limits);
+  if (!spec.ok() || !spec.spec) return std::string("its spec attribute is not a valid job");
+  if (spec.spec->sha256 != job.spec_sha256)
+    return std::string("its spec attribute is another run's (spec_sha256 ") + spec.spec->sha256 +
+           ", the run's " + job.spec_sha256 + ")";
+  if (spec.spec->canonical.value("output", nlohmann::json()) !=
+      job.spec.value("output", nlohmann::json()))
+    return std::string("its spec attribute has other output settings than the run's");
+  return std::nullopt;
 }
 
 } // namespace
@@ -120,6 +153,12 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
       const std::string temporary = temporary_name(path);
       written.push_back(temporary);
       write_new_file(temporary, run.result);
+      if (auto why = not_the_result_of(run.job, temporary)) {
+        out.kind = ImportResult::Kind::refused;
+        out.where = run.member;
+        out.reason = *why;
+        throw ImportRefused{}; // undone below
+      }
       if (::link(temporary.c_str(), path.c_str()) != 0)
         storage_failure("cannot store " + path, errno);
       written.push_back(path);
@@ -145,6 +184,7 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
     } catch (const std::exception& e) { // the next start removes the files it names
       log_error("import undone, its intent stays until the next start: " + std::string(e.what()));
     }
+    if (out.kind == ImportResult::Kind::refused) return out;
     throw;
   }
   out.kind = ImportResult::Kind::imported;

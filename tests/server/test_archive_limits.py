@@ -26,6 +26,7 @@ import threading
 import time
 import unittest
 
+import h5py
 import requests
 
 
@@ -270,6 +271,58 @@ class Imports(unittest.TestCase):
         del files[f"runs/{RUN_IDS[1]}/result.h5"]
         files["manifest.json"] = json.dumps(manifest).encode()
         self.assert_refused(resign(files), "must be its own member")
+
+    def test_a_result_that_is_not_a_result_file_is_refused(self):
+        """Before: a result member that is not HDF5 was stored (201), and its reads were 500."""
+        run_id = RUN_IDS[0]
+        name = f"runs/{run_id}/result.h5"
+        original = members(self.five)[name]
+
+        def with_result(data):
+            files = members(self.five)
+            files[name] = data
+            record = json.loads(files[f"runs/{run_id}/job.json"])
+            record["result"]["sha256"] = sha256(data)
+            files[f"runs/{run_id}/job.json"] = json.dumps(record).encode()
+            return resign(files)
+
+        detail = self.assert_refused(with_result(b"not HDF5 at all " * 1000), name)
+        self.assertIn("not an HDF5 file", detail)
+        for change, reason in ((lambda f: f.__delitem__("energy"), "no group /energy"),
+                               (lambda f: f["interface"].__delitem__("slip"),
+                                "no dataset /interface/slip"),
+                               (lambda f: f.attrs.__setitem__("spec", json.dumps(dict(
+                                   json.loads(f.attrs["spec"]),
+                                   friction=dict(json.loads(f.attrs["spec"])["friction"],
+                                                 L=7.8e-4)))),
+                                "another run's")):
+            with tempfile.NamedTemporaryFile(suffix=".h5") as copy:
+                copy.write(original)
+                copy.flush()
+                with h5py.File(copy.name, "r+") as f:
+                    change(f)
+                with open(copy.name, "rb") as f:
+                    altered = f.read()
+            detail = self.assert_refused(with_result(altered), name)
+            self.assertIn(reason, detail)
+
+    def test_a_result_damaged_later_answers_410_never_500(self):
+        r = self.post(export(RUN_IDS[5:6]))
+        self.assertEqual(r.status_code, 201, r.content[:300])
+        job_id = r.json()["imported"][0]["id"]
+        # A file whose size and SHA-256 are the stored ones but that is no result (a file an
+        # older server imported unchecked).
+        garbage = b"\0" * 4096
+        with open(os.path.join(self.target.data_dir, "results", job_id + ".h5"), "wb") as f:
+            f.write(garbage)
+        with sqlite3.connect(os.path.join(self.target.data_dir, "slipfront.db"), timeout=10) as db:
+            db.execute("UPDATE jobs SET result_size = ?, result_sha256 = ? WHERE id = ?",
+                       (len(garbage), sha256(garbage), job_id))
+        for path in ("fields/slip", "stations", "stations.csv", "result.xdmf"):
+            r = self.target.get(f"{JOBS}/{job_id}/{path}")
+            self.assertEqual(r.status_code, 410, f"{path}: {r.content[:300]}")
+            self.assertIn("damaged", r.json()["detail"])
+            self.assertNotIn(self.target.data_dir, r.text)
 
     def test_an_import_writes_no_more_than_it_uploads(self):
         results = os.path.join(self.target.data_dir, "results")
