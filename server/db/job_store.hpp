@@ -26,9 +26,17 @@
 
 namespace slipfront::server {
 
+// Who asks for a cached result (JobStore::find_reusable): an imported result is offered to its
+// importer only, and only when users are told apart by tokens (without them anyone may be
+// anyone).
+struct CacheRequester {
+  std::string user;
+  bool authenticated = false;
+};
+
 class JobStore {
 public:
-  static constexpr int schema_version = 10;
+  static constexpr int schema_version = 11;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).
@@ -43,9 +51,11 @@ public:
   std::optional<Job> find_by_idempotency_key(const std::string& user, const std::string& key);
   // The newest succeeded job with this physics hash and code version that has a result
   // written with these output settings (the spec's `output`, which the hash leaves out: a
-  // result file is reused only when it holds the sampling the new job asks for).
+  // result file is reused only when it holds the sampling the new job asks for), computed
+  // here or imported by `requester`.
   std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version,
-                                   const nlohmann::json& output);
+                                   const nlohmann::json& output,
+                                   const CacheRequester& requester = {});
 
   // queued -> running (attempts + 1) on `executor` ("local" or "slurm"). False if the job
   // is no longer queued.

@@ -118,7 +118,8 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
     // A hit needs the same physics, code version and output settings: the file holds the
     // sampling, so another sampling is another file (docs/server.md, "Result cache").
     auto earlier = store_.find_reusable(spec.sha256, options_.code_version,
-                                        spec.canonical.value("output", nlohmann::json()));
+                                        spec.canonical.value("output", nlohmann::json()),
+                                        {options.user, options_.auth_enabled});
     if (earlier) {
       // Deleted by hand, lost or damaged: never point a new job at it; run the job again.
       auto file = result_files_.open(earlier->result);
@@ -139,6 +140,7 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
       job.wall_time_s = 0.0;
       job.result = earlier->result;
       job.cached_from = earlier->id;
+      job.result_imported_by = earlier->result_imported_by;
       job.seq = store_.insert(job);
       SubmitResult r;
       r.kind = Kind::reused;

@@ -138,6 +138,7 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
     chosen.insert(run.job.id);
     out.ids.back().first = run.job.id;
     run.job.submitted_by = user;
+    run.job.result_imported_by = user; // a cache source for this user only
     run.job.result.path =
         run.job.status == JobStatus::succeeded ? result_relative_path(run.job.id) : std::string();
     run.record.result = run.job.result;

@@ -434,3 +434,38 @@ TEST(JobStore, DeletingTheLastRunOfAResultRecordsTheIntentToRemoveIt) {
   store.forget_file_intent(last.intent);
   EXPECT_TRUE(store.file_intents().empty());
 }
+
+// An imported result (and a cache hit of it) is a cache source for its importer only, and only
+// when users are authenticated; a database of version 10 learns who imported its results.
+TEST(JobStore, AnImportedResultIsReusedByItsImporterOnly) {
+  TempDir dir("slipfront-store-");
+  const auto path = dir.file("db.sqlite");
+  JobStore::FinishedRun imported{make_job("imported"), success()};
+  imported.job.status = JobStatus::succeeded;
+  imported.job.code_version = "v";
+  imported.job.result = {result_relative_path(imported.job.id), 1234, "abc"};
+  imported.record.result = imported.job.result;
+  imported.job.imported_from = {{"id", "elsewhere"}};
+  imported.job.result_imported_by = "alice";
+  JobStore::FinishedRun hit = imported; // a cache hit of it: its result, and its importer
+  hit.job.id = new_job_id();
+  hit.job.imported_from = nullptr;
+  hit.job.cached_from = imported.job.id;
+  {
+    JobStore store(path);
+    ASSERT_TRUE(store.insert_finished({imported, hit}, 0));
+    const auto& hash = imported.job.spec_sha256;
+    EXPECT_FALSE(store.find_reusable(hash, "v", nullptr)) << "anonymous";
+    EXPECT_FALSE(store.find_reusable(hash, "v", nullptr, {"alice", false})) << "no tokens";
+    EXPECT_FALSE(store.find_reusable(hash, "v", nullptr, {"bob", true}));
+    ASSERT_TRUE(store.find_reusable(hash, "v", nullptr, {"alice", true}));
+  }
+  {
+    Database raw(path); // as a build at schema version 10 left it
+    raw.exec("ALTER TABLE jobs DROP COLUMN result_imported_by");
+    raw.set_user_version(10);
+  }
+  JobStore store(path);
+  for (const auto& id : {imported.job.id, hit.job.id})
+    EXPECT_EQ(store.get(id)->result_imported_by, "alice") << id;
+}

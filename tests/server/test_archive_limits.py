@@ -324,6 +324,43 @@ class Imports(unittest.TestCase):
             self.assertIn("damaged", r.json()["detail"])
             self.assertNotIn(self.target.data_dir, r.text)
 
+    def test_a_forged_run_is_a_cache_source_for_its_importer_only(self):
+        """Before: a run edited and re-signed (another L, arrest at -999 m) was served to
+        another user as a cache hit of the new spec."""
+        run_id = RUN_IDS[6]
+        files = members(export([run_id]))
+        record = json.loads(files[f"runs/{run_id}/job.json"])
+        forged_L = 7.8e-4
+        record["spec"]["friction"]["L"] = forged_L
+        record["metrics"]["arrest_position"] = -999.0
+        with tempfile.NamedTemporaryFile(suffix=".h5") as copy:
+            copy.write(files[f"runs/{run_id}/result.h5"])
+            copy.flush()
+            with h5py.File(copy.name, "r+") as f:
+                spec = json.loads(f.attrs["spec"])
+                spec["friction"]["L"] = forged_L
+                f.attrs["spec"] = json.dumps(spec)
+            with open(copy.name, "rb") as f:
+                files[f"runs/{run_id}/result.h5"] = f.read()
+        record["result"]["sha256"] = sha256(files[f"runs/{run_id}/result.h5"])
+        files[f"runs/{run_id}/job.json"] = json.dumps(record).encode()
+        r = self.post(resign(files))
+        self.assertEqual(r.status_code, 201, r.content[:300])
+        forged_id = r.json()["imported"][0]["id"]
+        spec = dict(JOB, name="asks-for-the-forged-L", friction={"L": forged_L})
+        theirs = self.target.submit(spec, headers=BOB)
+        self.assertEqual(theirs.status_code, 201, theirs.content[:300])
+        self.assertEqual(theirs.json()["cache"], "miss")
+        self.assertIsNone(theirs.json()["cached_from"])
+        # Its importer may reuse what they imported.
+        mine = self.target.submit(spec, headers=ALICE)
+        self.assertEqual(mine.json()["cache"], "hit", mine.content[:300])
+        self.assertEqual(mine.json()["cached_from"], forged_id)
+        # A cache hit of the forged run is no source for others either.
+        again = self.target.submit(dict(spec, name="again"), headers=BOB)
+        self.assertNotIn(again.json()["cached_from"], (forged_id, mine.json()["id"]))
+        self.target.wait_status(theirs.json()["id"], {"succeeded"}, timeout=120)
+
     def test_an_import_writes_no_more_than_it_uploads(self):
         results = os.path.join(self.target.data_dir, "results")
         before = set(os.listdir(results))
