@@ -85,7 +85,10 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
   std::lock_guard lock(submit_mutex_);
   if (!options.idempotency_key.empty()) {
     if (auto earlier = store_.find_by_idempotency_key(options.user, options.idempotency_key)) {
-      if (earlier->spec_sha256 != spec.sha256 || earlier->name != spec.name)
+      // The whole canonical request, as for studies: the spec with its name, tags and output
+      // settings, and the submission's options. Only a retry of that request is a replay.
+      if (earlier->spec != spec.canonical || earlier->fresh != options.fresh.value_or(false) ||
+          earlier->priority != options.priority.value_or(0))
         return failure(Kind::key_conflict,
                        {{"", "Idempotency-Key " + options.idempotency_key +
                                  " was used for a different job (" + earlier->id + ")"}});
