@@ -67,8 +67,11 @@ void ServerApp::listen() {
   limits.max_connections = connection_cap(config_.max_connections);
   read_pool_ = std::make_unique<net::thread_pool>(2);
   write_pool_ = std::make_unique<net::thread_pool>(2);
-  export_pool_ = std::make_unique<BoundedPool>(config_.max_exports);
-  limits.pools = {read_pool_.get(), write_pool_.get(), export_pool_.get()};
+  export_pool_ = std::make_unique<BoundedPool>(config_.max_exports, "export", "--max-exports");
+  // Fits are pure computation that may take every core: at a lower priority (nice 10), so
+  // that submissions and status reads never wait for a core behind them.
+  fit_pool_ = std::make_unique<BoundedPool>(config_.max_fits, "length fit", "--max-fits", 10);
+  limits.pools = {read_pool_.get(), write_pool_.get(), export_pool_.get(), fit_pool_.get()};
   // Answers built in memory and not yet read by their clients, over all connections.
   limits.unsent = std::make_shared<ByteBudget>(config_.max_unsent_bytes, 64 * 1024);
   listener_ = std::make_shared<Listener>(
@@ -291,6 +294,7 @@ void ServerApp::shutdown() {
   if (read_pool_) read_pool_->join();
   if (write_pool_) write_pool_->join();
   if (export_pool_) export_pool_->join();
+  if (fit_pool_) fit_pool_->join();
   executor_.reset();
   studies_.reset();
   supervisor_.reset();

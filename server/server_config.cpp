@@ -131,6 +131,10 @@ const std::vector<ServerSetting>& server_settings() {
       {"max-exports", "N",
        "run-table exports (GET /jobs?format=csv|ndjson) at once; more get 503 (default 2)",
        number<int>(&ServerConfig::max_exports, 1, 64)},
+      {"max-fits", "N",
+       "length fits (POST /length-fits) at once, on threads of their own; more get 503 "
+       "(default 2)",
+       number<int>(&ServerConfig::max_fits, 1, 64)},
       {"max-export-bytes", "N",
        "disk taken by run archives (GET /exports) not yet sent, over all clients; past it 503 "
        "(default 8 GiB, at least 1 MiB)",

@@ -27,6 +27,8 @@ struct ServerConfig {
   std::uint64_t max_unsent_bytes = std::uint64_t{256} << 20;
   // Run-table exports (GET /jobs?format=csv|ndjson) at once; more are answered 503.
   int max_exports = 2;
+  // Length fits (POST /length-fits) at once; more are answered 503.
+  int max_fits = 2;
   // The disk taken by run archives (GET /exports) built and not yet sent, over all clients.
   std::uint64_t max_export_bytes = std::uint64_t{8} << 30;
   std::string token_file;     // "" = no authentication

@@ -13,17 +13,6 @@ namespace slipfront::server {
 
 namespace net = boost::asio;
 
-namespace {
-// Every export thread is taken (--max-exports): come back in a second rather than wait here.
-Response exports_busy(const Request& req, int limit) {
-  return unavailable_response(req,
-                              std::to_string(limit) + " export" + (limit == 1 ? " is" : "s are") +
-                                  " running, the most this server runs at once "
-                                  "(--max-exports); retry later",
-                              1);
-}
-} // namespace
-
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, ServerStats& stats,
                          SessionLimits limits, std::shared_ptr<std::atomic<int>> open_count)
     : stream_(std::move(socket)), read_deadline_(stream_.get_executor()), router_(router),
@@ -137,9 +126,22 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
     net::post(*pool, handler_task(std::move(req)));
     return;
   }
-  if (runs == Runs::export_pool && pools.exports) {
-    if (!pools.exports->try_post(handler_task(req)))
-      send(exports_busy(req, pools.exports->limit()), false);
+  // Every thread of a bounded pool taken: come back in a second rather than wait here.
+  BoundedPool* bounded = runs == Runs::export_pool ? pools.exports
+                         : runs == Runs::fit_pool  ? pools.fits
+                                                   : nullptr;
+  if (bounded) {
+    // The answer is handed back once its task no longer counts against the bound: a client
+    // that asks again as soon as it is answered finds the place free.
+    auto answer = std::make_shared<std::optional<Response>>();
+    auto self = shared_from_this();
+    const bool taken =
+        bounded->try_post([self, req, answer] { answer->emplace(self->router_.dispatch(req)); },
+                          [self, answer] {
+                            net::post(self->stream_.get_executor(),
+                                      [self, answer] { self->send(std::move(**answer), false); });
+                          });
+    if (!taken) send(unavailable_response(req, bounded->busy_reason() + "; retry later", 1), false);
     return;
   }
   Response response = router_.dispatch(req);
