@@ -185,8 +185,15 @@ Response import_archive(ServerContext& ctx, RequestContext& rc) {
     for (const auto& [id, original_id] : imported.ids)
       runs.push_back(
           {{"id", id}, {"original_id", original_id}, {"url", api_prefix + "/jobs/" + id}});
-    return json_response(req, http::status::created,
-                         {{"imported", runs}, {"count", imported.ids.size()}});
+    // At most one warning per run (the metric names it left out), the first 20 listed.
+    nlohmann::json warnings = nlohmann::json::array();
+    for (std::size_t i = 0; i < imported.warnings.size() && i < 20; ++i)
+      warnings.push_back(imported.warnings[i]);
+    if (imported.warnings.size() > 20)
+      warnings.push_back("and " + std::to_string(imported.warnings.size() - 20) + " more");
+    return json_response(
+        req, http::status::created,
+        {{"imported", runs}, {"count", imported.ids.size()}, {"warnings", warnings}});
   } catch (const ArchiveRefusal& e) {
     // A member name comes from the client: a long one is cut, as other echoed values are.
     const std::string where = api::cut_text(e.where(), 300);

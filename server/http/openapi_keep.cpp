@@ -50,7 +50,7 @@ const char* keep_paths = R"json({
       "requestBody": {"required": true, "content": {"application/x-tar": {"schema": {"type": "string", "format": "binary"}}}},
       "responses": {"201": {"description": "Imported", "content": {"application/json": {"schema": {"type": "object", "properties": {
           "imported": {"type": "array", "items": {"type": "object", "properties": {"id": {"type": "string"}, "original_id": {"type": "string"}, "url": {"type": "string"}}}},
-          "count": {"type": "integer"}}}}}},
+          "count": {"type": "integer"}, "warnings": {"type": "array", "items": {"type": "string"}, "description": "what was left out: metric names this server does not write (one line per run)"}}}}}},
         "401": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},
         "422": {"description": "Refused, nothing stored: the title names the member (a checksum that does not match, an unsafe name, a link, a truncated archive)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   }

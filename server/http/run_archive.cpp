@@ -3,6 +3,8 @@
 #include "api/free_text.hpp"
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
+#include "api/metrics_reader.hpp"
+#include "api/number_text.hpp"
 #include "api/run_annotations.hpp"
 #include "server/core/clock.hpp"
 #include "server/core/file_descriptor.hpp"
@@ -128,11 +130,32 @@ public:
     if (auto reason = api::free_text_error(v.get_ref<const std::string&>())) refuse(key, *reason);
     return v.get<std::string>();
   }
-  double number(const json& v, const std::string& key) const {
+  // A number from 0 to `max` (0 for null), as the job parser checks a job's.
+  double number(const json& v, const std::string& key, double max = 1e15) const {
     if (v.is_null()) return 0.0;
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
-      refuse(key, "must be a finite number >= 0 or null");
+    if (!v.is_number() || !(v.get<double>() >= 0.0 && v.get<double>() <= max))
+      refuse(key, "must be a number from 0 to " + api::number_text(max) + " or null");
     return v.get<double>();
+  }
+  // A whole number from 0 to 2^53 (0 for null): a count an int64 holds exactly.
+  std::int64_t count(const json& v, const std::string& key) const {
+    const double n = number(v, key, 9007199254740992.0);
+    if (std::floor(n) != n) refuse(key, "must be a whole number");
+    return static_cast<std::int64_t>(n);
+  }
+  // A time as this server writes them, "" for null unless `required`.
+  std::string time(const std::string& key, bool required) const {
+    const std::string t = text(key, 64);
+    if (t.empty() ? required : !is_utc_iso8601(t))
+      refuse(key, "must be a UTC time in ISO 8601, as 2024-05-01T12:00:00.123Z");
+    return t;
+  }
+  // An object or null whose JSON text is at most `max_bytes` (provenance of other servers).
+  const json& small_object(const std::string& key, std::size_t max_bytes) const {
+    const json& v = field(key);
+    if (!v.is_null() && (!v.is_object() || v.dump().size() > max_bytes))
+      refuse(key, "must be an object of at most " + std::to_string(max_bytes) + " bytes or null");
+    return v;
   }
 
 private:
@@ -140,9 +163,30 @@ private:
   std::string member_;
 };
 
-// The run of one manifest entry, checked; nothing stored.
+// Why a stored front ({x1, arrival_time, rupture_speed}: lists of numbers or null of one
+// length) is not one, or nullopt (null is no front).
+std::optional<std::string> front_error(const json& front) {
+  if (front.is_null()) return std::nullopt;
+  if (!front.is_object() || front.size() != 3)
+    return "must be {\"x1\", \"arrival_time\", \"rupture_speed\"} or null";
+  const json& x1 = front.value("x1", json());
+  if (!x1.is_array()) return std::string("x1 must be a list");
+  for (const char* key : {"x1", "arrival_time", "rupture_speed"}) {
+    const json& list = front.value(key, json());
+    if (!list.is_array() || list.size() != x1.size())
+      return std::string(key) + " must be a list as long as x1";
+    for (const json& v : list)
+      if (!v.is_null() && !(v.is_number() && std::isfinite(v.get<double>())))
+        return std::string(key) + " must hold numbers or null";
+  }
+  return std::nullopt;
+}
+
+// The run of one manifest entry, checked; nothing stored. Names this server does not keep
+// (metrics of other versions) are left out and said in `warnings`.
 RunToImport read_run(const json& entry, const std::map<std::string, std::string_view>& members,
-                     const std::map<std::string, json>& listed, const json& origin) {
+                     const std::map<std::string, json>& listed, const json& origin,
+                     std::vector<std::string>& warnings) {
   if (!entry.is_object() || !entry.value("id", json()).is_string() ||
       !entry.value("job", json()).is_string())
     throw ArchiveRefusal("manifest.json#/runs", "each run needs \"id\" and \"job\" (strings)");
@@ -192,30 +236,47 @@ RunToImport read_run(const json& entry, const std::map<std::string, std::string_
     in.refuse(annotations.errors.front().pointer.substr(1), annotations.errors.front().reason);
   job.tags = annotations.annotations.tags.value_or(std::vector<std::string>());
   job.note = annotations.annotations.note.value_or("");
-  job.created_at = in.text("created_at", 64);
-  job.started_at = in.text("started_at", 64);
-  job.finished_at = in.text("finished_at", 64);
-  if (job.created_at.empty()) in.refuse("created_at", "must be a time (ISO 8601)");
+  job.created_at = in.time("created_at", true);
+  job.started_at = in.time("started_at", false);
+  job.finished_at = in.time("finished_at", false);
   job.error = in.text("error", 4096);
   job.code_version = in.text("code_version");
   job.host = in.text("host");
   job.wall_time_s = in.number(in.field("wall_time_s"), "wall_time_s");
   const json& progress = in.field("progress");
+  if (!progress.is_null() && !progress.is_object()) in.refuse("progress", "must be an object");
   if (progress.is_object()) {
-    job.progress.fraction = in.number(progress.value("fraction", json()), "progress/fraction");
+    job.progress.fraction = in.number(progress.value("fraction", json()), "progress/fraction", 1.0);
     job.progress.time = in.number(progress.value("time", json()), "progress/time");
     job.progress.duration = in.number(progress.value("duration", json()), "progress/duration");
-    job.progress.steps =
-        static_cast<std::int64_t>(in.number(progress.value("steps", json()), "progress/steps"));
+    job.progress.steps = in.count(progress.value("steps", json()), "progress/steps");
   }
-  const json& metrics = in.field("metrics");
-  if (!metrics.is_null() && !metrics.is_object()) in.refuse("metrics", "must be an object or null");
+  // Only the metrics this server writes, each of its kind (docs/metrics.md): other names are
+  // left out with a warning, so that no archive adds columns to every run table.
+  json metrics = in.field("metrics");
+  if (!metrics.is_null()) {
+    if (!metrics.is_object()) in.refuse("metrics", "must be an object or null");
+    auto read = api::read_metrics(metrics);
+    if (!read.errors.empty())
+      in.refuse("metrics" + read.errors.front().pointer, read.errors.front().reason);
+    if (!read.dropped.empty()) {
+      std::string names;
+      for (std::size_t i = 0; i < read.dropped.size() && i < 3; ++i)
+        names += (i ? ", " : "") + api::describe_value(read.dropped[i]);
+      warnings.push_back(name + "#/metrics: " + std::to_string(read.dropped.size()) +
+                         " name(s) this server does not write were left out (" + names +
+                         (read.dropped.size() > 3 ? ", ..." : "") + "; docs/metrics.md)");
+    }
+    metrics = std::move(read.metrics);
+  }
+  const json& front = in.field("front");
+  if (auto why = front_error(front)) in.refuse("front", *why);
   job.imported_from = {{"server", origin.value("server", json())},
                        {"id", original_id},
                        {"submitted_by", in.text("submitted_by")},
                        {"exported_at", origin.value("exported_at", json())}};
-  if (!in.field("imported_from").is_null())
-    job.imported_from["imported_from"] = in.field("imported_from");
+  if (const json& earlier = in.small_object("imported_from", 16 * 1024); !earlier.is_null())
+    job.imported_from["imported_from"] = earlier;
 
   const json& result_name = entry.value("result", json());
   if (job.status == JobStatus::succeeded) {
@@ -245,8 +306,8 @@ RunToImport read_run(const json& entry, const std::map<std::string, std::string_
   }
   job.id = original_id;
   run.record.status = job.status;
-  run.record.metrics = metrics;
-  run.record.front = in.field("front");
+  run.record.metrics = std::move(metrics);
+  run.record.front = front;
   run.record.wall_time_s = job.wall_time_s;
   run.record.finished_at = job.finished_at;
   run.record.error = job.error;
@@ -320,15 +381,26 @@ ImportResult import_run_archive(std::string_view archive, JobService& service,
   if (!runs.is_array() || runs.empty() || runs.size() > max_archive_runs)
     throw ArchiveRefusal("manifest.json#/runs",
                          "must be an array of 1 to " + std::to_string(max_archive_runs) + " runs");
+  // What the manifest says of the exporting server, kept with each run.
+  if (const json& at = manifest.value("exported_at", json());
+      !at.is_string() || !is_utc_iso8601(at.get<std::string>()))
+    throw ArchiveRefusal("manifest.json#/exported_at",
+                         "must be a UTC time in ISO 8601, as 2024-05-01T12:00:00.123Z");
+  if (const json& server = manifest.value("server", json());
+      !server.is_object() || server.dump().size() > 1024)
+    throw ArchiveRefusal("manifest.json#/server", "must be an object of at most 1024 bytes");
   std::vector<RunToImport> pending;
+  std::vector<std::string> warnings;
   std::set<std::string> ids;
   for (const json& entry : runs) {
-    pending.push_back(read_run(entry, by_name, listed, manifest));
+    pending.push_back(read_run(entry, by_name, listed, manifest, warnings));
     if (!ids.insert(pending.back().job.id).second)
       throw ArchiveRefusal("manifest.json#/runs", "run " + pending.back().job.id + " given twice");
   }
   // Everything checked: store, all runs or none.
-  return service.import_runs(std::move(pending), user);
+  ImportResult result = service.import_runs(std::move(pending), user);
+  result.warnings = std::move(warnings);
+  return result;
 }
 
 } // namespace slipfront::server

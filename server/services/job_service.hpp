@@ -87,6 +87,7 @@ struct ImportResult {
   std::vector<std::pair<std::string, std::string>> ids; // (id here, id in the archive)
   std::string where;
   std::string reason;
+  std::vector<std::string> warnings; // what was left out of the runs (their metrics' names)
 };
 
 // What start-up found and removed in results/ (JobService::recover_result_files).

@@ -362,6 +362,61 @@ class Imports(unittest.TestCase):
         for job in (theirs, again):  # no run left writing into results/ for the next test
             self.target.wait_status(job.json()["id"], {"succeeded"}, timeout=120)
 
+    def edited(self, change, run_id=None):
+        """An archive of one run whose job.json `change(record)` edited, re-signed."""
+        run_id = run_id or RUN_IDS[7]
+        files = members(export([run_id]))
+        record = json.loads(files[f"runs/{run_id}/job.json"])
+        change(record)
+        files[f"runs/{run_id}/job.json"] = json.dumps(record).encode()
+        return resign(files), f"runs/{run_id}/job.json"
+
+    def test_every_number_and_time_of_a_record_is_checked(self):
+        """Before: progress.steps 1e300 was stored as -9223372036854775808, and any non-empty
+        text was taken as a time."""
+        def set_in(path, value):
+            def change(record):
+                target = record
+                for key in path[:-1]:
+                    target = target[key]
+                target[path[-1]] = value
+            return change
+        for path, value, where in (
+                (("progress", "steps"), 1e300, "#/progress/steps"),
+                (("progress", "steps"), 2.5, "#/progress/steps"),
+                (("progress", "fraction"), 7, "#/progress/fraction"),
+                (("wall_time_s",), -1, "#/wall_time_s"),
+                (("metrics", "steps"), 1e300, "#/metrics/steps"),
+                (("metrics", "arrest_position"), "far", "#/metrics/arrest_position"),
+                (("created_at",), "not a time; DROP TABLE jobs", "#/created_at"),
+                (("finished_at",), "2024-02-30T00:00:00.000Z", "#/finished_at"),
+                (("front", "x1"), [1, 2], "#/front"),
+                (("imported_from",), {"chain": "x" * 20000}, "#/imported_from")):
+            archive, member = self.edited(set_in(path, value))
+            detail = self.assert_refused(archive, member + where)
+            self.assertLess(len(detail), 1000)
+
+    def test_metrics_of_other_names_are_left_out_with_a_warning(self):
+        """Before: one run whose metrics had 20,000 keys added 20,083 columns to every
+        run-table export."""
+        def columns():
+            r = self.target.get(JOBS, params={"format": "csv", "archived": "include"}, timeout=60)
+            self.assertEqual(r.status_code, 200)
+            return r.text.splitlines()[0].split(",")
+        before = len(columns())
+        archive, member = self.edited(
+            lambda record: record["metrics"].update({f"column_{i}": i for i in range(20000)}))
+        r = self.post(archive)
+        self.assertEqual(r.status_code, 201, r.content[:300])
+        warnings = r.json()["warnings"]
+        self.assertEqual(len(warnings), 1, warnings)
+        self.assertIn(member + "#/metrics: 20000 name(s)", warnings[0])
+        self.assertLess(len(r.content), 4000)
+        job = self.target.get(f"{JOBS}/{r.json()['imported'][0]['id']}").json()
+        self.assertNotIn("column_0", job["metrics"])
+        self.assertIn("arrest_position", job["metrics"])
+        self.assertEqual(len(columns()), before)
+
     def test_an_import_writes_no_more_than_it_uploads(self):
         results = os.path.join(self.target.data_dir, "results")
         before = set(os.listdir(results))
