@@ -25,6 +25,7 @@ import tempfile
 import threading
 import time
 import unittest
+import uuid
 
 import h5py
 import requests
@@ -137,10 +138,12 @@ def tearDownModule():
     os.unlink(TOKEN_FILE.name)
 
 
-def restart_source(extra_args):
-    """SOURCE again on its data dir with more flags."""
+def restart_source(extra_args, while_stopped=None):
+    """SOURCE again on its data dir with more flags (and `while_stopped(data_dir)` run first)."""
     global SOURCE
     assert SOURCE.terminate() == 0
+    if while_stopped:
+        while_stopped(SOURCE.data_dir)
     SOURCE = Server(BINARY, data_dir=SOURCE.data_dir,
                     args=["--workers", "1", "--token-file", TOKEN_FILE.name] + extra_args).start()
     SOURCE.own_dir = True
@@ -203,6 +206,49 @@ class UnreadExports(unittest.TestCase):
         finally:
             for s in sockets:
                 s.close()
+
+
+def seed_failed_runs(data_dir, count):
+    """`count` failed runs (no result file) in the stopped server's database, copies of
+    RUN_IDS[0]'s row; returns their ids."""
+    ids = [uuid.uuid4().hex for _ in range(count)]
+    with sqlite3.connect(os.path.join(data_dir, "slipfront.db")) as db:
+        cols = [r[1] for r in db.execute("PRAGMA table_info(jobs)") if r[1] != "seq"]
+        row = dict(zip(cols, db.execute(f"SELECT {', '.join(cols)} FROM jobs WHERE id = ?",
+                                        (RUN_IDS[0],)).fetchone()))
+        for i, job_id in enumerate(ids):
+            row.update(id=job_id, name=f"failed-{i}", status="failed", error="seeded",
+                       result_path=None, result_size=0, result_sha256=None, cached_from=None,
+                       idempotency_key=None)
+            db.execute(f"INSERT INTO jobs ({', '.join(cols)}) VALUES "
+                       f"({', '.join('?' * len(cols))})", [row[c] for c in cols])
+    return ids
+
+
+class ExportByManyIds(unittest.TestCase):
+    """Before: 500 ids made a URL over 16 KB (431), though the docs promise 1000 runs."""
+
+    def test_a_post_takes_a_thousand_ids(self):
+        ids = []
+        restart_source([], lambda data_dir: ids.extend(seed_failed_runs(data_dir, 998)))
+        ids = ids + RUN_IDS[:2]
+        r = SOURCE.get("/api/v1/exports", params={"ids": ",".join(ids[:500])}, headers=ALICE)
+        self.assertEqual(r.status_code, 431, r.content[:300])  # more than a URL holds
+        r = SOURCE.post("/api/v1/exports", json={"ids": ids}, headers=ALICE, timeout=60)
+        self.assertEqual(r.status_code, 200, r.content[:300])
+        files = members(r.content)
+        self.assertEqual([run["id"] for run in json.loads(files["manifest.json"])["runs"]], ids)
+        self.assertEqual(len(files), 1 + 1000 + 2)
+        # Refusals name the entry.
+        for body, status, pointer in (({"ids": ids + ["0" * 32]}, 422, "/ids"),
+                                      ({"ids": ["0" * 32]}, 404, "/ids/0"),
+                                      ({"ids": [ids[0], 7]}, 422, "/ids/1"),
+                                      ({"ids": ids[:1], "tag": "x"}, 422, "/ids"),
+                                      ({"ids": []}, 422, "/ids")):
+            r = SOURCE.post("/api/v1/exports", json=body, headers=ALICE)
+            self.assertEqual(r.status_code, status, r.content[:300])
+            self.assertEqual(r.json()["errors"][0]["pointer"], pointer)
+        self.assertEqual(SOURCE.post("/api/v1/exports", json={"ids": ids[:1]}).status_code, 401)
 
 
 def mount_tmpfs(test, options):
