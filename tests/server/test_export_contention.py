@@ -207,7 +207,9 @@ class FitsDoNotHoldUpSubmissions(unittest.TestCase):
     def test_submissions_stay_quick_while_fits_loop(self):
         server, seed, body = fit_record_server()
         try:
-            figures = measure(server, seed, FITTERS, submissions=100, seconds=15, fit_body=body)
+            # 200 submissions: the p99 is then the second largest, not the largest (one stall of
+            # the shared machine's scheduler is not a submission held up by the fits).
+            figures = measure(server, seed, FITTERS, submissions=200, seconds=15, fit_body=body)
             print(report(figures, FITTERS, f"clients looping {len(body) / 1e6:.2f} MB fits"),
                   file=sys.stderr)
             self.assertLess(percentile(figures["post"], 0.99), 0.1, figures["post"])
