@@ -68,14 +68,25 @@ std::string describe_value(const nlohmann::json& value) {
   constexpr auto replace = nlohmann::json::error_handler_t::replace;
   if (value.is_string()) {
     const auto& text = value.get_ref<const std::string&>();
-    std::size_t shown = 40;
-    if (text.size() > shown) {
-      while (shown > 0 && (static_cast<unsigned char>(text[shown]) & 0xC0) == 0x80)
-        --shown; // text[shown] continues a character: cut before that character
-      return nlohmann::json(text.substr(0, shown)).dump(-1, ' ', false, replace) + "...";
-    }
+    constexpr std::size_t shown = 40;
+    if (text.size() > shown)
+      return nlohmann::json(std::string(text_prefix(text, shown))).dump(-1, ' ', false, replace) +
+             "...";
   }
   return value.dump(-1, ' ', false, replace);
+}
+
+std::string_view text_prefix(std::string_view text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return text;
+  std::size_t shown = max_bytes;
+  while (shown > 0 && (static_cast<unsigned char>(text[shown]) & 0xC0) == 0x80)
+    --shown; // text[shown] continues a character: cut before that character
+  return text.substr(0, shown);
+}
+
+std::string cut_text(std::string_view text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return std::string(text);
+  return std::string(text_prefix(text, max_bytes > 3 ? max_bytes - 3 : 0)) + "...";
 }
 
 std::string child_pointer(const std::string& parent, const std::string& key) {

@@ -16,6 +16,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -45,6 +46,11 @@ nlohmann::json number_schema(const Interval& allowed);
 
 // A short description of a JSON value for error messages: 0.5, "abc", true, null, an object.
 std::string describe_value(const nlohmann::json& value);
+// The first bytes of `text`, at most `max_bytes`, cut at a character boundary (UTF-8): a
+// value echoed in an error stays short and its JSON dump cannot fail.
+std::string_view text_prefix(std::string_view text, std::size_t max_bytes);
+// The same with "..." when cut, at most `max_bytes` in all.
+std::string cut_text(std::string_view text, std::size_t max_bytes);
 
 // The JSON pointer of `key` inside the object at `parent` (escapes '~' and '/').
 std::string child_pointer(const std::string& parent, const std::string& key);

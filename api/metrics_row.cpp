@@ -45,7 +45,10 @@ MetricsRow metrics_row(const nlohmann::json& x) {
     row.outcome = x["outcome"].get<std::string>();
   row.energy_error = number(x, "energy_error");
   row.wall_time_s = number(x, "wall_time_s");
-  if (auto steps = number(x, "steps")) row.steps = static_cast<std::int64_t>(*steps);
+  // A whole number that an int64 holds exactly (an imported record may say 1e300).
+  if (auto steps = number(x, "steps");
+      steps && *steps >= 0.0 && *steps <= 9007199254740992.0 && std::floor(*steps) == *steps)
+    row.steps = static_cast<std::int64_t>(*steps);
   row.dt = number(x, "dt");
   row.simulated_time = number(x, "simulated_time");
   return row;

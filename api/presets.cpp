@@ -1,5 +1,7 @@
 #include "api/presets.hpp"
 
+#include "api/json_fields.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -102,10 +104,10 @@ nlohmann::json expand_preset(const nlohmann::json& job, std::vector<FieldError>&
   const nlohmann::json& name = job["preset"];
   const Preset* preset = name.is_string() ? find_preset(name.get<std::string>()) : nullptr;
   if (preset == nullptr) {
-    errors.push_back(
-        {"/preset", (name.is_string() ? "no preset is called \"" + name.get<std::string>() + "\""
-                                      : std::string("must be a preset's name")) +
-                        " (known: " + known_names() + ")"});
+    // The name is quoted as other echoed values are: its first 40 bytes, at a character.
+    errors.push_back({"/preset", (name.is_string() ? "no preset is called " + describe_value(name)
+                                                   : std::string("must be a preset's name")) +
+                                     " (known: " + known_names() + ")"});
     return job;
   }
   nlohmann::json patch = job;

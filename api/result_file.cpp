@@ -328,17 +328,17 @@ void ResultFileWriter::finish(const RunResult& result, const nlohmann::json& can
     w.attach_interface_scales();
 
     const hid_t root = w.file.get();
-    hdf5::write_attribute(root, "spec", canonical_text(canonical_spec));
-    hdf5::write_attribute(root, "spec_sha256", spec_hash(canonical_spec));
-    hdf5::write_attribute(root, "metrics", metrics.dump());
-    hdf5::write_attribute(root, "code_version", code_version());
-    for (const char* key : {"method", "method_description"}) {
+    hdf5::write_attribute(root, layout::spec_attribute, canonical_text(canonical_spec));
+    hdf5::write_attribute(root, layout::spec_sha256_attribute, spec_hash(canonical_spec));
+    hdf5::write_attribute(root, layout::metrics_attribute, metrics.dump());
+    hdf5::write_attribute(root, layout::code_version_attribute, code_version());
+    for (const char* key : {layout::method_attribute, layout::method_description_attribute}) {
       const auto value = metrics.find(key);
       hdf5::write_attribute(root, key,
                             value != metrics.end() && value->is_string() ? value->get<std::string>()
                                                                          : std::string());
     }
-    hdf5::write_attribute(root, "created", iso_time_now());
+    hdf5::write_attribute(root, layout::created_attribute, iso_time_now());
     w.close();
   } catch (const hdf5::Error& e) {
     w.fail(e);

@@ -76,6 +76,18 @@ inline constexpr const char* energy_strain = "strain";
 inline constexpr const char* energy_external_work = "external_work";
 inline constexpr const char* energy_dissipated = "dissipated";
 
+// Root attributes (variable-length UTF-8 strings).
+inline constexpr const char* spec_attribute = "spec"; // the job's canonical JSON text
+inline constexpr const char* spec_sha256_attribute = "spec_sha256";
+inline constexpr const char* metrics_attribute = "metrics";
+inline constexpr const char* code_version_attribute = "code_version";
+inline constexpr const char* method_attribute = "method";
+inline constexpr const char* method_description_attribute = "method_description";
+inline constexpr const char* created_attribute = "created";
+inline constexpr std::array<const char*, 7> root_attributes = {
+    spec_attribute,   spec_sha256_attribute,        metrics_attribute, code_version_attribute,
+    method_attribute, method_description_attribute, created_attribute};
+
 // "/group/name": the absolute path of a dataset.
 inline std::string path(const char* group, const char* name) {
   std::string p = "/";

@@ -1,5 +1,5 @@
-// `slipfront check DATA_DIR`: what a server could not read in DATA_DIR/slipfront.db
-// (server/check.hpp; docs/server.md "Checking a data dir").
+// `slipfront check DATA_DIR`: what a server could not read in DATA_DIR/slipfront.db, and
+// the result files no job refers to (server/check.hpp; docs/server.md "Checking a data dir").
 #include "app/commands.hpp"
 #include "app/options.hpp"
 
@@ -14,8 +14,8 @@ Command add_check_command(CLI::App& slipfront) {
   CLI::App* command = add_command(
       slipfront, "check",
       "List what a server could not read in DATA_DIR/slipfront.db (rows whose stored JSON "
-      "does not parse, PRAGMA quick_check); exit 0 and \"ok\" if nothing. The database is "
-      "not changed.",
+      "does not parse, PRAGMA quick_check) and the files of DATA_DIR/results no job refers "
+      "to; exit 0 and \"ok\" if nothing. Nothing is changed.",
       "exit codes: 0 nothing found, 1 problems found (or no database), 2 invalid command "
       "line.");
   command->add_option("DATA_DIR", *data_dir, "a server's --data-dir")->required();

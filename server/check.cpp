@@ -1,7 +1,9 @@
 #include "server/check.hpp"
 
 #include "server/db/database.hpp"
+#include "server/db/file_intents.hpp"
 #include "server/db/malformed_rows.hpp"
+#include "server/services/result_files.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -29,6 +31,20 @@ int check_main(const std::string& data_dir) {
       }
     for (const auto& row : find_malformed_rows(db)) {
       std::cout << describe(row) << '\n';
+      ++problems;
+    }
+    // Result files no row refers to: left by an import or a delete a crash interrupted (the
+    // next start removes them), or put there by hand.
+    for (const auto& intent : read_file_intents(db)) {
+      std::cout << "an interrupted " << intent.kind << " of " << intent.created_at << " ("
+                << intent.paths.size() << " result file(s)): the next start finishes it\n";
+      ++problems;
+    }
+    for (const auto& stray : find_stray_results(data_dir, read_result_references(db))) {
+      std::cout << stray.path << ": no job refers to it"
+                << (stray.temporary ? " (a temporary file of a run or import that did not finish)"
+                                    : "")
+                << "; the next start removes it\n";
       ++problems;
     }
     if (problems == 0) {

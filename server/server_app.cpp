@@ -63,13 +63,17 @@ void ServerApp::listen() {
   limits.max_body_bytes = config_.max_body_bytes;
   limits.max_import_bytes = config_.max_import_bytes;
   limits.request_timeout = std::chrono::seconds(config_.request_timeout_s);
+  limits.send_timeout = std::chrono::seconds(config_.send_timeout_s);
   limits.max_connections = connection_cap(config_.max_connections);
   read_pool_ = std::make_unique<net::thread_pool>(2);
   write_pool_ = std::make_unique<net::thread_pool>(2);
-  export_pool_ = std::make_unique<BoundedPool>(config_.max_exports);
-  limits.pools = {read_pool_.get(), write_pool_.get(), export_pool_.get()};
+  export_pool_ = std::make_unique<BoundedPool>(config_.max_exports, "export", "--max-exports");
+  // Fits are pure computation that may take every core: at a lower priority (nice 10), so
+  // that submissions and status reads never wait for a core behind them.
+  fit_pool_ = std::make_unique<BoundedPool>(config_.max_fits, "length fit", "--max-fits", 10);
+  limits.pools = {read_pool_.get(), write_pool_.get(), export_pool_.get(), fit_pool_.get()};
   // Answers built in memory and not yet read by their clients, over all connections.
-  limits.unsent = std::make_shared<UnsentBytes>(config_.max_unsent_bytes);
+  limits.unsent = std::make_shared<ByteBudget>(config_.max_unsent_bytes, 64 * 1024);
   listener_ = std::make_shared<Listener>(
       ioc_, net::ip::tcp::endpoint(address, static_cast<unsigned short>(config_.port)), router_,
       stats_, limits);
@@ -132,7 +136,20 @@ void ServerApp::start() {
   so.code_version = code_version_;
   so.auth_enabled = tokens_.has_value();
   so.data_dir = config_.data_dir;
+  so.min_free_bytes = config_.min_free_bytes;
   service_ = std::make_unique<JobService>(so, *store_, *queue_, running_);
+  // Imports and deletes a crash interrupted, and any result file no row refers to.
+  const StrayResults stray = service_->recover_result_files();
+  if (stray.intents > 0)
+    log_info("recovery: " + std::to_string(stray.intents) +
+             " import(s) or delete(s) were interrupted; " + std::to_string(stray.undone) +
+             " of their result files removed");
+  constexpr std::size_t named = 20; // then a count
+  for (std::size_t i = 0; i < stray.removed.size() && i < named; ++i)
+    log_info("recovery: " + stray.removed[i].path + " removed: no job refers to it");
+  if (stray.removed.size() > named)
+    log_info("recovery: " + std::to_string(stray.removed.size() - named) +
+             " more result files no job refers to removed");
 
   WorkerOptions wo;
   wo.workers = config_.workers;
@@ -154,6 +171,7 @@ void ServerApp::start() {
   context_.reset(new ServerContext{*service_, stats_, tokens_, config_.data_dir, executor_->slots(),
                                    config_.retry_after_s, draining_, *studies_,
                                    config_.min_free_bytes, executor_->name()});
+  context_->export_bytes = std::make_shared<ByteBudget>(config_.max_export_bytes);
   router_.on_storage_unavailable(config_.retry_after_s, [this](const std::string& what) {
     stats_.record_storage_error(what);
   });
@@ -276,6 +294,7 @@ void ServerApp::shutdown() {
   if (read_pool_) read_pool_->join();
   if (write_pool_) write_pool_->join();
   if (export_pool_) export_pool_->join();
+  if (fit_pool_) fit_pool_->join();
   executor_.reset();
   studies_.reset();
   supervisor_.reset();

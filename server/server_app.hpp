@@ -85,10 +85,11 @@ private:
   std::shared_ptr<Listener> listener_;
   std::vector<std::thread> io_threads_;
   // The handlers that may block (Router::runs): reads over many rows or an HDF5 file,
-  // database writes, and exports (at most --max-exports at once).
+  // database writes, exports (at most --max-exports at once) and length fits (--max-fits).
   std::unique_ptr<boost::asio::thread_pool> read_pool_;
   std::unique_ptr<boost::asio::thread_pool> write_pool_;
   std::unique_ptr<BoundedPool> export_pool_;
+  std::unique_ptr<BoundedPool> fit_pool_;
   std::mutex stop_mutex_;
   std::condition_variable stop_cv_;
   bool stop_requested_ = false;

@@ -27,9 +27,14 @@ struct ServerConfig {
   std::uint64_t max_unsent_bytes = std::uint64_t{256} << 20;
   // Run-table exports (GET /jobs?format=csv|ndjson) at once; more are answered 503.
   int max_exports = 2;
+  // Length fits (POST /length-fits) at once; more are answered 503.
+  int max_fits = 2;
+  // The disk taken by run archives (GET /exports) built and not yet sent, over all clients.
+  std::uint64_t max_export_bytes = std::uint64_t{8} << 30;
   std::string token_file;     // "" = no authentication
   int io_threads = 2;         // threads answering HTTP
   int request_timeout_s = 30; // to receive a request; idle keep-alive connections
+  int send_timeout_s = 30;    // a client that takes no byte of an answer for this long is cut
   int retry_after_s = 30;     // Retry-After of 503 answers
   double db_progress_interval_s = 3.0;
   double min_free_bytes = 64.0 * 1024 * 1024; // /healthz is degraded below this free space

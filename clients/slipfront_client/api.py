@@ -201,9 +201,14 @@ class Api:
         return self.request("DELETE", f"{API}/jobs/{job_id}").json()
 
     def export_archive(self, path, ids=None, filters=None):
-        """GET /exports (ids, or the filters of GET /jobs) streamed into the file `path`."""
-        params = {"ids": ",".join(ids)} if ids else dict(filters or {})
-        response = self.request("GET", f"{API}/exports", params=params, stream=True)
+        """The runs `ids` (POST /exports: up to 1000, more than a URL holds), or those of the
+        filters of GET /jobs (GET /exports), as a tar archive streamed into the file `path`."""
+        if ids:
+            response = self.request("POST", f"{API}/exports", json_body={"ids": list(ids)},
+                                    stream=True, idempotent=True)
+        else:
+            response = self.request("GET", f"{API}/exports", params=dict(filters or {}),
+                                    stream=True)
         size = 0
         with open(path, "wb") as f:
             for chunk in response.iter_content(1 << 20):

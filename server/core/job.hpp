@@ -73,6 +73,9 @@ struct Job {
   std::string note;             // free text its owner keeps with it (api/run_annotations.hpp)
   std::string archived_at;      // ISO 8601 when archived (hidden from listings); "" = not archived
   nlohmann::json imported_from; // null, or {"server", "id", "exported_at"} of an imported run
+  // Who imported its result file ("": this server computed it): an imported run's importer,
+  // kept by its cache hits; such a result is a cache source for that user only.
+  std::string result_imported_by;
 };
 
 } // namespace slipfront::server

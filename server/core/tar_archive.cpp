@@ -1,5 +1,7 @@
 #include "server/core/tar_archive.hpp"
 
+#include "server/core/storage_error.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -89,11 +91,18 @@ void TarWriter::write(const char* data, std::size_t size) {
     const ssize_t n = ::write(fd_, data, size);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw TarError(std::string("tar: write failed: ") + std::strerror(errno));
+      throw StorageError(std::string("tar: write failed: ") + std::strerror(errno), true);
     }
     data += n;
     size -= static_cast<std::size_t>(n);
   }
+}
+
+std::uint64_t TarWriter::archive_size(const std::vector<std::uint64_t>& member_sizes) {
+  std::uint64_t size = 2 * block; // the end blocks
+  for (const std::uint64_t n : member_sizes)
+    size += block + (n + block - 1) / block * block;
+  return size;
 }
 
 void TarWriter::pad(std::uint64_t size) {

@@ -19,10 +19,14 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-// Writes members to an open file descriptor (the writer does not own it).
+// Writes members to an open file descriptor (the writer does not own it). A failed write
+// throws a StorageError (worth a retry later: the disk may be full).
 class TarWriter {
 public:
   explicit TarWriter(int fd) : fd_(fd) {}
+  // The size of the archive of members of these sizes, end blocks included: what the writer
+  // will write, known before a byte is.
+  static std::uint64_t archive_size(const std::vector<std::uint64_t>& member_sizes);
   void add(const std::string& name, std::string_view content);
   // `size` bytes read from `source` at its current position.
   void add_from(const std::string& name, int source, std::uint64_t size);

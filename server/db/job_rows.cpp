@@ -50,7 +50,8 @@ const std::vector<std::string>& job_columns() {
                                                    "slurm_state",
                                                    "note",
                                                    "archived_at",
-                                                   "imported_from"};
+                                                   "imported_from",
+                                                   "result_imported_by"};
   return columns;
 }
 
@@ -112,6 +113,7 @@ const std::vector<std::pair<std::string, Binder>>& new_job_columns() {
       {"study_id", optional_text(&Job::study_id)},
       {"note", text(&Job::note)},
       {"archived_at", optional_text(&Job::archived_at)},
+      {"result_imported_by", optional_text(&Job::result_imported_by)},
       {"imported_from",
        [](Statement& s, int i, const Job& j) {
          s.bind(i, j.imported_from.is_null() ? std::nullopt
@@ -186,6 +188,7 @@ Job read_job(const Statement& s) {
   job.note = s.text("note");
   job.archived_at = s.text("archived_at");
   job.imported_from = parse_stored_json(s.text("imported_from"), "provenance of job " + job.id);
+  job.result_imported_by = s.text("result_imported_by");
   return job;
 }
 

@@ -47,15 +47,18 @@ std::optional<Job> JobStore::find_by_idempotency_key(const std::string& user,
 
 std::optional<Job> JobStore::find_reusable(const std::string& spec_sha256,
                                            const std::string& code_version,
-                                           const nlohmann::json& output) {
+                                           const nlohmann::json& output,
+                                           const CacheRequester& requester) {
   // Both sides of the output comparison are nlohmann dumps (keys sorted, shortest round-trip
   // numbers) and SQLite's json() keeps number tokens as written, so equal text is equal
   // settings. A spec without `output` compares as null.
   return query_one("WHERE j.spec_sha256 = ?1 AND j.code_version = ?2 AND j.status = 'succeeded' "
                    "AND j.result_path IS NOT NULL AND m.job_id IS NOT NULL "
                    "AND ifnull(json_extract(j.spec, '$.output'), 'null') = json(?3) "
+                   "AND (j.result_imported_by IS NULL OR (?5 = '1' AND j.result_imported_by = ?4)) "
                    "ORDER BY j.seq DESC LIMIT 1",
-                   {spec_sha256, code_version, output.dump()});
+                   {spec_sha256, code_version, output.dump(), requester.user,
+                    requester.authenticated ? "1" : "0"});
 }
 
 bool JobStore::mark_running(const std::string& id, const std::string& started_at,

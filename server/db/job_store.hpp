@@ -8,6 +8,7 @@
 #include "server/core/job_filter.hpp"
 #include "server/core/run_record.hpp"
 #include "server/db/database.hpp"
+#include "server/db/file_intents.hpp"
 #include "server/db/malformed_rows.hpp"
 #include "server/db/migrations.hpp"
 #include "server/db/run_query_sql.hpp"
@@ -25,9 +26,17 @@
 
 namespace slipfront::server {
 
+// Who asks for a cached result (JobStore::find_reusable): an imported result is offered to its
+// importer only, and only when users are told apart by tokens (without them anyone may be
+// anyone).
+struct CacheRequester {
+  std::string user;
+  bool authenticated = false;
+};
+
 class JobStore {
 public:
-  static constexpr int schema_version = 9;
+  static constexpr int schema_version = 11;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).
@@ -42,9 +51,11 @@ public:
   std::optional<Job> find_by_idempotency_key(const std::string& user, const std::string& key);
   // The newest succeeded job with this physics hash and code version that has a result
   // written with these output settings (the spec's `output`, which the hash leaves out: a
-  // result file is reused only when it holds the sampling the new job asks for).
+  // result file is reused only when it holds the sampling the new job asks for), computed
+  // here or imported by `requester`.
   std::optional<Job> find_reusable(const std::string& spec_sha256, const std::string& code_version,
-                                   const nlohmann::json& output);
+                                   const nlohmann::json& output,
+                                   const CacheRequester& requester = {});
 
   // queued -> running (attempts + 1) on `executor` ("local" or "slurm"). False if the job
   // is no longer queued.
@@ -92,13 +103,29 @@ public:
     enum class Kind { removed, not_found, not_final, in_study } kind = Kind::not_found;
     std::string study_id;        // in_study: a study that holds the run
     std::string orphaned_result; // removed: its result path if no other job refers to it
+    std::int64_t intent = 0;     // removed with an orphaned result: the intent to remove it
   };
   // Deletes a finished job and its metrics row in one transaction. A run of a study is not
-  // deleted (the study keeps its runs); a queued or running one neither.
+  // deleted (the study keeps its runs); a queued or running one neither. When its result
+  // file goes with it, the same transaction records the intent to remove the file
+  // (forget_file_intent() once it is gone; start-up removes it otherwise).
   Removal remove(const std::string& id);
-  // Inserts a finished run from an archive (status, result and metrics as given) under its
-  // id; false if that id is taken.
-  bool insert_finished(const Job& job, const RunRecord& record);
+
+  // The result files and the rows in step (job_store_files.cpp, server/db/file_intents.hpp).
+  struct FinishedRun {
+    Job job;
+    RunRecord record;
+  };
+  // Records, in a transaction of its own, that the result files `paths` are about to be
+  // created (kind "import") or removed ("delete"); returns the intent's id.
+  std::int64_t record_file_intent(const std::string& kind, const std::vector<std::string>& paths);
+  void forget_file_intent(std::int64_t id);
+  std::vector<FileIntent> file_intents();
+  ResultReferences result_references();
+  // Inserts finished runs from an archive (status, result and metrics as given) under their
+  // ids and forgets the intent `intent` (0: none), all in one transaction; false (and
+  // nothing changed) if one of the ids is taken.
+  bool insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent);
 
   std::string path() const { return db_.path(); }
 

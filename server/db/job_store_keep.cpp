@@ -1,5 +1,6 @@
 // The JobStore calls behind "Keep, annotate, share" (docs/server.md): tags and note edited
-// after submission, archive and restore, delete, and the insertion of imported runs.
+// after submission, archive and restore, delete.
+#include "server/core/clock.hpp"
 #include "server/db/job_rows.hpp"
 #include "server/db/job_store.hpp"
 
@@ -50,24 +51,13 @@ JobStore::Removal JobStore::remove(const std::string& id) {
     // A cache hit shares the file of the run it reused: the file goes with the last of them.
     auto users = db->prepare("SELECT count(*) FROM jobs WHERE result_path = ?1");
     users.bind(1, result_path);
-    if (users.step() && users.integer(0) == 0) removal.orphaned_result = result_path;
+    if (users.step() && users.integer(0) == 0) {
+      removal.orphaned_result = result_path;
+      removal.intent = insert_file_intent(*db, "delete", {result_path}, now_iso8601());
+    }
   }
   tx.commit();
   return removal;
-}
-
-bool JobStore::insert_finished(const Job& job, const RunRecord& record) {
-  auto db = db_.lock();
-  Transaction tx(*db);
-  auto taken = db->prepare("SELECT 1 FROM jobs WHERE id = ?1");
-  taken.bind(1, job.id);
-  if (taken.step()) return false;
-  auto s = db->prepare(insert_job_sql());
-  bind_new_job(s, job);
-  s.run();
-  if (!record.metrics.is_null()) write_metrics(*db, job.id, record);
-  tx.commit();
-  return true;
 }
 
 } // namespace slipfront::server

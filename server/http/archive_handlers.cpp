@@ -1,7 +1,12 @@
 // GET /exports (a set of finished runs as one tar file) and POST /imports (such a file
 // stored here): docs/server.md "Export and import", the format in server/http/run_archive.hpp.
+#include "api/json_fields.hpp"
+#include "api/json_parse.hpp"
+#include "api/number_text.hpp"
+#include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
 #include "server/core/job_id.hpp"
+#include "server/core/storage_error.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/job_filter_query.hpp"
 #include "server/http/range_file.hpp"
@@ -16,6 +21,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <variant>
 
 namespace slipfront::server {
@@ -24,29 +30,72 @@ namespace {
 
 using RangeFileBody = http::basic_file_body<RangeFile>;
 
+using Chosen = std::variant<std::vector<Job>, Response>;
+
+// The jobs of `ids` (each once, in the order given) or the refusal naming `pointer`: 400 for
+// none or more than max_archive_runs, 404 for an id that names no job (`pointer` + its index
+// for a JSON list, the pointer alone for the query).
+Chosen jobs_of(ServerContext& ctx, const Request& req, const std::vector<std::string>& given,
+               const std::string& pointer, bool indexed, http::status too_many) {
+  std::vector<std::string> ids;
+  for (const auto& id : given)
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  if (ids.empty() || ids.size() > max_archive_runs)
+    return problem_response(
+        req, too_many, "invalid list of runs",
+        {{pointer, "must list 1 to " + std::to_string(max_archive_runs) + " job ids"}});
+  std::vector<Job> jobs;
+  for (const auto& id : ids) {
+    auto job = is_valid_job_id(id) ? ctx.service.get(id) : std::nullopt;
+    if (!job) {
+      const auto at = std::find(given.begin(), given.end(), id) - given.begin();
+      const std::string shown = api::cut_text(id, 64);
+      return problem_response(
+          req, http::status::not_found, "no job with id " + shown,
+          {{indexed ? pointer + "/" + std::to_string(at) : pointer, "no job with id " + shown}});
+    }
+    jobs.push_back(std::move(*job));
+  }
+  return jobs;
+}
+
+// The runs of POST /exports: {"ids": [...]} (1 to max_archive_runs job ids, more than a
+// query string holds).
+Chosen runs_of_body(ServerContext& ctx, RequestContext& rc) {
+  const auto& req = rc.request;
+  auto body = api::parse_bounded_json(req.body());
+  if (body.status == api::JsonParse::Status::syntax)
+    return problem_response(req, http::status::bad_request, "the body is not valid JSON",
+                            {body.error});
+  if (!body.ok())
+    return problem_response(req, http::status::unprocessable_entity, "invalid body", {body.error});
+  const auto& doc = body.value;
+  if (!doc.is_object() || doc.size() != 1 || !doc.contains("ids") || !doc["ids"].is_array())
+    return problem_response(req, http::status::unprocessable_entity, "invalid body",
+                            {{"/ids", "give {\"ids\": [job ids]} and nothing else"}});
+  std::vector<std::string> ids;
+  for (std::size_t i = 0; i < doc["ids"].size(); ++i) {
+    if (!doc["ids"][i].is_string())
+      return problem_response(req, http::status::unprocessable_entity, "invalid body",
+                              {{"/ids/" + std::to_string(i), "must be a job id (a string)"}});
+    ids.push_back(doc["ids"][i].get<std::string>());
+  }
+  return jobs_of(ctx, req, ids, "/ids", true, http::status::unprocessable_entity);
+}
+
 // The runs an export asks for: ?ids=a,b,... or the filters of GET /jobs (a search, a study,
 // a tag). Either the jobs or the refusal.
-std::variant<std::vector<Job>, Response> runs_to_export(ServerContext& ctx, RequestContext& rc) {
+Chosen runs_to_export(ServerContext& ctx, RequestContext& rc) {
   const auto& req = rc.request;
   std::vector<Job> jobs;
   if (auto it = rc.query.find("ids"); it != rc.query.end()) {
     if (rc.query.size() != 1)
       return problem_response(req, http::status::bad_request, "invalid query parameters",
                               {{"/query/ids", "give ids alone, or the filters of GET /jobs"}});
-    std::vector<std::string> ids;
-    for (const auto& id : split_commas(it->second)) // each run once, in the order given
-      if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
-    if (ids.empty() || ids.size() > max_archive_runs)
-      return problem_response(req, http::status::bad_request, "invalid query parameters",
-                              {{"/query/ids", "must list 1 to " + std::to_string(max_archive_runs) +
-                                                  " job ids, separated by commas"}});
-    for (const auto& id : ids) {
-      auto job = is_valid_job_id(id) ? ctx.service.get(id) : std::nullopt;
-      if (!job)
-        return problem_response(req, http::status::not_found, "no job with id " + id,
-                                {{"/query/ids", "no job with id " + id}});
-      jobs.push_back(std::move(*job));
-    }
+    auto chosen =
+        jobs_of(ctx, req, split_commas(it->second), "/query/ids", false, http::status::bad_request);
+    if (auto* refusal = std::get_if<Response>(&chosen)) return std::move(*refusal);
+    jobs = std::move(std::get<std::vector<Job>>(chosen));
   } else {
     auto query = parse_job_filter(rc.query);
     if (rc.query.count("limit") || rc.query.count("cursor") || rc.query.count("fields") ||
@@ -81,34 +130,80 @@ std::variant<std::vector<Job>, Response> runs_to_export(ServerContext& ctx, Requ
   return jobs;
 }
 
-Response export_archive(ServerContext& ctx, RequestContext& rc) {
+// The disk an archive of `size` bytes would take: nullopt when it may be written, else the
+// refusal (422 past the whole bound, 503 while other archives hold it or the disk is short).
+std::optional<Response> refuse_archive_space(ServerContext& ctx, const Request& req,
+                                             std::uint64_t size,
+                                             std::optional<ByteReservation>& reserved) {
+  const std::uint64_t limit = ctx.export_bytes->limit();
+  if (size > limit)
+    return problem_response(req, http::status::unprocessable_entity,
+                            "the archive would take " + std::to_string(size) +
+                                " bytes, more than this server writes for exports "
+                                "(--max-export-bytes " +
+                                std::to_string(limit) + "): export fewer runs at a time");
+  reserved = ByteReservation::take(ctx.export_bytes, size);
+  if (!reserved)
+    return unavailable_response(req,
+                                "archives not yet read by their clients take " +
+                                    std::to_string(ctx.export_bytes->held()) + " of the " +
+                                    std::to_string(limit) +
+                                    " bytes this server writes for exports "
+                                    "(--max-export-bytes); retry later",
+                                ctx.retry_after_s);
+  if (!leaves_free(ctx.data_dir, size, ctx.min_free_bytes))
+    return unavailable_response(req,
+                                "the data dir's disk has too little free space for an archive of " +
+                                    std::to_string(size) + " bytes (--min-free-bytes " +
+                                    api::number_text(ctx.min_free_bytes) + "); retry later",
+                                ctx.retry_after_s);
+  return std::nullopt;
+}
+
+// GET /exports (ids or filters in the query) and POST /exports ({"ids": [...]}).
+Response export_archive(ServerContext& ctx, RequestContext& rc, bool ids_in_body) {
+  // Exports may take much disk and bandwidth: on a shared server they need a token, as writes do.
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
-  auto chosen = runs_to_export(ctx, rc);
+  if (ids_in_body && !rc.query.empty())
+    return problem_response(req, http::status::bad_request, "invalid query parameters",
+                            {{"/query", "POST /exports takes its ids in the body only"}});
+  auto chosen = ids_in_body ? runs_of_body(ctx, rc) : runs_to_export(ctx, rc);
   if (auto* refusal = std::get_if<Response>(&chosen)) return std::move(*refusal);
   const auto& jobs = std::get<std::vector<Job>>(chosen);
+  ArchivePlan plan;
+  try {
+    plan = plan_run_archive(ctx.service, jobs);
+  } catch (const ArchiveRefusal& e) {
+    return problem_response(req, http::status::conflict, e.what());
+  }
+  // Its exact size is known: reserved before a byte is written, released when the file the
+  // answer streams from is closed (sent, or its client cut after --send-timeout-s).
+  std::optional<ByteReservation> reserved;
+  if (auto refusal = refuse_archive_space(ctx, req, plan.size, reserved))
+    return std::move(*refusal);
   // Written to a file of the data dir that has no name once opened: the answer streams from
   // it and the space is freed when it is sent (or the server stops).
   std::string name = (ctx.data_dir.empty() ? std::string(".") : ctx.data_dir) + "/export-XXXXXX";
   const int fd = ::mkstemp(name.data());
   if (fd < 0)
-    return problem_response(req, http::status::internal_server_error,
-                            std::string("cannot create the archive: ") + std::strerror(errno));
+    throw StorageError(std::string("cannot create the archive: ") + std::strerror(errno), true);
   ::unlink(name.c_str());
   FileDescriptor file(fd);
   try {
-    write_run_archive(fd, ctx.service, jobs);
+    write_run_archive(fd, ctx.service, jobs, plan);
   } catch (const ArchiveRefusal& e) {
     return problem_response(req, http::status::conflict, e.what());
   }
   if (::lseek(fd, 0, SEEK_SET) != 0)
-    return problem_response(req, http::status::internal_server_error,
-                            std::string("cannot read the archive: ") + std::strerror(errno));
+    throw StorageError(std::string("cannot read the archive: ") + std::strerror(errno), true);
   beast::error_code ec;
   RangeFile body;
   body.adopt(file.release(), ec);
   if (ec)
     return problem_response(req, http::status::internal_server_error,
                             "cannot read the archive: " + ec.message());
+  body.hold(std::move(*reserved));
   http::response<RangeFileBody> res{http::status::ok, req.version()};
   res.set(http::field::server, "slipfront");
   res.set(http::field::content_type, "application/x-tar");
@@ -126,20 +221,34 @@ Response export_archive(ServerContext& ctx, RequestContext& rc) {
 
 Response import_archive(ServerContext& ctx, RequestContext& rc) {
   if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
+  const auto& req = rc.request;
   try {
-    auto imported = import_run_archive(rc.request.body(), ctx.service, rc.user);
+    const ImportResult imported = import_run_archive(req.body(), ctx.service, rc.user);
+    if (imported.kind == ImportResult::Kind::no_space)
+      return unavailable_response(req, imported.reason + "; nothing was stored, retry later",
+                                  ctx.retry_after_s);
+    if (imported.kind == ImportResult::Kind::refused)
+      throw ArchiveRefusal(imported.where, imported.reason);
     nlohmann::json runs = nlohmann::json::array();
-    for (const auto& run : imported)
-      runs.push_back({{"id", run.id},
-                      {"original_id", run.original_id},
-                      {"url", api_prefix + "/jobs/" + run.id}});
-    return json_response(rc.request, http::status::created,
-                         {{"imported", runs}, {"count", imported.size()}});
+    for (const auto& [id, original_id] : imported.ids)
+      runs.push_back(
+          {{"id", id}, {"original_id", original_id}, {"url", api_prefix + "/jobs/" + id}});
+    // At most one warning per run (the metric names it left out), the first 20 listed.
+    nlohmann::json warnings = nlohmann::json::array();
+    for (std::size_t i = 0; i < imported.warnings.size() && i < 20; ++i)
+      warnings.push_back(imported.warnings[i]);
+    if (imported.warnings.size() > 20)
+      warnings.push_back("and " + std::to_string(imported.warnings.size() - 20) + " more");
+    return json_response(
+        req, http::status::created,
+        {{"imported", runs}, {"count", imported.ids.size()}, {"warnings", warnings}});
   } catch (const ArchiveRefusal& e) {
-    const std::string where = e.where().empty() ? "" : e.where() + ": ";
-    return problem_response(rc.request, http::status::unprocessable_entity,
-                            "the archive is refused, nothing was stored: " + where + e.what(),
-                            {{e.where(), e.what()}});
+    // A member name comes from the client: a long one is cut, as other echoed values are.
+    const std::string where = api::cut_text(e.where(), 300);
+    return problem_response(req, http::status::unprocessable_entity,
+                            "the archive is refused, nothing was stored: " +
+                                (where.empty() ? "" : where + ": ") + e.what(),
+                            {{where, e.what()}});
   }
 }
 
@@ -148,7 +257,11 @@ Response import_archive(ServerContext& ctx, RequestContext& rc) {
 void add_archive_routes(Router& router, ServerContext& ctx) {
   router.add(
       http::verb::get, api_prefix + "/exports",
-      [&ctx](RequestContext& rc) { return export_archive(ctx, rc); }, Runs::export_pool);
+      [&ctx](RequestContext& rc) { return export_archive(ctx, rc, false); }, Runs::export_pool);
+  // The ids in a body: up to 1000 of them (a query string of 16 kB holds about 400).
+  router.add_json_body(
+      http::verb::post, api_prefix + "/exports",
+      [&ctx](RequestContext& rc) { return export_archive(ctx, rc, true); }, Runs::export_pool);
   router.add(http::verb::post, api_prefix + "/imports",
              [&ctx](RequestContext& rc) { return import_archive(ctx, rc); });
 }

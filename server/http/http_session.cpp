@@ -13,18 +13,6 @@ namespace slipfront::server {
 
 namespace net = boost::asio;
 
-namespace {
-// Every export thread is taken (--max-exports): come back in a second rather than wait here.
-Response exports_busy(const Request& req, int limit) {
-  auto res = problem_response(req, http::status::service_unavailable,
-                              std::to_string(limit) + " export" + (limit == 1 ? " is" : "s are") +
-                                  " running, the most this server runs at once "
-                                  "(--max-exports); retry later");
-  res.set(http::field::retry_after, "1");
-  return res;
-}
-} // namespace
-
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, ServerStats& stats,
                          SessionLimits limits, std::shared_ptr<std::atomic<int>> open_count)
     : stream_(std::move(socket)), read_deadline_(stream_.get_executor()), router_(router),
@@ -33,7 +21,6 @@ HttpSession::HttpSession(net::ip::tcp::socket&& socket, const Router& router, Se
 }
 
 HttpSession::~HttpSession() {
-  release_unsent();
   if (open_count_) --*open_count_;
 }
 
@@ -139,9 +126,22 @@ void HttpSession::on_body(beast::error_code ec, std::size_t) {
     net::post(*pool, handler_task(std::move(req)));
     return;
   }
-  if (runs == Runs::export_pool && pools.exports) {
-    if (!pools.exports->try_post(handler_task(req)))
-      send(exports_busy(req, pools.exports->limit()), false);
+  // Every thread of a bounded pool taken: come back in a second rather than wait here.
+  BoundedPool* bounded = runs == Runs::export_pool ? pools.exports
+                         : runs == Runs::fit_pool  ? pools.fits
+                                                   : nullptr;
+  if (bounded) {
+    // The answer is handed back once its task no longer counts against the bound: a client
+    // that asks again as soon as it is answered finds the place free.
+    auto answer = std::make_shared<std::optional<Response>>();
+    auto self = shared_from_this();
+    const bool taken =
+        bounded->try_post([self, req, answer] { answer->emplace(self->router_.dispatch(req)); },
+                          [self, answer] {
+                            net::post(self->stream_.get_executor(),
+                                      [self, answer] { self->send(std::move(**answer), false); });
+                          });
+    if (!taken) send(unavailable_response(req, bounded->busy_reason() + "; retry later", 1), false);
     return;
   }
   Response response = router_.dispatch(req);
@@ -157,43 +157,54 @@ std::function<void()> HttpSession::handler_task(Request req) {
   };
 }
 
-bool UnsentBytes::reserve(std::uint64_t n) {
-  auto held = held_.load();
-  do {
-    if (n > always_allowed && held + n > limit_) return false;
-  } while (!held_.compare_exchange_weak(held, held + n));
-  return true;
-}
-
 void HttpSession::send(Response response, bool close_after) {
   read_deadline_.cancel();
   if (limits_.unsent && response.held_bytes() > 0) {
-    if (!limits_.unsent->reserve(response.held_bytes())) {
+    auto reserved = ByteReservation::take(limits_.unsent, response.held_bytes());
+    if (!reserved) {
       Request req;
       req.version(11);
       auto busy =
-          problem_response(req, http::status::service_unavailable,
-                           "the server holds " + std::to_string(limits_.unsent->limit() >> 20) +
-                               " MiB of answers its clients have not read yet; retry later");
-      busy.set(http::field::retry_after, "5");
+          unavailable_response(req,
+                               "the server holds " + std::to_string(limits_.unsent->limit() >> 20) +
+                                   " MiB of answers its clients have not read yet; retry later",
+                               5);
       busy.keep_alive(response.keep_alive());
       response = Response(std::move(busy));
-      limits_.unsent->reserve(response.held_bytes()); // small: always allowed
+      reserved = ByteReservation::take(limits_.unsent, response.held_bytes()); // small: allowed
     }
-    unsent_held_ = response.held_bytes();
+    unsent_ = std::move(*reserved);
   }
   stats_.record_request(
       response.status(),
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
-  bool keep_alive = response.keep_alive() && !close_after;
-  stream_.expires_after(limits_.write_timeout);
-  beast::async_write(
-      stream_, response.take(),
-      beast::bind_front_handler(&HttpSession::on_write, shared_from_this(), keep_alive));
+  const bool keep_alive = response.keep_alive() && !close_after;
+  writing_.emplace(response.take());
+  write_deadline_ = std::chrono::steady_clock::now() + limits_.write_timeout;
+  write_some(keep_alive);
 }
 
-void HttpSession::on_write(bool keep_alive, beast::error_code ec, std::size_t) {
-  release_unsent();
+void HttpSession::write_some(bool keep_alive) {
+  beast::error_code ec;
+  const auto buffers = writing_->prepare(ec);
+  if (ec) return on_write(keep_alive, ec);
+  // The stream's expiry closes the socket: a client that reads nothing is cut after
+  // send_timeout, a slow one that keeps reading after write_timeout.
+  const auto left = write_deadline_ - std::chrono::steady_clock::now();
+  stream_.expires_after(std::min<std::chrono::steady_clock::duration>(limits_.send_timeout, left));
+  stream_.async_write_some(
+      buffers, [self = shared_from_this(), keep_alive](beast::error_code wec, std::size_t n) {
+        if (wec) return self->on_write(keep_alive, wec);
+        self->writing_->consume(n);
+        if (self->writing_->is_done()) return self->on_write(keep_alive, {});
+        self->write_some(keep_alive);
+      });
+}
+
+void HttpSession::on_write(bool keep_alive, beast::error_code ec) {
+  writing_.reset(); // the body goes now: a file it streamed from is closed
+  unsent_.reset();
+  stream_.expires_never();
   if (ec) return close();
   if (!keep_alive) return drain_then_close();
   read_header();
@@ -222,11 +233,6 @@ void HttpSession::drain_then_close() {
                             if (rec || self->discarded_ > (64u << 20)) return self->close();
                             self->drain_then_close();
                           });
-}
-
-void HttpSession::release_unsent() {
-  if (limits_.unsent && unsent_held_) limits_.unsent->release(unsent_held_);
-  unsent_held_ = 0;
 }
 
 void HttpSession::close() {

@@ -4,6 +4,7 @@
 // slow requests get a 4xx and the connection is closed.
 #pragma once
 
+#include "server/core/byte_budget.hpp"
 #include "server/core/server_stats.hpp"
 #include "server/http/router.hpp"
 #include "server/http/work_pools.hpp"
@@ -19,33 +20,20 @@
 
 namespace slipfront::server {
 
-// The bytes of answers built in memory and not yet taken by their clients, over all
-// connections: a client that asks and never reads holds its answer until the write timeout,
-// so their sum is bounded (docs/reliability.md). An answer of at most `always_allowed` bytes
-// is never refused (errors, status, health).
-class UnsentBytes {
-public:
-  static constexpr std::uint64_t always_allowed = 64 * 1024;
-  explicit UnsentBytes(std::uint64_t limit) : limit_(limit) {}
-  // Counts `n` in, unless that would pass the limit (then false, nothing counted).
-  bool reserve(std::uint64_t n);
-  void release(std::uint64_t n) { held_ -= n; }
-  std::uint64_t held() const { return held_; }
-  std::uint64_t limit() const { return limit_; }
-
-private:
-  std::uint64_t limit_;
-  std::atomic<std::uint64_t> held_{0};
-};
-
 struct SessionLimits {
   std::uint64_t max_body_bytes = 1 << 20;
   std::uint64_t max_import_bytes = std::uint64_t{1} << 30; // POST <api>/imports (run archives)
   std::chrono::seconds request_timeout{30}; // to receive a whole request (and idle keep-alive)
   std::chrono::seconds write_timeout{600};  // to send a whole response (large result files)
+  // A client that takes no byte of an answer for this long is cut (its answer, and the file
+  // an answer streams from, released): the write timeout alone let an unread export pin
+  // its file for ten minutes.
+  std::chrono::seconds send_timeout{30};
   int max_connections = 256; // open at once; more are answered 503 and closed at once
-  // Shared by every session; null = no bound.
-  std::shared_ptr<UnsentBytes> unsent;
+  // The bytes of answers built in memory and not yet taken by their clients, over all
+  // connections (docs/reliability.md): shared by every session; null = no bound. Result
+  // files and exports stream from disk and do not count here.
+  std::shared_ptr<ByteBudget> unsent;
   // Where the routes that may block run (Router::runs); a null pool = on the I/O thread.
   WorkPools pools;
 };
@@ -68,12 +56,14 @@ private:
   // Dispatches `req` on a thread of a pool; the answer is sent from the session's strand.
   std::function<void()> handler_task(Request req);
   void send(Response response, bool close_after);
-  void on_write(bool keep_alive, beast::error_code ec, std::size_t bytes);
+  // Writes the answer a chunk at a time, each within send_timeout (and all of it within
+  // write_timeout of its start).
+  void write_some(bool keep_alive);
+  void on_write(bool keep_alive, beast::error_code ec);
   void reject(http::status status, const std::string& detail); // 4xx, then close
   void drain_then_close();
   void close();
   void arm_read_deadline();
-  void release_unsent(); // the answer being written no longer counts in limits_.unsent
 
   beast::tcp_stream stream_;
   // The read deadline is a timer that cancels the read (not tcp_stream's expiry, which
@@ -90,7 +80,10 @@ private:
   std::array<char, 8192> discard_{};
   std::size_t discarded_ = 0;
   std::shared_ptr<std::atomic<int>> open_count_;
-  std::uint64_t unsent_held_ = 0; // counted in limits_.unsent for the answer being written
+  // The answer being written, and its bytes counted in limits_.unsent.
+  std::optional<http::message_generator> writing_;
+  ByteReservation unsent_;
+  std::chrono::steady_clock::time_point write_deadline_;
 };
 
 } // namespace slipfront::server

@@ -28,12 +28,8 @@ Response not_found_job(const Request& req, const std::string& id) {
 Response submit(ServerContext& ctx, RequestContext& rc) {
   if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
-  if (ctx.draining) {
-    auto res =
-        problem_response(req, http::status::service_unavailable, "the server is shutting down");
-    res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
-    return res;
-  }
+  if (ctx.draining)
+    return unavailable_response(req, "the server is shutting down", ctx.retry_after_s);
   SubmitOptions options;
   options.user = rc.user;
   std::vector<api::FieldError> errors;
@@ -63,14 +59,12 @@ Response submit(ServerContext& ctx, RequestContext& rc) {
   case Kind::key_conflict:
     return problem_response(req, http::status::unprocessable_entity,
                             r.errors.empty() ? "Idempotency-Key conflict" : r.errors[0].reason);
-  case Kind::queue_full: {
-    auto res =
-        problem_response(req, http::status::service_unavailable,
-                         "the queue is full (" + std::to_string(ctx.service.load().queue_limit) +
-                             " jobs); retry later");
-    res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
-    return res;
-  }
+  case Kind::queue_full:
+    return unavailable_response(req,
+                                "the queue is full (" +
+                                    std::to_string(ctx.service.load().queue_limit) +
+                                    " jobs); retry later",
+                                ctx.retry_after_s);
   case Kind::created:
   case Kind::reused:
   case Kind::replayed:

@@ -36,8 +36,10 @@ Response fit(RequestContext& rc) {
 } // namespace
 
 void add_length_fit_routes(Router& router) {
-  router.add_json_body(http::verb::post, api_prefix + "/length-fits",
-                       [](RequestContext& rc) { return fit(rc); });
+  // On the fit pool: at most --max-fits at once, never on the threads of submissions.
+  router.add_json_body(
+      http::verb::post, api_prefix + "/length-fits", [](RequestContext& rc) { return fit(rc); },
+      Runs::fit_pool);
 }
 
 } // namespace slipfront::server

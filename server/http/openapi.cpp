@@ -132,7 +132,7 @@ const char* document = R"json({
       "Problem": {"description": "Error", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
       "Study": {"description": "The study", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Study"}}}},
       "Job": {"description": "The job", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Job"}}}},
-      "Unavailable": {"description": "Service unavailable: the storage refused a write or a read (disk full, I/O error, database busy), the connection cap was reached, --max-exports exports are running (format=csv or ndjson), or the server is draining; retry after Retry-After seconds",
+      "Unavailable": {"description": "Service unavailable: the storage refused a write or a read (disk full, I/O error, database busy), the connection cap was reached, --max-exports exports or --max-fits length fits are running, archives not yet sent hold --max-export-bytes or the disk would fall below --min-free-bytes (exports, imports), or the server is draining; retry after Retry-After seconds",
         "headers": {"Retry-After": {"schema": {"type": "integer"}}},
         "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}
     }

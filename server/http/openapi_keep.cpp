@@ -37,19 +37,28 @@ const char* keep_paths = R"json({
         "403": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
   },
   "/api/v1/exports": {
-    "get": {"summary": "Finished runs as one tar archive: manifest.json (SHA-256 of every member), runs/<id>/job.json, runs/<id>/result.h5 (docs/server.md, Export and import)",
+    "get": {"summary": "Finished runs as one tar archive: manifest.json (SHA-256 of every member), runs/<id>/job.json, runs/<id>/result.h5 (docs/server.md, Export and import); a token on a server with a token file", "security": [{"bearer": []}],
       "parameters": [{"name": "ids", "in": "query", "schema": {"type": "string"}, "description": "comma-separated job ids (1..1000); or instead the filters of GET /api/v1/jobs (study_id, tag, where, archived, ...)"}],
       "responses": {"200": {"description": "The archive", "content": {"application/x-tar": {}}},
-        "400": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"},
+        "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"},
         "409": {"description": "A run is not finished, or its result file is missing or damaged", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
-        "422": {"description": "More than 1000 runs match", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
+        "422": {"description": "More than 1000 runs match, or the archive is larger than --max-export-bytes", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}},
+    "post": {"summary": "The same archive for a list of runs in the body: {\"ids\": [...]} of 1 to 1000 job ids (a query string holds about 400); a token on a server with a token file", "security": [{"bearer": []}],
+      "requestBody": {"required": true, "content": {"application/json": {"schema": {"type": "object", "additionalProperties": false, "required": ["ids"],
+        "properties": {"ids": {"type": "array", "minItems": 1, "maxItems": 1000, "items": {"type": "string"}}}}}}},
+      "responses": {"200": {"description": "The archive", "content": {"application/x-tar": {}}},
+        "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+        "404": {"description": "An id names no job (the pointer /ids/N says which)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+        "409": {"description": "A run is not finished, or its result file is missing or damaged", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+        "422": {"description": "Not {\"ids\": [1 to 1000 strings]}, or the archive is larger than --max-export-bytes", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   },
   "/api/v1/imports": {
     "post": {"summary": "Store the runs of an export archive: every member checked against the manifest before anything is stored; runs keep their ids when free here", "security": [{"bearer": []}],
       "requestBody": {"required": true, "content": {"application/x-tar": {"schema": {"type": "string", "format": "binary"}}}},
       "responses": {"201": {"description": "Imported", "content": {"application/json": {"schema": {"type": "object", "properties": {
           "imported": {"type": "array", "items": {"type": "object", "properties": {"id": {"type": "string"}, "original_id": {"type": "string"}, "url": {"type": "string"}}}},
-          "count": {"type": "integer"}}}}}},
+          "count": {"type": "integer"}, "warnings": {"type": "array", "items": {"type": "string"}, "description": "what was left out: metric names this server does not write (one line per run)"}}}}}},
         "401": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},
         "422": {"description": "Refused, nothing stored: the title names the member (a checksum that does not match, an unsafe name, a link, a truncated archive)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   }

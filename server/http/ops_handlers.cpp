@@ -3,9 +3,8 @@
 #include "server/http/handlers.hpp"
 
 #include "api/job_schema.hpp"
+#include "server/core/disk_space.hpp"
 #include "server/http/responses.hpp"
-
-#include <sys/statvfs.h>
 
 #include <sstream>
 
@@ -20,11 +19,9 @@ constexpr double storage_error_window_s = 60.0;
 // space is below the threshold or the storage refused a write in the last minute.
 nlohmann::json storage_health(ServerContext& ctx, bool& degraded) {
   nlohmann::json out;
-  struct statvfs fs {};
-  if (statvfs(ctx.data_dir.c_str(), &fs) == 0) {
-    const double free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
-    out["free_bytes"] = free_bytes;
-    if (free_bytes < ctx.min_free_bytes) degraded = true;
+  if (const auto free_bytes = free_disk_bytes(ctx.data_dir)) {
+    out["free_bytes"] = static_cast<double>(*free_bytes);
+    if (static_cast<double>(*free_bytes) < ctx.min_free_bytes) degraded = true;
   } else {
     out["free_bytes"] = nullptr;
   }

@@ -1,7 +1,10 @@
 // A file for http::basic_file_body that serves one byte range [offset, offset + length):
 // the body writer reads from the current position for size() bytes, so seeking first and
-// reporting the range length as the size is all a 206 needs.
+// reporting the range length as the size is all a 206 needs. It may hold a reservation of a
+// byte budget (an export's disk), released when the file is closed.
 #pragma once
+
+#include "server/core/byte_budget.hpp"
 
 #include <boost/beast/core/file.hpp>
 
@@ -14,7 +17,10 @@ public:
   using native_handle_type = boost::beast::file::native_handle_type;
 
   bool is_open() const { return file_.is_open(); }
-  void close(boost::beast::error_code& ec) { file_.close(ec); }
+  void close(boost::beast::error_code& ec) {
+    file_.close(ec);
+    held_.reset();
+  }
   void open(const char* path, boost::beast::file_mode mode, boost::beast::error_code& ec) {
     file_.open(path, mode, ec);
     if (!ec) length_ = file_.size(ec);
@@ -24,6 +30,8 @@ public:
     file_.native_handle(fd);
     length_ = file_.size(ec);
   }
+  // Counts the file in a budget until it is closed or destroyed (with the answer's body).
+  void hold(ByteReservation reservation) { held_ = std::move(reservation); }
   // Restrict to [offset, offset + length); call after open().
   void set_range(std::uint64_t offset, std::uint64_t length, boost::beast::error_code& ec) {
     file_.seek(offset, ec);
@@ -43,6 +51,7 @@ public:
   }
 
 private:
+  ByteReservation held_; // declared first: released after the file is closed
   boost::beast::file file_;
   std::uint64_t length_ = 0;
 };

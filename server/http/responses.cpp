@@ -99,3 +99,14 @@ http::response<http::string_body> problem_response(const Request& req, http::sta
 }
 
 } // namespace slipfront::server
+
+namespace slipfront::server {
+
+http::response<http::string_body>
+unavailable_response(const Request& req, const std::string& detail, int retry_after_s) {
+  auto res = problem_response(req, http::status::service_unavailable, detail);
+  res.set(http::field::retry_after, std::to_string(retry_after_s));
+  return res;
+}
+
+} // namespace slipfront::server

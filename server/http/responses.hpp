@@ -33,5 +33,9 @@ inline constexpr std::size_t max_listed_errors = 100;
 http::response<http::string_body> problem_response(const Request& req, http::status status,
                                                    const std::string& detail,
                                                    const std::vector<api::FieldError>& errors = {});
+// 503 with Retry-After: the server cannot take this now (a bound is reached, the disk is
+// short, it is shutting down); the same request may pass later.
+http::response<http::string_body>
+unavailable_response(const Request& req, const std::string& detail, int retry_after_s);
 
 } // namespace slipfront::server

@@ -3,7 +3,6 @@
 // /interface field as JSON). The stations: station_handlers.cpp.
 #include "api/result_reader.hpp"
 #include "api/result_xdmf.hpp"
-#include "server/core/log.hpp"
 #include "server/http/byte_range.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/range_file.hpp"
@@ -95,9 +94,7 @@ Response xdmf(ServerContext& ctx, RequestContext& rc) {
   try {
     text = api::result_xdmf(path, job.id + ".h5");
   } catch (const std::exception& e) {
-    log_error("XDMF of job " + job.id + ": " + e.what());
-    return problem_response(req, http::status::internal_server_error,
-                            "XDMF of job " + job.id + ": " + without_path(e.what(), path, job));
+    return result_unreadable(req, job, "XDMF", without_path(e.what(), path, job));
   }
   auto res = text_response(req, http::status::ok, std::move(text), "application/xml");
   res.set(http::field::content_disposition, "attachment; filename=\"" + job.id + ".xdmf\"");
@@ -198,12 +195,7 @@ Response field(ServerContext& ctx, RequestContext& rc) {
   const std::string& path = std::get<ResultOnDisk>(found).path;
   std::string why;
   auto slice = api::read_field_slice(path, name, window, why);
-  if (!slice) {
-    log_error("field " + name + " of job " + job.id + ": " + why);
-    return problem_response(req, http::status::internal_server_error,
-                            "the result file of job " + job.id +
-                                " cannot be read: " + without_path(why, path, job));
-  }
+  if (!slice) return result_unreadable(req, job, "field " + name, without_path(why, path, job));
   nlohmann::json body;
   body["id"] = job.id;
   body["field"] = name;

@@ -73,6 +73,15 @@ std::variant<ResultOnDisk, Response> find_result(ServerContext& ctx, RequestCont
   return ResultOnDisk{std::move(job), std::move(file), std::move(path)};
 }
 
+Response result_unreadable(const Request& req, const Job& job, const std::string& what,
+                           const std::string& why) {
+  log_error(what + " of job " + job.id + ": " + why + "; answered 410");
+  return problem_response(req, http::status::gone,
+                          "the result file of job " + job.id +
+                              " is damaged: it cannot be read as a result file (" + why +
+                              "); submit the job again with fresh=true to recompute it");
+}
+
 std::string without_path(std::string text, const std::string& path, const Job& job) {
   const std::string name = job.id + ".h5";
   for (auto at = text.find(path); at != std::string::npos; at = text.find(path, at + name.size()))

@@ -30,6 +30,12 @@ struct ResultOnDisk {
 // damaged or not a regular file). Verifying may hash the file: only on the blocking pool.
 std::variant<ResultOnDisk, Response> find_result(ServerContext& ctx, RequestContext& rc);
 
+// 410 for a result file that is intact (its size and SHA-256 are the stored ones) but cannot
+// be read as a result (`why`: the HDF5 reader's words, the path already removed): a file
+// imported before imports checked the layout, or written by a broken build. Never a 500.
+Response result_unreadable(const Request& req, const Job& job, const std::string& what,
+                           const std::string& why);
+
 // `text` (an error from the HDF5 reader) without the server's path of the file.
 std::string without_path(std::string text, const std::string& path, const Job& job);
 

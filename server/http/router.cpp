@@ -88,13 +88,19 @@ void Router::add(http::verb method, const std::string& pattern, Handler handler,
 }
 
 void Router::add(http::verb method, const std::string& pattern, Handler handler, RunsFor runs_for) {
-  if (method != http::verb::get) runs_for = [](const auto&) { return Runs::write_pool; };
+  // Other methods write, except on a bounded pool of their own.
+  if (method != http::verb::get)
+    runs_for = [inner = std::move(runs_for)](const auto& query) {
+      const Runs runs = inner(query);
+      return runs == Runs::export_pool || runs == Runs::fit_pool ? runs : Runs::write_pool;
+    };
   routes_.push_back(
       {method, pattern, split_path(pattern), std::move(handler), std::move(runs_for)});
 }
 
-void Router::add_json_body(http::verb method, const std::string& pattern, Handler handler) {
-  add(method, pattern, std::move(handler));
+void Router::add_json_body(http::verb method, const std::string& pattern, Handler handler,
+                           Runs runs) {
+  add(method, pattern, std::move(handler), runs);
   routes_.back().json_body = true;
 }
 
@@ -152,11 +158,10 @@ Response Router::answer(const Request& request) const {
         return problem_response(request, http::status::internal_server_error,
                                 "internal error (the server log has the details)");
       if (record_storage_error_) record_storage_error_(e.what());
-      auto res = problem_response(request, http::status::service_unavailable,
+      return unavailable_response(request,
                                   "the server's storage cannot take writes now (disk full or I/O "
-                                  "error); retry later");
-      res.set(http::field::retry_after, std::to_string(retry_after_s_));
-      return res;
+                                  "error); retry later",
+                                  retry_after_s_);
     } catch (const std::exception& e) {
       log_error(request_line(request) + ": " + e.what());
       // The exception's text may quote internals (SQL, library messages): it goes to the

@@ -22,6 +22,7 @@ enum class Runs {
   read_pool,   // GETs that may block: listings over many rows, HDF5 reads, analyses
   write_pool,  // every route of another method than GET: it writes to the database
   export_pool, // run-table exports (GET /jobs?format=csv|ndjson): a bounded number at once
+  fit_pool,    // length fits (POST /length-fits): pure computation, a bounded number at once
 };
 // For a route whose place depends on the query (a listing or an export).
 using RunsFor = std::function<Runs(const std::map<std::string, std::string>& query)>;
@@ -29,7 +30,7 @@ using RunsFor = std::function<Runs(const std::map<std::string, std::string>& que
 class Router {
 public:
   // `runs` applies to GET (and HEAD) routes; a route of another method runs on the write
-  // pool whatever it says.
+  // pool unless it names a bounded pool (export_pool, fit_pool).
   void add(http::verb method, const std::string& pattern, Handler handler,
            Runs runs = Runs::io_thread);
   void add(http::verb method, const std::string& pattern, Handler handler, RunsFor runs_for);
@@ -38,7 +39,8 @@ public:
   // A route whose handler reads the body as JSON: a request whose Content-Type is another
   // media type than application/json is answered 415 (naming the type to send) before the
   // handler runs. A body without Content-Type is read as JSON. It runs where `add` puts it.
-  void add_json_body(http::verb method, const std::string& pattern, Handler handler);
+  void add_json_body(http::verb method, const std::string& pattern, Handler handler,
+                     Runs runs = Runs::io_thread);
   // Runs the matching handler; errors it throws become a 500 problem (logged with context),
   // except storage that cannot take writes now (disk full...): 503 with Retry-After.
   Response dispatch(const Request& request) const;

@@ -1,7 +1,10 @@
 #include "server/http/run_archive.hpp"
 
 #include "api/free_text.hpp"
+#include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
+#include "api/metrics_reader.hpp"
+#include "api/number_text.hpp"
 #include "api/run_annotations.hpp"
 #include "server/core/clock.hpp"
 #include "server/core/file_descriptor.hpp"
@@ -50,24 +53,27 @@ OpenedResult open_intact(JobService& service, const Job& job) {
 
 } // namespace
 
-void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs) {
-  // The manifest comes first, so every file is checked (and its job.json made) before a byte
-  // is written; the result files are opened again, one at a time, when they are copied.
+ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs) {
+  // Every file is checked (and every job.json made) before a byte is written; the result
+  // files are opened again, one at a time, when they are copied.
+  ArchivePlan plan;
   json runs = json::array(), files = json::array();
-  std::vector<std::string> job_texts;
+  std::vector<std::uint64_t> sizes;
   for (const Job& job : jobs) {
     json record = job_to_json(job);
     record["front"] = service.front(job.id).value_or(json());
-    job_texts.push_back(record.dump(2) + "\n");
-    const std::string& text = job_texts.back();
+    plan.job_texts.push_back(record.dump(2) + "\n");
+    const std::string& text = plan.job_texts.back();
     files.push_back(
         {{"name", job_member(job.id)}, {"size", text.size()}, {"sha256", api::sha256_hex(text)}});
+    sizes.push_back(text.size());
     json run = {{"id", job.id}, {"job", job_member(job.id)}, {"result", nullptr}};
     if (has_result(job)) {
       open_intact(service, job);
       files.push_back({{"name", result_member(job.id)},
                        {"size", job.result.size},
                        {"sha256", job.result.sha256}});
+      sizes.push_back(job.result.size);
       run["result"] = result_member(job.id);
     }
     runs.push_back(std::move(run));
@@ -79,10 +85,18 @@ void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs
       {"server", {{"host", host_name()}, {"code_version", service.options().code_version}}},
       {"runs", std::move(runs)},
       {"files", std::move(files)}};
+  plan.manifest = manifest.dump(2) + "\n";
+  sizes.push_back(plan.manifest.size());
+  plan.size = TarWriter::archive_size(sizes);
+  return plan;
+}
+
+void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
+                       const ArchivePlan& plan) {
   TarWriter tar(fd);
-  tar.add("manifest.json", manifest.dump(2) + "\n");
+  tar.add("manifest.json", plan.manifest);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    tar.add(job_member(jobs[i].id), job_texts[i]);
+    tar.add(job_member(jobs[i].id), plan.job_texts[i]);
     if (has_result(jobs[i])) {
       OpenedResult file = open_intact(service, jobs[i]);
       tar.add_from(result_member(jobs[i].id), file.fd.get(), file.size);
@@ -116,11 +130,32 @@ public:
     if (auto reason = api::free_text_error(v.get_ref<const std::string&>())) refuse(key, *reason);
     return v.get<std::string>();
   }
-  double number(const json& v, const std::string& key) const {
+  // A number from 0 to `max` (0 for null), as the job parser checks a job's.
+  double number(const json& v, const std::string& key, double max = 1e15) const {
     if (v.is_null()) return 0.0;
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
-      refuse(key, "must be a finite number >= 0 or null");
+    if (!v.is_number() || !(v.get<double>() >= 0.0 && v.get<double>() <= max))
+      refuse(key, "must be a number from 0 to " + api::number_text(max) + " or null");
     return v.get<double>();
+  }
+  // A whole number from 0 to 2^53 (0 for null): a count an int64 holds exactly.
+  std::int64_t count(const json& v, const std::string& key) const {
+    const double n = number(v, key, 9007199254740992.0);
+    if (std::floor(n) != n) refuse(key, "must be a whole number");
+    return static_cast<std::int64_t>(n);
+  }
+  // A time as this server writes them, "" for null unless `required`.
+  std::string time(const std::string& key, bool required) const {
+    const std::string t = text(key, 64);
+    if (t.empty() ? required : !is_utc_iso8601(t))
+      refuse(key, "must be a UTC time in ISO 8601, as 2024-05-01T12:00:00.123Z");
+    return t;
+  }
+  // An object or null whose JSON text is at most `max_bytes` (provenance of other servers).
+  const json& small_object(const std::string& key, std::size_t max_bytes) const {
+    const json& v = field(key);
+    if (!v.is_null() && (!v.is_object() || v.dump().size() > max_bytes))
+      refuse(key, "must be an object of at most " + std::to_string(max_bytes) + " bytes or null");
+    return v;
   }
 
 private:
@@ -128,20 +163,44 @@ private:
   std::string member_;
 };
 
-struct PendingRun {
-  Job job;
-  RunRecord record;
-  std::string_view result; // the result file's bytes ("" = none)
-};
+// Why a stored front ({x1, arrival_time, rupture_speed}: lists of numbers or null of one
+// length) is not one, or nullopt (null is no front).
+std::optional<std::string> front_error(const json& front) {
+  if (front.is_null()) return std::nullopt;
+  if (!front.is_object() || front.size() != 3)
+    return "must be {\"x1\", \"arrival_time\", \"rupture_speed\"} or null";
+  const json& x1 = front.value("x1", json());
+  if (!x1.is_array()) return std::string("x1 must be a list");
+  for (const char* key : {"x1", "arrival_time", "rupture_speed"}) {
+    const json& list = front.value(key, json());
+    if (!list.is_array() || list.size() != x1.size())
+      return std::string(key) + " must be a list as long as x1";
+    for (const json& v : list)
+      if (!v.is_null() && !(v.is_number() && std::isfinite(v.get<double>())))
+        return std::string(key) + " must hold numbers or null";
+  }
+  return std::nullopt;
+}
 
-// The run of one manifest entry, checked; nothing stored.
-PendingRun read_run(const json& entry, const std::map<std::string, std::string_view>& members,
-                    const std::map<std::string, json>& listed, const json& origin) {
+// The run of one manifest entry, checked; nothing stored. Names this server does not keep
+// (metrics of other versions) are left out and said in `warnings`.
+RunToImport read_run(const json& entry, const std::map<std::string, std::string_view>& members,
+                     const std::map<std::string, json>& listed, const json& origin,
+                     std::vector<std::string>& warnings) {
   if (!entry.is_object() || !entry.value("id", json()).is_string() ||
       !entry.value("job", json()).is_string())
     throw ArchiveRefusal("manifest.json#/runs", "each run needs \"id\" and \"job\" (strings)");
   const std::string original_id = entry["id"].get<std::string>();
+  if (!is_safe_member_name(original_id) || original_id.find('/') != std::string::npos)
+    throw ArchiveRefusal("manifest.json#/runs", "run id " + api::describe_value(original_id) +
+                                                    " is not a name of plain characters");
   const std::string name = entry["job"].get<std::string>();
+  // Each run has its own members, used once: a member named by many runs would be stored
+  // many times, and the bytes stored would no longer be bounded by the bytes uploaded.
+  if (name != job_member(original_id))
+    throw ArchiveRefusal("manifest.json#/runs",
+                         "the job of run " + original_id + " must be its own member " +
+                             job_member(original_id) + ", not " + api::describe_value(name));
   auto member = members.find(name);
   if (member == members.end())
     throw ArchiveRefusal(name, "the manifest names it but the archive does not hold it");
@@ -152,7 +211,7 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
   RecordReader in(record, name);
   if (in.text("id", 64) != original_id) in.refuse("id", "is not the manifest's " + original_id);
 
-  PendingRun run;
+  RunToImport run;
   Job& job = run.job;
   const auto status = parse_status(in.text("status", 16));
   if (!status || !is_final(*status))
@@ -177,30 +236,47 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
     in.refuse(annotations.errors.front().pointer.substr(1), annotations.errors.front().reason);
   job.tags = annotations.annotations.tags.value_or(std::vector<std::string>());
   job.note = annotations.annotations.note.value_or("");
-  job.created_at = in.text("created_at", 64);
-  job.started_at = in.text("started_at", 64);
-  job.finished_at = in.text("finished_at", 64);
-  if (job.created_at.empty()) in.refuse("created_at", "must be a time (ISO 8601)");
+  job.created_at = in.time("created_at", true);
+  job.started_at = in.time("started_at", false);
+  job.finished_at = in.time("finished_at", false);
   job.error = in.text("error", 4096);
   job.code_version = in.text("code_version");
   job.host = in.text("host");
   job.wall_time_s = in.number(in.field("wall_time_s"), "wall_time_s");
   const json& progress = in.field("progress");
+  if (!progress.is_null() && !progress.is_object()) in.refuse("progress", "must be an object");
   if (progress.is_object()) {
-    job.progress.fraction = in.number(progress.value("fraction", json()), "progress/fraction");
+    job.progress.fraction = in.number(progress.value("fraction", json()), "progress/fraction", 1.0);
     job.progress.time = in.number(progress.value("time", json()), "progress/time");
     job.progress.duration = in.number(progress.value("duration", json()), "progress/duration");
-    job.progress.steps =
-        static_cast<std::int64_t>(in.number(progress.value("steps", json()), "progress/steps"));
+    job.progress.steps = in.count(progress.value("steps", json()), "progress/steps");
   }
-  const json& metrics = in.field("metrics");
-  if (!metrics.is_null() && !metrics.is_object()) in.refuse("metrics", "must be an object or null");
+  // Only the metrics this server writes, each of its kind (docs/metrics.md): other names are
+  // left out with a warning, so that no archive adds columns to every run table.
+  json metrics = in.field("metrics");
+  if (!metrics.is_null()) {
+    if (!metrics.is_object()) in.refuse("metrics", "must be an object or null");
+    auto read = api::read_metrics(metrics);
+    if (!read.errors.empty())
+      in.refuse("metrics" + read.errors.front().pointer, read.errors.front().reason);
+    if (!read.dropped.empty()) {
+      std::string names;
+      for (std::size_t i = 0; i < read.dropped.size() && i < 3; ++i)
+        names += (i ? ", " : "") + api::describe_value(read.dropped[i]);
+      warnings.push_back(name + "#/metrics: " + std::to_string(read.dropped.size()) +
+                         " name(s) this server does not write were left out (" + names +
+                         (read.dropped.size() > 3 ? ", ..." : "") + "; docs/metrics.md)");
+    }
+    metrics = std::move(read.metrics);
+  }
+  const json& front = in.field("front");
+  if (auto why = front_error(front)) in.refuse("front", *why);
   job.imported_from = {{"server", origin.value("server", json())},
                        {"id", original_id},
                        {"submitted_by", in.text("submitted_by")},
                        {"exported_at", origin.value("exported_at", json())}};
-  if (!in.field("imported_from").is_null())
-    job.imported_from["imported_from"] = in.field("imported_from");
+  if (const json& earlier = in.small_object("imported_from", 16 * 1024); !earlier.is_null())
+    job.imported_from["imported_from"] = earlier;
 
   const json& result_name = entry.value("result", json());
   if (job.status == JobStatus::succeeded) {
@@ -208,6 +284,11 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
       throw ArchiveRefusal("manifest.json#/runs",
                            "run " + original_id + " succeeded but has no \"result\" member");
     const std::string result = result_name.get<std::string>();
+    if (result != result_member(original_id))
+      throw ArchiveRefusal("manifest.json#/runs",
+                           "the result of run " + original_id + " must be its own member " +
+                               result_member(original_id) + " (one member holds one run's " +
+                               "result), not " + api::describe_value(result));
     auto file = members.find(result);
     auto listing = listed.find(result);
     if (file == members.end() || listing == listed.end())
@@ -216,6 +297,7 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
     if (!stated.is_object() || stated.value("sha256", json()) != listing->second["sha256"])
       in.refuse("result/sha256", "is not the SHA-256 of " + result + " in the manifest");
     run.result = file->second;
+    run.member = result;
     job.result.size = file->second.size();
     job.result.sha256 = listing->second["sha256"].get<std::string>();
   } else if (!result_name.is_null()) {
@@ -224,8 +306,8 @@ PendingRun read_run(const json& entry, const std::map<std::string, std::string_v
   }
   job.id = original_id;
   run.record.status = job.status;
-  run.record.metrics = metrics;
-  run.record.front = in.field("front");
+  run.record.metrics = std::move(metrics);
+  run.record.front = front;
   run.record.wall_time_s = job.wall_time_s;
   run.record.finished_at = job.finished_at;
   run.record.error = job.error;
@@ -247,7 +329,9 @@ std::map<std::string, json> check_files(const json& manifest,
         !f.value("sha256", json()).is_string() || !f.value("size", json()).is_number_unsigned())
       throw ArchiveRefusal("manifest.json#/files",
                            "each file needs \"name\", \"size\" and \"sha256\"");
-    listed[f["name"].get<std::string>()] = f;
+    if (!listed.emplace(f["name"].get<std::string>(), f).second)
+      throw ArchiveRefusal("manifest.json#/files",
+                           api::describe_value(f["name"]) + " is listed twice");
   }
   for (const auto& [name, content] : members)
     if (name != "manifest.json" && !listed.contains(name))
@@ -267,73 +351,10 @@ std::map<std::string, json> check_files(const json& manifest,
   return listed;
 }
 
-// Writes `bytes` to a new file at `path` (never over an existing one) through a temporary
-// name the start-up clean-up removes (".tmp").
-void write_new_file(const std::string& path, std::string_view bytes) {
-  const std::string temporary = path + ".import.tmp";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot create " + temporary + ": " + std::strerror(errno));
-  FileDescriptor owned(fd);
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const std::string reason = std::strerror(errno);
-      ::unlink(temporary.c_str());
-      throw std::runtime_error("cannot write " + temporary + ": " + reason);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::link(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(temporary.c_str());
-    throw std::runtime_error("cannot store " + path + ": " + reason);
-  }
-  ::unlink(temporary.c_str());
-}
-
-// The id a run gets here: its own if neither a job nor a result file has it, else a new one.
-std::string free_id(JobService& service, const std::string& wanted) {
-  auto taken = [&](const std::string& id) {
-    return service.get(id).has_value() ||
-           std::filesystem::exists(
-               service.result_files().absolute_path({result_relative_path(id), 0, ""}));
-  };
-  if (is_valid_job_id(wanted) && !taken(wanted)) return wanted;
-  std::string id = new_job_id();
-  while (taken(id))
-    id = new_job_id();
-  return id;
-}
-
-void store_run(JobService& service, PendingRun& run, const std::string& user) {
-  Job& job = run.job;
-  job.submitted_by = user;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    job.id = free_id(service, attempt == 0 ? job.id : std::string());
-    job.result.path =
-        job.status == JobStatus::succeeded ? result_relative_path(job.id) : std::string();
-    const std::string path = service.result_files().absolute_path(job.result);
-    if (!job.result.path.empty()) {
-      try {
-        write_new_file(path, run.result);
-      } catch (const std::exception&) {
-        if (std::filesystem::exists(path)) continue; // taken in between: another id
-        throw;
-      }
-    }
-    run.record.result = job.result;
-    if (service.insert_finished(job, run.record)) return;
-    if (!job.result.path.empty()) std::filesystem::remove(path);
-  }
-  throw std::runtime_error("no free id for imported run " + job.id);
-}
-
 } // namespace
 
-std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService& service,
-                                            const std::string& user) {
+ImportResult import_run_archive(std::string_view archive, JobService& service,
+                                const std::string& user) {
   std::vector<TarMember> members;
   try {
     members = read_tar(archive, {2 * max_archive_runs + 1});
@@ -360,21 +381,26 @@ std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService
   if (!runs.is_array() || runs.empty() || runs.size() > max_archive_runs)
     throw ArchiveRefusal("manifest.json#/runs",
                          "must be an array of 1 to " + std::to_string(max_archive_runs) + " runs");
-  std::vector<PendingRun> pending;
+  // What the manifest says of the exporting server, kept with each run.
+  if (const json& at = manifest.value("exported_at", json());
+      !at.is_string() || !is_utc_iso8601(at.get<std::string>()))
+    throw ArchiveRefusal("manifest.json#/exported_at",
+                         "must be a UTC time in ISO 8601, as 2024-05-01T12:00:00.123Z");
+  if (const json& server = manifest.value("server", json());
+      !server.is_object() || server.dump().size() > 1024)
+    throw ArchiveRefusal("manifest.json#/server", "must be an object of at most 1024 bytes");
+  std::vector<RunToImport> pending;
+  std::vector<std::string> warnings;
   std::set<std::string> ids;
   for (const json& entry : runs) {
-    pending.push_back(read_run(entry, by_name, listed, manifest));
+    pending.push_back(read_run(entry, by_name, listed, manifest, warnings));
     if (!ids.insert(pending.back().job.id).second)
       throw ArchiveRefusal("manifest.json#/runs", "run " + pending.back().job.id + " given twice");
   }
-  // Everything checked: store.
-  std::vector<ImportedRun> imported;
-  for (auto& run : pending) {
-    const std::string original = run.job.id;
-    store_run(service, run, user);
-    imported.push_back({run.job.id, original});
-  }
-  return imported;
+  // Everything checked: store, all runs or none.
+  ImportResult result = service.import_runs(std::move(pending), user);
+  result.warnings = std::move(warnings);
+  return result;
 }
 
 } // namespace slipfront::server

@@ -12,6 +12,7 @@
 #include "server/services/job_service.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -34,20 +35,26 @@ private:
   std::string where_;
 };
 
-// Writes the archive of `jobs` (finished runs) to `fd`. Throws ArchiveRefusal when a run's
-// result file is missing or damaged (where = the job id).
-void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs);
-
-struct ImportedRun {
-  std::string id;          // on this server
-  std::string original_id; // in the archive
+// What the archive of `jobs` (finished runs) holds besides the result files, made before a
+// byte is written, and its exact size in bytes: the disk it will take is reserved first.
+struct ArchivePlan {
+  std::string manifest;
+  std::vector<std::string> job_texts; // runs/<id>/job.json of each job, in order
+  std::uint64_t size = 0;
 };
+// Throws ArchiveRefusal when a run's result file is missing or damaged (where = the job id).
+ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs);
+// Writes the archive of `jobs` as planned to `fd`. Throws ArchiveRefusal as above (a file
+// damaged since), StorageError when the disk refuses the bytes.
+void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
+                       const ArchivePlan& plan);
 
 // Checks every member of `archive` against the manifest (names, sizes, SHA-256) and every
-// run's job.json before it stores anything, then stores the runs for `user`: each keeps its
-// id if it is free here, else gets a new one, and records where it came from
-// (`imported_from`). Throws ArchiveRefusal naming what does not hold.
-std::vector<ImportedRun> import_run_archive(std::string_view archive, JobService& service,
-                                            const std::string& user);
+// run's job.json before it stores anything, then stores the runs for `user`, all of them or
+// none (JobService::import_runs): each keeps its id if it is free here, else gets a new one,
+// and records where it came from (`imported_from`). Throws ArchiveRefusal naming what does
+// not hold, StorageError when the disk refuses a write.
+ImportResult import_run_archive(std::string_view archive, JobService& service,
+                                const std::string& user);
 
 } // namespace slipfront::server

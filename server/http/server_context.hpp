@@ -2,12 +2,15 @@
 // studies), never the store, the queue or the running jobs directly.
 #pragma once
 
+#include "server/core/byte_budget.hpp"
 #include "server/core/server_stats.hpp"
 #include "server/http/auth.hpp"
 #include "server/services/job_service.hpp"
 #include "server/services/study_service.hpp"
 
 #include <atomic>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -24,6 +27,9 @@ struct ServerContext {
   StudyService& studies;
   double min_free_bytes = 0.0;    // /healthz: degraded below this free space in data_dir
   std::string executor = "local"; // "local" or "slurm"
+  // The disk of run archives built and not yet sent (--max-export-bytes): each reserves its
+  // size before it is written and releases it when its file is closed.
+  std::shared_ptr<ByteBudget> export_bytes = std::make_shared<ByteBudget>(std::uint64_t{8} << 30);
 };
 
 } // namespace slipfront::server

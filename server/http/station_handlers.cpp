@@ -3,7 +3,6 @@
 // /stations of a finished job's result file (docs/hdf5-layout.md "/stations").
 #include "api/result_stations.hpp"
 #include "api/station_csv.hpp"
-#include "server/core/log.hpp"
 #include "server/http/api_prefix.hpp"
 #include "server/http/handlers.hpp"
 #include "server/http/job_filter_query.hpp" // parse_long
@@ -16,7 +15,7 @@ namespace slipfront::server {
 
 namespace {
 
-// The stations of the path's job, or the response to send instead: those of find_result, 500
+// The stations of the path's job, or the response to send instead: those of find_result, 410
 // for a file that cannot be read as a result, 404 for a job whose spec lists no stations.
 std::variant<StationRecords, Response> find_stations(ServerContext& ctx, RequestContext& rc,
                                                      std::string& job_id) {
@@ -28,12 +27,7 @@ std::variant<StationRecords, Response> find_stations(ServerContext& ctx, Request
   job_id = job.id;
   std::string why;
   auto stations = api::read_stations(path, why);
-  if (!stations) {
-    log_error("stations of job " + job.id + ": " + why);
-    return problem_response(req, http::status::internal_server_error,
-                            "the result file of job " + job.id +
-                                " cannot be read: " + without_path(why, path, job));
-  }
+  if (!stations) return result_unreadable(req, job, "stations", without_path(why, path, job));
   if (stations->empty())
     return problem_response(req, http::status::not_found,
                             "job " + job.id +

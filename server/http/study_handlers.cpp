@@ -34,12 +34,8 @@ std::optional<Response> unknown_parameters(const RequestContext& rc,
 Response create_study(ServerContext& ctx, RequestContext& rc) {
   if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
-  if (ctx.draining) {
-    auto res =
-        problem_response(req, http::status::service_unavailable, "the server is shutting down");
-    res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
-    return res;
-  }
+  if (ctx.draining)
+    return unavailable_response(req, "the server is shutting down", ctx.retry_after_s);
   if (auto bad = unknown_parameters(rc, {})) return std::move(*bad);
   std::vector<api::FieldError> header_errors;
   const std::string key = idempotency_key(req, header_errors);
@@ -55,14 +51,12 @@ Response create_study(ServerContext& ctx, RequestContext& rc) {
                             "the study request is invalid (" + std::to_string(r.errors.size()) +
                                 " error" + (r.errors.size() == 1 ? "" : "s") + ")",
                             r.errors);
-  case Kind::queue_full: {
-    auto res = problem_response(req, http::status::service_unavailable,
+  case Kind::queue_full:
+    return unavailable_response(req,
                                 "the queue has no room for this study's runs (limit " +
                                     std::to_string(ctx.service.load().queue_limit) +
-                                    " jobs); retry later");
-    res.set(http::field::retry_after, std::to_string(ctx.retry_after_s));
-    return res;
-  }
+                                    " jobs); retry later",
+                                ctx.retry_after_s);
   case Kind::key_conflict:
     return problem_response(req, http::status::unprocessable_entity,
                             r.errors.empty() ? "Idempotency-Key conflict" : r.errors[0].reason);

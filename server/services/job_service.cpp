@@ -85,7 +85,10 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
   std::lock_guard lock(submit_mutex_);
   if (!options.idempotency_key.empty()) {
     if (auto earlier = store_.find_by_idempotency_key(options.user, options.idempotency_key)) {
-      if (earlier->spec_sha256 != spec.sha256 || earlier->name != spec.name)
+      // The whole canonical request, as for studies: the spec with its name, tags and output
+      // settings, and the submission's options. Only a retry of that request is a replay.
+      if (earlier->spec != spec.canonical || earlier->fresh != options.fresh.value_or(false) ||
+          earlier->priority != options.priority.value_or(0))
         return failure(Kind::key_conflict,
                        {{"", "Idempotency-Key " + options.idempotency_key +
                                  " was used for a different job (" + earlier->id + ")"}});
@@ -118,7 +121,8 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
     // A hit needs the same physics, code version and output settings: the file holds the
     // sampling, so another sampling is another file (docs/server.md, "Result cache").
     auto earlier = store_.find_reusable(spec.sha256, options_.code_version,
-                                        spec.canonical.value("output", nlohmann::json()));
+                                        spec.canonical.value("output", nlohmann::json()),
+                                        {options.user, options_.auth_enabled});
     if (earlier) {
       // Deleted by hand, lost or damaged: never point a new job at it; run the job again.
       auto file = result_files_.open(earlier->result);
@@ -139,6 +143,7 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
       job.wall_time_s = 0.0;
       job.result = earlier->result;
       job.cached_from = earlier->id;
+      job.result_imported_by = earlier->result_imported_by;
       job.seq = store_.insert(job);
       SubmitResult r;
       r.kind = Kind::reused;

@@ -13,7 +13,9 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace slipfront::server {
@@ -67,6 +69,34 @@ struct KeepResult {
   bool result_deleted = false; // delete: its result file went with it (no other run shares it)
 };
 
+// A finished run read from an archive and checked (server/http/run_archive.hpp), to be stored
+// by JobService::import_runs.
+struct RunToImport {
+  Job job; // its id: the archive's, kept if free here
+  RunRecord record;
+  std::string_view result; // the result file's bytes ("" = none)
+  std::string member;      // the archive member that holds them (for errors)
+};
+
+struct ImportResult {
+  enum class Kind {
+    imported, // every run stored
+    no_space, // 503: the disk would fall below --min-free-bytes; nothing stored
+    refused,  // 422: a result file is not what its run says (`where`: its member)
+  } kind = Kind::imported;
+  std::vector<std::pair<std::string, std::string>> ids; // (id here, id in the archive)
+  std::string where;
+  std::string reason;
+  std::vector<std::string> warnings; // what was left out of the runs (their metrics' names)
+};
+
+// What start-up found and removed in results/ (JobService::recover_result_files).
+struct StrayResults {
+  int intents = 0;                  // interrupted imports and deletes
+  int undone = 0;                   // their files removed
+  std::vector<StrayResult> removed; // other files no row referred to
+};
+
 struct ServiceOptions {
   double max_memory_bytes = 8.0e9;
   double max_result_bytes = 20.0e9; // result-file estimate above which a job is refused
@@ -75,6 +105,8 @@ struct ServiceOptions {
   // Result paths are relative to it; "" = the working directory. A cached result whose file
   // is gone or damaged (ResultFiles) is not reused.
   std::string data_dir;
+  // Imports leave at least this much free space in the data dir (--min-free-bytes).
+  double min_free_bytes = 0.0;
 };
 
 // The queue and the executor now, for /healthz and /metrics.
@@ -115,9 +147,15 @@ public:
   KeepResult set_archived(const std::string& id, const std::string& user, bool archived);
   // Deletes a finished run; its result file too once no other run (a cache hit) refers to it.
   KeepResult remove(const std::string& id, const std::string& user);
-  // Stores a finished run read from an archive (services/run_archive.hpp) whose result file
-  // is already in place; false if its id is taken. Serialised with submissions.
-  bool insert_finished(const Job& job, const RunRecord& record);
+  // Stores the runs of an archive for `user`, all of them or none (services/run_import.cpp):
+  // each keeps its id if free here, else gets a new one. Each result file is opened with the
+  // HDF5 API and checked against docs/hdf5-layout.md and the spec of its run before anything
+  // is stored (refused otherwise). Throws StorageError when the disk refuses a write (nothing
+  // stays).
+  ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user);
+  // At start-up, before the server answers: removes the files of imports and deletes a
+  // crash interrupted, and every other file of results/ no row refers to.
+  StrayResults recover_result_files();
 
   ServiceLoad load() const;
   // The number of jobs in the database by status.
@@ -153,6 +191,9 @@ private:
   // Queue-limit check, insert and push are one step. Recursive: submit_together() holds it
   // while f() submits.
   std::recursive_mutex submit_mutex_;
+  std::mutex import_mutex_; // one import at a time
+  // `wanted` if neither a job, a result file nor `chosen` has it, else a new id.
+  std::string free_import_id(const std::string& wanted, const std::set<std::string>& chosen);
   std::optional<std::vector<Pending>> batch_; // inside submit_together(): queued at its commit
   std::function<void(const std::string& id)> on_cancelled_;
   ResultFiles result_files_;

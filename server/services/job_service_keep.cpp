@@ -57,17 +57,20 @@ KeepResult JobService::remove(const std::string& id, const std::string& user) {
     std::error_code ec;
     const std::string path = result_files_.absolute_path({removal.orphaned_result, 0, ""});
     result_deleted = std::filesystem::remove(path, ec);
-    if (ec) log_error("job " + id + " deleted, but its result file stays: " + ec.message());
+    if (ec)
+      log_error("job " + id +
+                " deleted, but its result file stays until the next start: " + ec.message());
+    else
+      try {
+        store_.forget_file_intent(removal.intent);
+      } catch (const std::exception& e) { // harmless: the next start finds the file gone
+        log_error("job " + id + " deleted; its intent stays until the next start: " + e.what());
+      }
   }
   log_info("job " + id + " deleted by " + user +
            (result_deleted ? " with its result file"
                            : (job->result.path.empty() ? "" : "; its result file is shared")));
   return {Kind::done, job, {}, result_deleted};
-}
-
-bool JobService::insert_finished(const Job& job, const RunRecord& record) {
-  std::lock_guard lock(submit_mutex_);
-  return store_.insert_finished(job, record);
 }
 
 } // namespace slipfront::server

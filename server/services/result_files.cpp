@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 namespace slipfront::server {
 
@@ -90,6 +91,27 @@ OpenedResult ResultFiles::open(const api::ResultFile& stored) {
   }
   out.state = State::intact;
   return out;
+}
+
+} // namespace slipfront::server
+
+namespace slipfront::server {
+
+std::vector<StrayResult> find_stray_results(const std::string& data_dir,
+                                            const ResultReferences& refs) {
+  namespace fs = std::filesystem;
+  std::vector<StrayResult> stray;
+  std::error_code ec;
+  const fs::path dir = fs::path(data_dir.empty() ? "." : data_dir) / "results";
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const std::string path = "results/" + name;
+    if (refs.paths.contains(path)) continue;
+    const std::string id = name.substr(0, name.find('.'));
+    if (refs.unfinished_ids.contains(id)) continue;
+    stray.push_back({path, name.find(".tmp") != std::string::npos});
+  }
+  return stray;
 }
 
 } // namespace slipfront::server

@@ -6,6 +6,7 @@
 
 #include "api/run_record.hpp" // api::ResultFile
 #include "server/core/file_descriptor.hpp"
+#include "server/db/file_intents.hpp" // ResultReferences
 
 #include <sys/stat.h>
 
@@ -13,6 +14,7 @@
 #include <mutex>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 namespace slipfront::server {
 
@@ -61,5 +63,16 @@ private:
   std::mutex mutex_;
   std::unordered_map<std::string, Verdict> verdicts_; // by stored path
 };
+
+// A file of results/ that no row refers to (docs/reliability.md "What bounds the disk").
+struct StrayResult {
+  std::string path;       // relative to the data dir: results/<name>
+  bool temporary = false; // a ".tmp" name: a run or an import that did not finish
+};
+
+// The files of DATA_DIR/results that no row refers to, leaving out those of queued and
+// running jobs (named after their id: a run in progress writes them).
+std::vector<StrayResult> find_stray_results(const std::string& data_dir,
+                                            const ResultReferences& refs);
 
 } // namespace slipfront::server

@@ -1,10 +1,12 @@
 // The metrics JSON: the names of docs/metrics.md, null for undefined values, the method that ran.
+#include "api/metrics_reader.hpp"
 #include "api/metrics_row.hpp"
 #include "api/run_job.hpp"
 #include "synthetic_run.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 
 using nlohmann::json;
@@ -181,4 +183,39 @@ TEST(FrontJson, ArraysWithNullWhereUndefined) {
   EXPECT_EQ(j["arrival_time"][1], 0.5);
   EXPECT_TRUE(j["rupture_speed"][3].is_null());
   EXPECT_EQ(j["rupture_speed"][2], 1.5);
+}
+
+// Metrics of an imported run (api/metrics_reader.hpp): what metrics_json() writes reads back
+// whole; other names are dropped, a value of the wrong kind is named.
+TEST(MetricsReader, WhatMetricsJsonWritesReadsBackWhole) {
+  slipfront::RunResult result = example_result();
+  result.stations.x1 = {4.5, 6.0};
+  result.stations.rupture_time = {3.6, std::numeric_limits<double>::quiet_NaN()};
+  const json written = metrics_json(result);
+  const auto read = slipfront::api::read_metrics(written);
+  EXPECT_TRUE(read.errors.empty()) << read.errors.front().pointer;
+  EXPECT_TRUE(read.dropped.empty()) << read.dropped.front();
+  EXPECT_EQ(read.metrics, written);
+  const auto& names = slipfront::api::metric_names();
+  for (const auto& [name, value] : written.items())
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(MetricsReader, UnknownNamesAreDroppedAndBadValuesNamed) {
+  json metrics = metrics_json(example_result());
+  metrics["column_17"] = 1.0;
+  metrics["steps"] = 1e300;
+  metrics["outcome"] = 3;
+  metrics["mesh"]["nx"] = "many";
+  const auto read = slipfront::api::read_metrics(metrics);
+  EXPECT_EQ(read.dropped, std::vector<std::string>{"column_17"});
+  std::vector<std::string> pointers;
+  for (const auto& e : read.errors)
+    pointers.push_back(e.pointer);
+  EXPECT_EQ(pointers, (std::vector<std::string>{"/mesh", "/outcome", "/steps"}));
+  EXPECT_FALSE(read.metrics.contains("column_17"));
+  // The metrics row never converts such a count to an integer.
+  EXPECT_FALSE(slipfront::api::metrics_row({{"steps", 1e300}}).steps.has_value());
+  EXPECT_FALSE(slipfront::api::metrics_row({{"steps", 2.5}}).steps.has_value());
+  EXPECT_EQ(slipfront::api::metrics_row({{"steps", 552}}).steps, 552);
 }

@@ -1,4 +1,5 @@
 // The HDF5 result file, written with synthetic data and read back with the HDF5 C API.
+#include "api/result_check.hpp"
 #include "api/result_file.hpp"
 #include "api/run_job.hpp"
 #include "synthetic_run.hpp"
@@ -10,6 +11,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -356,4 +358,39 @@ TEST_F(ResultFile, FullDiskReleasesTheFileAndSaysSo) {
   EXPECT_TRUE(fs::is_empty(mount_point));
   EXPECT_GE(free_bytes(), free_before) << "the partial file's blocks are free again";
   EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
+}
+
+// The layout check imports rely on (api/result_check.hpp): what the writer writes passes and
+// gives back the spec; any other file is refused with the fault named.
+TEST_F(ResultFile, TheLayoutCheckPassesTheWritersFilesOnly) {
+  using slipfront::api::check_result_layout;
+  write_synthetic_file(path("r.h5"), 8, 3);
+  std::string why;
+  const auto spec = check_result_layout(path("r.h5"), false, why);
+  ASSERT_TRUE(spec.has_value()) << why;
+  EXPECT_EQ(nlohmann::json::parse(*spec), synthetic_spec());
+  // A job with stations needs /stations, which this file has not.
+  EXPECT_FALSE(check_result_layout(path("r.h5"), true, why));
+  EXPECT_NE(why.find("no group /stations"), std::string::npos) << why;
+
+  {
+    std::FILE* f = std::fopen(path("text.h5").c_str(), "w");
+    std::fputs("not HDF5", f);
+    std::fclose(f);
+  }
+  EXPECT_FALSE(check_result_layout(path("text.h5"), false, why));
+  EXPECT_EQ(why, "not an HDF5 file");
+  EXPECT_FALSE(check_result_layout(path("missing.h5"), false, why));
+
+  // An HDF5 file with a field of the wrong shape.
+  fs::copy_file(path("r.h5"), path("short.h5"));
+  const hid_t file = H5Fopen(path("short.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hsize_t dims[2] = {1, 1};
+  const hid_t set = H5Dopen2(file, "/interface/slip", H5P_DEFAULT);
+  ASSERT_GE(H5Dset_extent(set, dims), 0);
+  H5Dclose(set);
+  H5Fclose(file);
+  EXPECT_FALSE(check_result_layout(path("short.h5"), false, why));
+  EXPECT_NE(why.find("/interface/slip is not [n_samples, n_nodes]"), std::string::npos) << why;
 }

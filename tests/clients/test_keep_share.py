@@ -11,6 +11,7 @@ import json
 import os
 import shutil
 import sys
+import tarfile
 import tempfile
 import unittest
 
@@ -90,6 +91,13 @@ class ClientKeepShare(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         r = self.client("export-runs", "--tag", "share", "-o", archive)
         self.assertEqual(r.returncode, 2, "an existing archive was overwritten")
+        # By ids: POST /exports, the ids in the body.
+        by_ids = os.path.join(self.tmp, "by-ids.tar")
+        r = self.client("export-runs", first, second, "-o", by_ids)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with tarfile.open(by_ids) as tar:
+            self.assertEqual({m.name for m in tar.getmembers() if m.name.endswith("job.json")},
+                             {f"runs/{first}/job.json", f"runs/{second}/job.json"})
         r = self.client("import-runs", archive, "--json", server=self.other)
         self.assertEqual(r.returncode, 0, r.stderr)
         imported = {run["original_id"]: run["id"] for run in json.loads(r.stdout)["imported"]}

@@ -273,9 +273,11 @@ TEST(BlockingWork, TheServersRoutesRunOnTheirPools) {
   // Exports.
   EXPECT_EQ(runs(http::verb::get, "/api/v1/jobs?format=csv"), Runs::export_pool);
   EXPECT_EQ(runs(http::verb::head, "/api/v1/jobs?where=n_d%3E5&format=ndjson"), Runs::export_pool);
-  // A length fit computes over up to 200,000 samples: off the I/O threads, on the pool of
-  // every POST.
-  EXPECT_EQ(runs(http::verb::post, "/api/v1/length-fits"), Runs::write_pool);
+  // A length fit computes over up to 200,000 samples: off the I/O threads, and on a bounded
+  // pool of its own, never on the threads of submissions (and run archives on theirs).
+  EXPECT_EQ(runs(http::verb::post, "/api/v1/length-fits"), Runs::fit_pool);
+  EXPECT_EQ(runs(http::verb::get, "/api/v1/exports?ids=x"), Runs::export_pool);
+  EXPECT_EQ(runs(http::verb::post, "/api/v1/imports"), Runs::write_pool);
   // Quick reads stay on the I/O threads.
   EXPECT_EQ(runs(http::verb::get, "/healthz"), Runs::io_thread);
   EXPECT_EQ(runs(http::verb::get, job), Runs::io_thread);

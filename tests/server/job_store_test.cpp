@@ -367,3 +367,105 @@ TEST(JobStore, SearchOnArrestPositionUsesItsIndex) {
   }
   EXPECT_NE(plan.find("metrics_arrest_position"), std::string::npos) << plan;
 }
+
+// An import's rows go in together with the end of its intent, or nothing does (services/
+// run_import.cpp relies on it: the intent names the files to remove after a failure).
+TEST(JobStore, ImportedRunsAreInsertedAllOrNone) {
+  TempDir dir("slipfront-store-");
+  JobStore store(dir.file("jobs.db"));
+  Job taken = make_job("here");
+  store.insert(taken);
+  std::vector<JobStore::FinishedRun> runs;
+  for (const char* name : {"first", "second"}) {
+    JobStore::FinishedRun run{make_job(name), success()};
+    run.job.status = JobStatus::succeeded;
+    run.job.result = {result_relative_path(run.job.id), 1234, "abc"};
+    run.record.result = run.job.result;
+    runs.push_back(run);
+  }
+  const auto intent =
+      store.record_file_intent("import", {runs[0].job.result.path, runs[1].job.result.path});
+  auto clash = runs;
+  clash[1].job.id = taken.id; // taken meanwhile: the whole import is refused
+  EXPECT_FALSE(store.insert_finished(clash, intent));
+  EXPECT_FALSE(store.get(runs[0].job.id).has_value());
+  ASSERT_EQ(store.file_intents().size(), 1u);
+  EXPECT_EQ(store.file_intents()[0].paths.size(), 2u);
+  EXPECT_EQ(store.result_references().paths.count(runs[0].job.result.path), 0u);
+
+  EXPECT_TRUE(store.insert_finished(runs, intent));
+  EXPECT_TRUE(store.file_intents().empty());
+  for (const auto& run : runs) {
+    auto got = store.get(run.job.id);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_EQ(got->status, JobStatus::succeeded);
+    EXPECT_EQ(got->result.path, run.job.result.path);
+    EXPECT_EQ(store.result_references().paths.count(run.job.result.path), 1u);
+  }
+}
+
+// A delete whose result file goes with the row records, in the same transaction, the intent
+// to remove that file: a crash before the file is gone leaves the intent for start-up.
+TEST(JobStore, DeletingTheLastRunOfAResultRecordsTheIntentToRemoveIt) {
+  TempDir dir("slipfront-store-");
+  JobStore store(dir.file("jobs.db"));
+  JobStore::FinishedRun own{make_job("own"), success()};
+  own.job.status = JobStatus::succeeded;
+  own.job.result = {result_relative_path(own.job.id), 1234, "abc"};
+  own.record.result = own.job.result;
+  JobStore::FinishedRun sharer = own; // a cache hit of it: the same file
+  sharer.job.id = new_job_id();
+  ASSERT_TRUE(store.insert_finished({own, sharer}, 0));
+
+  auto first = store.remove(own.job.id);
+  EXPECT_EQ(first.kind, JobStore::Removal::Kind::removed);
+  EXPECT_TRUE(first.orphaned_result.empty()); // the cache hit still refers to it
+  EXPECT_EQ(first.intent, 0);
+  EXPECT_TRUE(store.file_intents().empty());
+
+  auto last = store.remove(sharer.job.id);
+  EXPECT_EQ(last.orphaned_result, own.job.result.path);
+  ASSERT_NE(last.intent, 0);
+  const auto intents = store.file_intents();
+  ASSERT_EQ(intents.size(), 1u);
+  EXPECT_EQ(intents[0].kind, "delete");
+  EXPECT_EQ(intents[0].paths, std::vector<std::string>{own.job.result.path});
+  EXPECT_EQ(store.result_references().paths.count(own.job.result.path), 0u);
+  store.forget_file_intent(last.intent);
+  EXPECT_TRUE(store.file_intents().empty());
+}
+
+// An imported result (and a cache hit of it) is a cache source for its importer only, and only
+// when users are authenticated; a database of version 10 learns who imported its results.
+TEST(JobStore, AnImportedResultIsReusedByItsImporterOnly) {
+  TempDir dir("slipfront-store-");
+  const auto path = dir.file("db.sqlite");
+  JobStore::FinishedRun imported{make_job("imported"), success()};
+  imported.job.status = JobStatus::succeeded;
+  imported.job.code_version = "v";
+  imported.job.result = {result_relative_path(imported.job.id), 1234, "abc"};
+  imported.record.result = imported.job.result;
+  imported.job.imported_from = {{"id", "elsewhere"}};
+  imported.job.result_imported_by = "alice";
+  JobStore::FinishedRun hit = imported; // a cache hit of it: its result, and its importer
+  hit.job.id = new_job_id();
+  hit.job.imported_from = nullptr;
+  hit.job.cached_from = imported.job.id;
+  {
+    JobStore store(path);
+    ASSERT_TRUE(store.insert_finished({imported, hit}, 0));
+    const auto& hash = imported.job.spec_sha256;
+    EXPECT_FALSE(store.find_reusable(hash, "v", nullptr)) << "anonymous";
+    EXPECT_FALSE(store.find_reusable(hash, "v", nullptr, {"alice", false})) << "no tokens";
+    EXPECT_FALSE(store.find_reusable(hash, "v", nullptr, {"bob", true}));
+    ASSERT_TRUE(store.find_reusable(hash, "v", nullptr, {"alice", true}));
+  }
+  {
+    Database raw(path); // as a build at schema version 10 left it
+    raw.exec("ALTER TABLE jobs DROP COLUMN result_imported_by");
+    raw.set_user_version(10);
+  }
+  JobStore store(path);
+  for (const auto& id : {imported.job.id, hit.job.id})
+    EXPECT_EQ(store.get(id)->result_imported_by, "alice") << id;
+}

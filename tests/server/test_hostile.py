@@ -196,6 +196,13 @@ class HostileInput(unittest.TestCase):
         self.assertRejected(self.post_raw(STUDIES, json.dumps({"base": {"friction": {"law": value}}})),
                             422)
 
+    def test_a_long_preset_name_is_cut_in_its_error(self):
+        # Before: a 100 kB "preset" came back whole in a 100 kB 422.
+        r = self.post_raw(JOBS, json.dumps({"preset": "p" * 100_000}))
+        b = self.assertRejected(r, 422, "/preset")
+        self.assertIn('no preset is called "' + "p" * 40 + '"...', b["errors"][0]["reason"])
+        self.assertLess(len(r.content), 2000)
+
     def test_syntax_errors_are_400_in_our_words(self):
         for path in (JOBS, STUDIES):
             for text in ("{", "[1,]", '{"a" 1}', "nul", '"\\uZZZZ"', "\xff", ""):

@@ -328,6 +328,26 @@ class MainServer(unittest.TestCase):
         self.assertProblem(self.server.submit(other, headers=h), 422)
         self.server.wait_status(r1.json()["id"], TERMINAL)
 
+    def test_idempotency_key_compares_the_whole_request(self):
+        """Before: another output.interval or other tags with the same key replayed the first
+        job (200), though the docs say the same key with another spec is 422."""
+        spec = tiny(name="idem-whole", tags=["a"], output={"interval": 0.05})
+        h = {"Idempotency-Key": "retry-me-whole"}
+        r1 = self.server.submit(spec, headers=h)
+        self.assertEqual(r1.status_code, 201, r1.text)
+        for changed in (dict(spec, output={"interval": 0.1}), dict(spec, tags=["b"]),
+                        dict(spec, name="idem-other")):
+            r = self.server.submit(changed, headers=h)
+            self.assertProblem(r, 422)
+            self.assertIn(r1.json()["id"], r.json()["detail"])
+        for params in ({"priority": "5"}, {"fresh": "true"}):
+            self.assertProblem(self.server.submit(spec, headers=h, params=params), 422)
+        # The same request again, its keys in another order: a replay.
+        r2 = self.server.submit(dict(reversed(list(spec.items()))), headers=h)
+        self.assertEqual(r2.status_code, 200, r2.text)
+        self.assertEqual(r2.json()["id"], r1.json()["id"])
+        self.server.wait_status(r1.json()["id"], TERMINAL)
+
     # --- listing ----------------------------------------------------------------------
     def test_list_filters_and_pagination(self):
         ids = []
