@@ -79,24 +79,27 @@ void check_patch(const SimulationParams& p, int nx, double dx, std::vector<Field
 void check_node(const SimulationParams& p, double x1, std::set<std::string>& named,
                 std::vector<FieldError>& errors) {
   const NodeParameters node = node_parameters(p, x1);
-  const CoefficientLaw& law = coefficient_law(p.friction.law);
+  const CoefficientLaw& law = coefficient_law(p.friction);
   const FrictionValues& f = node.friction;
-  if (p.friction.law == FrictionLaw::slip_weakening && f.mu_d > f.mu_s) {
-    const Source s =
-        latest({source_of(node.friction_source(&FrictionValues::mu_s), "friction", "mu_s"),
-                source_of(node.friction_source(&FrictionValues::mu_d), "friction", "mu_d")});
-    add_once(errors, named,
-             {s.pointer, "at x1 = " + text(x1) + " m mu_d = " + text(f.mu_d) +
-                             " exceeds mu_s = " + text(f.mu_s) + " (the coefficient weakens)"});
+  if (law.description().check) {
+    if (auto problem = law.description().check(f)) {
+      std::vector<Source> sources;
+      for (const auto member : problem->members)
+        sources.push_back(
+            source_of(node.friction_source(member), "friction", friction_field_name(member)));
+      add_once(errors, named,
+               {latest(sources).pointer, "at x1 = " + text(x1) + " m " + problem->reason});
+    }
   }
+  if (!law.starts_stuck()) return;
   if (node.shear_source == patch_source) return; // the patch may start above its strength
   const double strength = law.static_coefficient(f) * std::abs(node.normal_stress);
   if (!(std::abs(node.shear_stress) > strength * (1.0 + strength_tolerance))) return;
   std::vector<Source> sources = {source_of(node.shear_source, "loading", "shear_stress"),
                                  source_of(node.normal_source, "loading", "normal_stress")};
-  for (const auto member : law.parameters())
+  for (const LawParameter& parameter : law.description().parameters)
     sources.push_back(
-        source_of(node.friction_source(member), "friction", friction_field_name(member)));
+        source_of(node.friction_source(parameter.member), "friction", parameter.name));
   const Source s = latest(sources);
   if (s.index == uniform_source) {
     add_once(errors, named,

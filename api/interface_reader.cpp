@@ -4,93 +4,125 @@
 #include "api/number_text.hpp"
 #include "solver/interface/friction/strength_law.hpp"
 
+#include <algorithm>
+
 namespace slipfront::api {
 
 namespace {
-
-// The job JSON spellings of a table of laws (solver/interface/friction/friction_laws.cpp).
-template <class Kind, class Law>
-std::vector<std::pair<std::string, Kind>> names_of(const std::vector<NamedLaw<Kind, Law>>& laws) {
-  std::vector<std::pair<std::string, Kind>> names;
-  for (const auto& named : laws)
-    names.emplace_back(named.name, named.kind);
-  return names;
-}
-
-nlohmann::json enum_schema(const std::vector<std::pair<std::string, Regularization>>& names,
-                           const std::string& default_name) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& [name, value] : names)
-    list.push_back(name);
-  return {{"type", "string"}, {"enum", list}, {"default", default_name}};
-}
 
 nlohmann::json with_default(nlohmann::json schema, double value) {
   schema["default"] = value;
   return schema;
 }
 
+nlohmann::json choice_schema(const std::vector<const char*>& options, const std::string& current) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const char* name : options)
+    list.push_back(name);
+  return {{"type", "string"}, {"enum", list}, {"default", current}};
+}
+
+nlohmann::json regularization_schema() {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& [name, value] : regularization_names())
+    list.push_back(name);
+  return {{"type", "string"}, {"enum", list}, {"default", "none"}};
+}
+
+// Whether the law or its regularisation has the choice.
+bool has_choice(const LawDescription& d, const std::string& name) {
+  for (const LawChoice& c : d.choices)
+    if (name == c.name) return true;
+  return false;
+}
+
+bool listed(const std::vector<const char*>& names, const std::string& name) {
+  return std::find_if(names.begin(), names.end(), [&](const char* n) { return name == n; }) !=
+         names.end();
+}
+
+// The regularisation: the law's own, or the job's choice. A coefficient with the
+// regularisation another law fixes is that law (coulomb + slip_scale = prakash_clifton: one
+// physics, one canonical form and hash).
 void read_regularization(ObjectReader& in, Friction& friction) {
-  const auto regularization_names = names_of(regularization_laws());
-  if (friction.law == FrictionLaw::prakash_clifton) {
-    in.reject("regularization",
-              "is implied by law \"prakash_clifton\", the constant coefficient with the slip-scale "
-              "regularisation of paper eq. 1: remove the field (for another regularisation of a "
-              "constant coefficient use law \"coulomb\")",
-              enum_schema(regularization_names, "none"));
+  const CoefficientLaw& law = coefficient_law(friction);
+  const std::string name = law.description().name;
+  if (*law.fixed_regularization()) {
+    const std::string other = law.unregularized_law();
+    in.reject(
+        "regularization",
+        "is implied by law \"" + name + "\" (" + law.description().meaning + "): remove the field" +
+            (other.empty()
+                 ? std::string()
+                 : " (for another regularisation of its coefficient use law \"" + other + "\")"),
+        regularization_schema());
     return;
   }
-  in.choice("regularization", friction.regularization, regularization_names);
-  // coulomb with the slip scale is prakash_clifton: one physics, one canonical form and hash.
-  if (friction.law == FrictionLaw::coulomb &&
-      friction.regularization == Regularization::slip_scale) {
-    friction.law = FrictionLaw::prakash_clifton;
-    friction.regularization = Regularization::none;
-    in.set_canonical("law", "prakash_clifton");
-    in.drop_canonical("regularization");
+  in.choice("regularization", friction.regularization, regularization_names());
+  for (const CoefficientLaw* fixed : coefficient_laws()) {
+    if (friction.regularization == fixed->fixed_regularization() &&
+        name == fixed->unregularized_law()) {
+      friction.law = fixed->description().name;
+      friction.regularization = "none";
+      in.set_canonical("law", friction.law);
+      in.drop_canonical("regularization");
+      return;
+    }
   }
-  // Plain coulomb keeps the canonical form it had before the field existed.
-  if (friction.law == FrictionLaw::coulomb && friction.regularization == Regularization::none)
+  // A law whose records predate the choice keeps their canonical form.
+  if (law.description().omits_no_regularization && !effective_regularization(friction).filters())
     in.drop_canonical("regularization");
 }
 
 } // namespace
 
 void read_friction(ObjectReader& in, Friction& friction) {
-  in.choice("law", friction.law, names_of(coefficient_laws()));
+  in.choice("law", friction.law, law_names());
   read_regularization(in, friction);
-  const Regularization regularization = effective_regularization(friction);
-  // Plain coulomb took L, v_star and strength_update before the regularisation was a
-  // choice of its own (they did nothing): still taken, so that its records re-validate
-  // and keep their hash.
-  const bool plain_coulomb =
-      friction.law == FrictionLaw::coulomb && regularization == Regularization::none;
-  const StrengthLaw law(friction);
+  const CoefficientLaw& law = coefficient_law(friction);
+  const RegularizationLaw& regularization = effective_regularization(friction);
+  // Fields a law took before they meant anything to it (legacy_fields): still taken without a
+  // regularisation, so that its records re-validate and keep their hash.
+  auto legacy = [&](const std::string& field) {
+    return !regularization.filters() && listed(law.description().legacy_fields, field);
+  };
+  const StrengthLaw strength(friction);
   for (const FrictionField& field : friction_fields()) {
-    const bool legacy = plain_coulomb && (field.member == &FrictionValues::L ||
-                                          field.member == &FrictionValues::v_star);
-    if (law.uses(field.member) || legacy) {
+    if (strength.uses(field.member) || legacy(field.name)) {
       in.number(field.name, friction.*field.member, field.allowed);
     } else {
       in.reject(field.name, unused_friction_field(friction),
                 with_default(number_schema(field.allowed), friction.*field.member));
     }
   }
-  const std::vector<std::pair<std::string, StrengthUpdate>> updates = {
-      {"exponential_ramp", StrengthUpdate::exponential_ramp},
-      {"exponential", StrengthUpdate::exponential},
-      {"explicit_euler", StrengthUpdate::explicit_euler}};
-  if (regularization != Regularization::none || plain_coulomb) {
-    in.choice("strength_update", friction.update, updates);
-  } else {
-    in.reject("strength_update", "is used only with a regularization (slip_scale or time_scale)",
-              {{"type", "string"},
-               {"enum", {"exponential_ramp", "exponential", "explicit_euler"}},
-               {"default", "exponential_ramp"}});
+  for (const FrictionChoice& c : friction_choices()) {
+    const std::vector<const char*>& options = c.choice.options;
+    const bool used = has_choice(law.description(), c.choice.name) ||
+                      has_choice(regularization.description(), c.choice.name) ||
+                      legacy(c.choice.name);
+    if (used) {
+      std::vector<std::pair<std::string, int>> names;
+      for (std::size_t i = 0; i < options.size(); ++i)
+        names.emplace_back(options[i], int(i));
+      int index = c.choice.get(friction);
+      in.choice(c.choice.name, index, names);
+      c.choice.set(friction, index);
+    } else {
+      std::string users;
+      for (const auto& who : c.regularizations)
+        users += (users.empty() ? "" : " or ") + who;
+      for (const auto& who : c.laws)
+        users += (users.empty() ? "law " : " or law ") + who;
+      in.reject(c.choice.name,
+                std::string("is used only with ") +
+                    (c.regularizations.empty() ? "" : "a regularization (") + users +
+                    (c.regularizations.empty() ? "" : ")"),
+                choice_schema(options, options[std::size_t(c.choice.get(friction))]));
+    }
   }
-  if (friction.law == FrictionLaw::slip_weakening && friction.mu_d > friction.mu_s) {
-    in.error("mu_d", "must be at most mu_s = " + number_text(friction.mu_s, 12) + ", got " +
-                         number_text(friction.mu_d, 12) + " (the coefficient weakens)");
+  if (law.description().check) {
+    if (auto problem = law.description().check(friction))
+      in.error(friction_field_name(problem->members.back()), problem->reason);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "api/job_schema.hpp"
 
+#include "api/friction_fields.hpp"
 #include "api/job_reader.hpp"
 #include "api/presets.hpp"
 
@@ -14,14 +15,15 @@ namespace slipfront::api {
 namespace {
 
 struct Words {
-  const char* unit;
-  const char* meaning;
+  std::string unit;
+  std::string meaning;
 };
 
-// The unit and meaning of every field (docs/api-job-spec.md shows them beside the type,
-// default and range that the reader records). Rules across fields are named here too; the
-// code that checks them is api/job_checks.cpp.
-const std::map<std::string, Words>& field_words() {
+// The unit and meaning of every field but friction's (docs/api-job-spec.md shows them beside
+// the type, default and range that the reader records). Rules across fields are named here
+// too; the code that checks them is api/job_checks.cpp. The friction fields' words come from
+// the laws' descriptions (friction_words()).
+const std::map<std::string, Words>& fixed_words() {
   static const std::map<std::string, Words> words = {
       {"/method",
        {"",
@@ -86,32 +88,6 @@ const std::map<std::string, Words>& field_words() {
        {"Pa", "tau1_0: the uniform initial shear stress on the interface; positive drives the "
               "solid towards +x1. At most mu_0 · "
               "\\|normal_stress\\| outside the nucleation patch (the initial state is stuck)"}},
-      {"/friction/law",
-       {"", "the coefficient: `prakash_clifton` (constant mu with the slip-scale regularisation "
-            "of paper eq. 1), `coulomb` (constant mu, regularisation as chosen) or "
-            "`slip_weakening` (mu from mu_s to mu_d over D_c of slip path; docs/physics.md)"}},
-      {"/friction/regularization",
-       {"", "the normal stress seen by friction (coulomb and slip_weakening; prakash_clifton "
-            "is always `slip_scale` and takes no value here): `none` (the contact pressure), "
-            "`slip_scale` (paper eq. 1, L and v_star; coulomb with it is prakash_clifton) or "
-            "`time_scale` (t_star)"}},
-      {"/friction/mu", {"", "friction coefficient, static = kinetic (coulomb, prakash_clifton)"}},
-      {"/friction/mu_s", {"", "static coefficient (slip_weakening)"}},
-      {"/friction/mu_d", {"", "dynamic coefficient, at most mu_s (slip_weakening)"}},
-      {"/friction/D_c", {"m", "slip-weakening distance (slip_weakening)"}},
-      {"/friction/L",
-       {"m", "characteristic length of the slip-scale regularisation (also taken, and "
-             "unused, by plain coulomb: its records keep their hash)"}},
-      {"/friction/v_star",
-       {"m/s", "reference velocity V* of the slip-scale regularisation (as L for plain "
-               "coulomb)"}},
-      {"/friction/t_star", {"s", "time of the time-scale regularisation"}},
-      {"/friction/strength_update",
-       {"", "how the strength ODE is advanced in a step (docs/physics.md): exact for \\|V\\| "
-            "frozen and p linear over the step (second order); exact for \\|V\\| and p frozen at "
-            "the step's end (the reference scheme of docs/physics.md, first order); or forward "
-            "Euler (unstable once dt k > 2, k = (\\|V\\|+V*)/L or 1/t*; for failure studies). "
-            "With a regularisation only (plain coulomb takes it unused, as L)"}},
       {"/nucleation/enabled", {"", "start the rupture at all (false: no nucleation of any type)"}},
       {"/nucleation/type",
        {"", "`ellipse`: the moving ellipse of the paper's appendix A (a, b, v, alpha); "
@@ -142,13 +118,6 @@ const std::map<std::string, Words>& field_words() {
        {"", "apply to x1 < x1_min or x1 > x1_max (strict) instead of the interval"}},
       {"/profiles/*/shear_stress", {"Pa", "initial shear stress tau1_0 there"}},
       {"/profiles/*/normal_stress", {"Pa", "initial normal stress tau2_0 there, < 0"}},
-      {"/profiles/*/mu", {"", "mu there (a value the friction law uses, as in friction)"}},
-      {"/profiles/*/mu_s", {"", "mu_s there (slip_weakening)"}},
-      {"/profiles/*/mu_d", {"", "mu_d there (slip_weakening)"}},
-      {"/profiles/*/D_c", {"m", "D_c there (slip_weakening)"}},
-      {"/profiles/*/L", {"m", "L there (slip-scale regularisation)"}},
-      {"/profiles/*/v_star", {"m/s", "V* there (slip-scale regularisation)"}},
-      {"/profiles/*/t_star", {"s", "t* there (time-scale regularisation)"}},
       {"/time/duration", {"s", "simulated time"}},
       {"/time/safety_factor",
        {"", "dt = safety_factor × the stable step of the discrete system; above 1 the scheme is "
@@ -177,6 +146,65 @@ const std::map<std::string, Words>& field_words() {
       {"/name", {"", "free text"}},
       {"/tags", {"", "free text, for filtering"}},
   };
+  return words;
+}
+
+// `name` (meaning), `name` (meaning) or `name` (meaning): a list of laws for a sentence.
+std::string listed_laws(const std::vector<std::pair<std::string, std::string>>& laws) {
+  std::string out;
+  for (std::size_t i = 0; i < laws.size(); ++i) {
+    if (i > 0) out += i + 1 == laws.size() ? " or " : ", ";
+    out += "`" + laws[i].first + "` (" + laws[i].second + ")";
+  }
+  return out;
+}
+
+// The words of the friction fields, from the laws' descriptions (api/friction_fields.hpp).
+std::map<std::string, Words> friction_words() {
+  std::map<std::string, Words> words;
+  std::vector<std::pair<std::string, std::string>> laws, regularizations;
+  std::string free_laws, fixed;
+  for (const CoefficientLaw* law : coefficient_laws()) {
+    const LawDescription& d = law->description();
+    laws.emplace_back(d.name, d.meaning);
+    if (*law->fixed_regularization())
+      fixed += std::string(fixed.empty() ? "" : "; ") + d.name + " is always `" +
+               law->fixed_regularization() + "` and takes no value here";
+    else
+      free_laws += std::string(free_laws.empty() ? "" : " and ") + d.name;
+  }
+  for (const RegularizationLaw* reg : regularization_laws()) {
+    std::string meaning = reg->description().meaning;
+    for (const CoefficientLaw* law : coefficient_laws())
+      if (reg->description().name == std::string(law->fixed_regularization()) &&
+          *law->unregularized_law())
+        meaning +=
+            std::string("; ") + law->unregularized_law() + " with it is " + law->description().name;
+    regularizations.emplace_back(reg->description().name, meaning);
+  }
+  words["/friction/law"] = {"", "the coefficient: " + listed_laws(laws) + "; docs/physics.md"};
+  words["/friction/regularization"] = {"", "the normal stress seen by friction (" + free_laws +
+                                               (fixed.empty() ? "" : "; ") + fixed +
+                                               "): " + listed_laws(regularizations)};
+  for (const FrictionField& field : friction_fields()) {
+    words["/friction/" + field.name] = {field.unit, field.meaning};
+    std::string who;
+    for (const auto& name : field.laws)
+      who += (who.empty() ? "" : ", ") + name;
+    for (const auto& name : field.regularizations)
+      who += (who.empty() ? "regularization " : ", regularization ") + name;
+    words["/profiles/*/" + field.name] = {field.unit, field.name + " there (" + who + ")"};
+  }
+  for (const FrictionChoice& c : friction_choices())
+    words["/friction/" + std::string(c.choice.name)] = {"", c.meaning};
+  return words;
+}
+
+// The words of every field.
+std::map<std::string, Words> field_words() {
+  std::map<std::string, Words> words = fixed_words();
+  for (auto& [pointer, w] : friction_words())
+    words[pointer] = std::move(w);
   return words;
 }
 
@@ -289,9 +317,10 @@ std::vector<JobField> job_fields() {
     }
   }
   fields[index.at("/method")].schema["default"] = "fe";
+  const std::map<std::string, Words> all_words = field_words();
   for (JobField& field : fields) {
-    const auto words = field_words().find(field.pointer);
-    if (words == field_words().end())
+    const auto words = all_words.find(field.pointer);
+    if (words == all_words.end())
       throw std::logic_error("job schema: no unit and meaning for " + field.pointer +
                              " (api/job_schema.cpp)");
     field.unit = words->second.unit;
@@ -300,26 +329,21 @@ std::vector<JobField> job_fields() {
   return fields;
 }
 
-// Fields that only one choice of another field uses (the rules api/job_checks.cpp enforces):
-// the schema says so as "x-when": {"pointer": the choosing field, "values": the choices that
-// use it}, and the web view's form shows the field only then.
-struct UsedWhen {
-  const char* pointer;
+// Fields that only some choices of other fields use (the rules api/job_checks.cpp and the
+// friction laws enforce): the schema says so as "x-when": {"pointer": the choosing field,
+// "values": the choices that use it}, or a list of such conditions of which one must hold,
+// and the web view's form shows the field only then.
+struct Condition {
+  std::string pointer;
   std::vector<std::string> values;
 };
+using UsedWhen = std::vector<Condition>;
 
-const std::map<std::string, UsedWhen>& used_when() {
-  static const UsedWhen slip_weakening{"/friction/law", {"slip_weakening"}};
-  static const UsedWhen ellipse{"/nucleation/type", {"ellipse"}};
-  static const UsedWhen patch{"/nucleation/type", {"overstressed_patch"}};
-  static const UsedWhen elastic_lower{"/lower/solid", {"elastic"}};
-  static const std::map<std::string, UsedWhen> rules = {
-      {"/friction/regularization", {"/friction/law", {"coulomb", "slip_weakening"}}},
-      {"/friction/mu", {"/friction/law", {"prakash_clifton", "coulomb"}}},
-      {"/friction/mu_s", slip_weakening},
-      {"/friction/mu_d", slip_weakening},
-      {"/friction/D_c", slip_weakening},
-      {"/friction/t_star", {"/friction/regularization", {"time_scale"}}},
+std::map<std::string, UsedWhen> used_when() {
+  const UsedWhen ellipse{{"/nucleation/type", {"ellipse"}}};
+  const UsedWhen patch{{"/nucleation/type", {"overstressed_patch"}}};
+  const UsedWhen elastic_lower{{"/lower/solid", {"elastic"}}};
+  std::map<std::string, UsedWhen> rules = {
       {"/nucleation/a", ellipse},
       {"/nucleation/b", ellipse},
       {"/nucleation/v", ellipse},
@@ -335,7 +359,33 @@ const std::map<std::string, UsedWhen>& used_when() {
       {"/lower/height", elastic_lower},
       {"/lower/bottom_boundary", elastic_lower},
   };
+  // The friction fields, by the laws and regularisations that use them.
+  auto rule = [](const std::vector<std::string>& laws, const std::vector<std::string>& regs) {
+    UsedWhen when;
+    if (!laws.empty()) when.push_back({"/friction/law", laws});
+    if (!regs.empty()) when.push_back({"/friction/regularization", regs});
+    return when;
+  };
+  std::vector<std::string> free_laws;
+  for (const CoefficientLaw* law : coefficient_laws())
+    if (!*law->fixed_regularization()) free_laws.push_back(law->description().name);
+  rules["/friction/regularization"] = rule(free_laws, {});
+  for (const FrictionField& field : friction_fields())
+    rules["/friction/" + field.name] = rule(field.laws, field.regularizations);
+  for (const FrictionChoice& c : friction_choices())
+    rules["/friction/" + std::string(c.choice.name)] = rule(c.laws, c.regularizations);
   return rules;
+}
+
+nlohmann::json when_json(const UsedWhen& when) {
+  auto one = [](const Condition& c) {
+    return nlohmann::json{{"pointer", c.pointer}, {"values", c.values}};
+  };
+  if (when.size() == 1) return one(when.front());
+  nlohmann::json any = nlohmann::json::array();
+  for (const Condition& c : when)
+    any.push_back(one(c));
+  return any;
 }
 
 std::vector<std::string> documented_job_pointers() {
@@ -358,6 +408,7 @@ nlohmann::json job_json_schema() {
       {"type", "object"},
       {"additionalProperties", false},
       {"properties", nlohmann::json::object()}};
+  const std::map<std::string, UsedWhen> rules = used_when();
   for (const JobField& field : job_fields()) {
     const auto [section, name] = split_pointer(field.pointer);
     nlohmann::json* parent = &root;
@@ -380,8 +431,8 @@ nlohmann::json job_json_schema() {
     if (field.fe) methods.push_back("fe");
     if (field.spectral_bi) methods.push_back("spectral_bi");
     schema["x-methods"] = methods;
-    if (auto rule = used_when().find(field.pointer); rule != used_when().end())
-      schema["x-when"] = {{"pointer", rule->second.pointer}, {"values", rule->second.values}};
+    if (auto rule = rules.find(field.pointer); rule != rules.end())
+      schema["x-when"] = when_json(rule->second);
     (*parent)["properties"][name] = schema;
     // The reader's order (the one docs/api-job-spec.md shows): JSON objects have none.
     (*parent)["x-order"].push_back(name);
@@ -389,6 +440,19 @@ nlohmann::json job_json_schema() {
         std::find(root["x-order"].begin(), root["x-order"].end(), section) == root["x-order"].end())
       root["x-order"].push_back(section);
   }
+  // How a run is labelled by its friction (the web view and the client): each law's and
+  // regularisation's label, {name} standing for a value of the friction section.
+  nlohmann::json& friction = root["properties"]["friction"]["properties"];
+  for (const CoefficientLaw* law : coefficient_laws())
+    friction["law"]["x-labels"][law->description().name] = {
+        {"label", law->description().label}, {"alone", law->description().label_alone}};
+  for (const RegularizationLaw* reg : regularization_laws())
+    friction["regularization"]["x-labels"][reg->description().name] = {
+        {"label", reg->description().label}, {"alone", reg->description().label_alone}};
+  for (const CoefficientLaw* law : coefficient_laws())
+    if (*law->fixed_regularization())
+      friction["law"]["x-fixed-regularization"][law->description().name] =
+          law->fixed_regularization();
   // Not a field of the job but a shorthand for one (api/presets.hpp): expanded before the
   // fields are read, so it has no default and never appears in a stored spec.
   nlohmann::json names = nlohmann::json::array();

@@ -67,11 +67,11 @@ std::string method_description(const SimulationParams& params) {
       method += text;
     }
   }
-  const Regularization regularization = effective_regularization(params.friction);
-  method += std::string("; friction: ") + to_string(params.friction.law);
-  if (regularization == Regularization::none) return method;
-  if (params.friction.law != FrictionLaw::prakash_clifton) // its regularisation is implied
-    method += std::string(", ") + to_string(regularization) + " regularization";
+  const RegularizationLaw& regularization = effective_regularization(params.friction);
+  method += "; friction: " + params.friction.law;
+  if (!regularization.filters()) return method;
+  if (!*coefficient_law(params.friction).fixed_regularization()) // else implied by the law
+    method += std::string(", ") + regularization.description().name + " regularization";
   return method + ", " + to_string(params.friction.update) + " strength update";
 }
 

@@ -1,17 +1,10 @@
-// A number as people write it in messages and names: printf's %g (shortest of fixed and
-// scientific, trailing zeros dropped) with a chosen number of significant digits.
-// "5e-05", "20", "0.125"; the one formatting of numbers in reasons, logs and run names.
+// The one formatting of numbers in messages (solver/number_text.hpp), for api's messages.
 #pragma once
 
-#include <cstdio>
-#include <string>
+#include "solver/number_text.hpp"
 
 namespace slipfront::api {
 
-inline std::string number_text(double value, int significant_digits = 6) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.*g", significant_digits, value);
-  return buffer;
-}
+using slipfront::number_text;
 
 } // namespace slipfront::api

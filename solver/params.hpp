@@ -51,19 +51,6 @@ struct Loading {
   double shear_stress = 0.0105;   // tau1_0 [Pa], drives the solid towards +x1
 };
 
-// The coefficient law of friction (docs/physics.md "Friction"; solver/interface/friction/).
-enum class FrictionLaw {
-  prakash_clifton, // constant mu with the slip-scale regularisation (paper eq. 1)
-  coulomb,         // constant mu; regularisation as Friction::regularization (none by default)
-  slip_weakening,  // linear slip weakening: mu from mu_s to mu_d over D_c of slip path
-};
-
-// How the normal stress that enters the strength follows the contact pressure
-// (docs/physics.md "Regularisation"): sigma* = max(0, p) at every instant, or the ODE
-// d sigma*/dt = -k (sigma* - max(0, p)) with k = (|V| + V*)/L (slip scale, paper eq. 1) or
-// k = 1/t* (time scale).
-enum class Regularization { none, slip_scale, time_scale };
-
 // How the regularisation ODE is advanced over a step (solver/interface/friction/
 // strength_update.hpp has the formulas, docs/physics.md the accuracy of each).
 enum class StrengthUpdate {
@@ -73,7 +60,8 @@ enum class StrengthUpdate {
 };
 
 // The numbers of the friction law at one interface node: the job's uniform values, which
-// `profiles` may override along x1. Each law reads only its own (the others are inert).
+// `profiles` may override along x1. Each law reads only its own (the others are inert); the
+// laws say which (solver/interface/friction/, one file each).
 struct FrictionValues {
   double mu = 0.75;     // constant coefficient (coulomb, prakash_clifton)
   double mu_s = 0.75;   // static coefficient (slip_weakening)
@@ -84,10 +72,14 @@ struct FrictionValues {
   double t_star = 1e-3; // time of the time-scale regularisation [s]
 };
 
+// The friction a job chose: its coefficient law and its regularisation by their job JSON
+// names (the tables of solver/interface/friction/friction_laws.cpp hold the laws; nothing
+// else compares these names), and the laws' choices.
 struct Friction : FrictionValues {
-  FrictionLaw law = FrictionLaw::prakash_clifton;
-  // For coulomb and slip_weakening; prakash_clifton is always slip_scale.
-  Regularization regularization = Regularization::none;
+  std::string law = "prakash_clifton";
+  // The regularisation of the laws that let the job choose it (prakash_clifton's is always
+  // the slip scale).
+  std::string regularization = "none";
   StrengthUpdate update = StrengthUpdate::exponential_ramp;
 };
 

@@ -9,7 +9,7 @@ namespace slipfront::api {
 std::vector<double> prakash_clifton_strength(const InterfaceRecord& record,
                                              const LawParameters& law) {
   Friction friction;
-  friction.law = FrictionLaw::prakash_clifton;
+  friction.law = "prakash_clifton"; // paper eq. 1, the law of the procedure of paper §6
   friction.update = StrengthUpdate::exponential_ramp;
   friction.mu = law.mu;
   friction.L = law.L;

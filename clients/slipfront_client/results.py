@@ -14,6 +14,7 @@ import h5py
 import numpy as np
 
 from .errors import UsageError
+from .friction_labels import friction_label
 
 JOB_ID = re.compile(r"^[0-9a-f]{32}$")
 
@@ -61,26 +62,6 @@ METHODS = {"fe": "FE", "spectral_bi": "BI"}
 
 def _number(value, unit=""):
     return "?" if value is None else f"{value:g}{unit}"
-
-
-def friction_label(friction):
-    """The friction law of a job's `friction` by the parameter that sets its scale
-    (docs/api-job-spec.md "friction"): 'L = 5e-05 m' (slip-scale regularisation: the paper's
-    Prakash–Clifton), 't* = 0.00035 s' (time scale), 'Coulomb' (constant μ, none), and for slip
-    weakening 'slip weakening D_c = 0.000744 m' followed by its regularisation's parameter."""
-    friction = friction or {}
-    law = friction.get("law", "prakash_clifton")
-    regularization = "slip_scale" if law == "prakash_clifton" else friction.get("regularization", "none")
-    parts = []
-    if law == "slip_weakening":
-        parts.append(f"slip weakening D_c = {_number(friction.get('D_c'), ' m')}")
-    if regularization == "slip_scale":
-        parts.append(f"L = {_number(friction.get('L'), ' m')}")
-    elif regularization == "time_scale":
-        parts.append(f"t* = {_number(friction.get('t_star'), ' s')}")
-    elif law != "slip_weakening":
-        parts.append("Coulomb")
-    return ", ".join(parts)
 
 
 def below_label(spec):

@@ -36,6 +36,22 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c,
     out.v1 = v1_trial;
     return out;
   }
+  if (c.law.coefficient().rate_dependent()) {
+    // A law of the slip rate has no stick state: the traction is the strength at the slip
+    // rate it lets through, tau_lock - eta V = sigma* mu(|V|, state) sign V, with the
+    // node's impedance eta = m1 / (dt dx) and tau_lock = eta v1_trial the traction that
+    // would hold it (docs/physics.md "Rate-and-state friction").
+    const double eta = c.mass1 / (c.dt * c.tributary_length);
+    const double tau_lock = eta * v1_trial;
+    const double v = c.law.coefficient().solve_slip_rate(
+        friction, out.friction, c.law.normal_stress_seen(friction, out.friction), eta, tau_lock,
+        slip_speed);
+    out.state = NodeState::slip;
+    out.v1 = v;
+    out.contact_force1 = -(tau_lock - eta * v) * c.tributary_length;
+    out.strength = c.law.strength(friction, out.friction, std::abs(v));
+    return out;
+  }
   const double stick_force = -c.mass1 * v1_trial / c.dt; // makes v1 = v1_trial + dt F/m1 = 0
   const double limit = out.strength * c.tributary_length;
   if (std::abs(stick_force) <= limit) {

@@ -91,7 +91,8 @@ std::vector<FrictionState> resting_friction(const InterfaceParameters& parameter
   const std::size_t nx = parameters.x1.size();
   std::vector<FrictionState> state(nx);
   for (std::size_t i = 0; i < nx; ++i)
-    state[i] = law.resting_state(parameters.friction[i], std::abs(parameters.normal_stress[i]));
+    state[i] = law.resting_state(parameters.friction[i], std::abs(parameters.normal_stress[i]),
+                                 parameters.shear_stress[i]);
   return state;
 }
 

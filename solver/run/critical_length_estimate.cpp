@@ -1,5 +1,6 @@
 #include "solver/run/critical_length_estimate.hpp"
 
+#include "solver/interface/friction/regularization_law.hpp"
 #include "solver/run/periodic_line.hpp"
 
 #include <unsupported/Eigen/FFT>
@@ -78,7 +79,10 @@ void derive_spectral_estimate(const SimulationParams& p, const FrontProfile& fro
   // to the end; |V| = the peak slip speed there (docs/metrics.md).
   const double nan = std::numeric_limits<double>::quiet_NaN();
   m.spectral_frequency = m.spectral_velocity = m.spectral_critical_length = nan;
-  if (p.friction.law != FrictionLaw::prakash_clifton) return;
+  // The filter law of the slip-scale regularisation with a constant coefficient (the paper's).
+  if (!coefficient_law(p.friction).constant() ||
+      !effective_regularization(p.friction).slip_filter())
+    return;
   const double arrival =
       interpolate_nodal(front.arrival_time, p.probes.spectrum_x1, p.geometry.x_min, dx);
   if (std::isnan(arrival)) return;

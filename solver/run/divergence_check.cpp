@@ -10,7 +10,7 @@ namespace slipfront {
 
 DivergenceCheck::DivergenceCheck(const SimulationParams& params, const std::vector<double>& x1)
     : two_solids_(params.lower.elastic()) {
-  const CoefficientLaw& law = coefficient_law(params.friction.law);
+  const CoefficientLaw& law = coefficient_law(params.friction);
   double load_scale = 0;
   for (const double x : x1) {
     const NodeParameters node = node_parameters(params, x);

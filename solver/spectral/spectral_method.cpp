@@ -128,8 +128,8 @@ std::vector<std::string> SpectralMethod::end_warnings(double /*simulated_time*/)
     warnings.push_back(std::move(ill_posed));
   // Measured (tests/solver/interface_growth_test.cpp): 0.021 c_s/dx at beta = 0.4, 0.025-0.030
   // at 0.5; none at 0.3 and 0.25 on every n_d tried.
-  const bool plain_coulomb = params_.friction.law == FrictionLaw::coulomb &&
-                             effective_regularization(params_.friction) == Regularization::none;
+  const bool plain_coulomb = coefficient_law(params_.friction).constant() &&
+                             !effective_regularization(params_.friction).filters();
   if (plain_coulomb && params_.spectral.time_step_factor >= 0.35) {
     char msg[300];
     std::snprintf(msg, sizeof msg,

@@ -42,7 +42,7 @@ const json slip_weakening = {{"law", "slip_weakening"}, {"mu_s", 0.75}, {"mu_d",
 
 TEST(InterfaceFields, SlipWeakeningValuesAreChecked) {
   expect_error({{"friction", {{"law", "slip_weakening"}, {"mu_s", 0.6}, {"mu_d", 0.7}}}},
-               "/friction/mu_d", {"at most mu_s = 0.6", "got 0.7"});
+               "/friction/mu_d", {"mu_d = 0.7 exceeds mu_s = 0.6 (the coefficient weakens)"});
   json job = {{"friction", slip_weakening}};
   job["friction"]["D_c"] = 0.0;
   expect_error(job, "/friction/D_c", {"> 0", "got 0"});
@@ -167,7 +167,7 @@ TEST(InterfaceFields, ProfilesAndThePatchReachTheSolverParameters) {
   EXPECT_FALSE(p.profiles[1].shear_stress.has_value());
   EXPECT_TRUE(p.nucleation.patch());
   EXPECT_EQ(p.nucleation.shear_stress, 0.02);
-  EXPECT_EQ(p.friction.law, FrictionLaw::slip_weakening);
+  EXPECT_EQ(p.friction.law, "slip_weakening");
 }
 
 TEST(InterfaceFields, MaterialInWaveSpeeds) {
@@ -248,7 +248,7 @@ TEST(InterfaceFields, CoulombWithTheSlipScaleIsPrakashClifton) {
         {{"law", "coulomb"}, {"regularization", "slip_scale"}, {"L", 1e-4}, {"v_star", 2e-4}}}});
   EXPECT_EQ(same.canonical, pc.canonical);
   EXPECT_EQ(same.sha256, pc.sha256);
-  EXPECT_EQ(same.params.friction.law, FrictionLaw::prakash_clifton);
+  EXPECT_EQ(same.params.friction.law, "prakash_clifton");
   // The time scale is another physics, another hash.
   const JobSpec time_scale =
       parsed({{"friction", {{"law", "coulomb"}, {"regularization", "time_scale"}}}});

@@ -81,7 +81,7 @@ TEST(JobValidation, EveryFieldIsMappedOntoParams) {
   EXPECT_EQ(p.top, slipfront::TopBoundary::absorbing);
   EXPECT_EQ(p.loading.normal_stress, -0.02);
   EXPECT_EQ(p.loading.shear_stress, -0.01);
-  EXPECT_EQ(p.friction.law, slipfront::FrictionLaw::coulomb);
+  EXPECT_EQ(p.friction.law, "coulomb");
   EXPECT_EQ(p.friction.mu, 0.6);
   EXPECT_EQ(p.friction.L, 1e-4);
   EXPECT_EQ(p.friction.v_star, 2e-4);

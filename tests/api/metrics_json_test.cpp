@@ -155,7 +155,7 @@ TEST(MetricsJson, MethodNamesDiscretisationBoundaryAndFriction) {
             "Q4 2x2 Gauss, lumped mass, central differences; top boundary: traction; "
             "friction: prakash_clifton, exponential strength update");
   params.top = slipfront::TopBoundary::absorbing;
-  params.friction.law = slipfront::FrictionLaw::coulomb;
+  params.friction.law = "coulomb";
   EXPECT_EQ(method_description(params),
             "Q4 2x2 Gauss, lumped mass, central differences; top boundary: absorbing; "
             "friction: coulomb");

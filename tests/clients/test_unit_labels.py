@@ -75,7 +75,7 @@ class RunLabels(unittest.TestCase):
                    "t_star": 3.5e-4}, "slip weakening D_c = 0.000744 m, t* = 0.00035 s"),
                  ({"law": "slip_weakening", "D_c": 1e-3, "regularization": "slip_scale",
                    "L": 1e-4}, "slip weakening D_c = 0.001 m, L = 0.0001 m"),
-                 ({"law": "prakash_clifton"}, "L = ?"))  # a spec without its L says so
+                 ({"law": "prakash_clifton"}, "L = ? m"))  # a spec without its L says so
         for friction, expected in cases:
             self.assertEqual(friction_label(friction), expected, friction)
 

@@ -30,11 +30,11 @@ SimulationParams barrier_scene(Method method) {
   p.geometry.height = 5.0;
   p.geometry.nodes_per_meter = 20.0;
   p.top = TopBoundary::absorbing;
-  p.friction.law = FrictionLaw::slip_weakening;
+  p.friction.law = "slip_weakening";
   p.friction.mu_s = 0.75;
   p.friction.mu_d = 0.5;
   p.friction.D_c = 1e-3;
-  p.friction.regularization = Regularization::time_scale;
+  p.friction.regularization = "time_scale";
   p.friction.t_star = 0.05;
   p.nucleation.type = NucleationType::overstressed_patch;
   p.nucleation.x1_min = -0.6;

@@ -8,20 +8,8 @@ const FIELDS = 'id,name,tags,method,spec,status,progress,metrics,wall_time_s,cac
 export function jobL(job) { return job.spec?.friction?.L ?? null; }
 export function jobNd(job) { return job.spec?.geometry?.nodes_per_meter ?? null; }
 
-// The friction law by the parameter that sets its scale, as the CLI's results.friction_label:
-// 'L = 5e-5 m' (slip scale: the paper's Prakash–Clifton), 't* = 3.5e-4 s' (time scale),
-// 'Coulomb' (constant mu, none), 'slip weakening D_c = 7.44e-4 m' and its regularisation's.
-export function frictionText(spec) {
-  const f = spec?.friction || {};
-  const law = f.law || 'prakash_clifton';
-  const regularization = law === 'prakash_clifton' ? 'slip_scale' : (f.regularization || 'none');
-  const parts = [];
-  if (law === 'slip_weakening') parts.push(`slip weakening D_c = ${fmt(f.D_c)} m`);
-  if (regularization === 'slip_scale') parts.push(`L = ${fmt(f.L)} m`);
-  else if (regularization === 'time_scale') parts.push(`t* = ${fmt(f.t_star)} s`);
-  else if (law !== 'slip_weakening') parts.push('Coulomb');
-  return parts.join(', ');
-}
+// The friction in words (friction_labels.js), where the pages have always imported it.
+export { frictionText } from './friction_labels.js';
 
 const COLUMNS = [
   { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', { title: j.name || '' }, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, j.archived_at ? h('span', { class: 'tag archived', title: `archived ${j.archived_at}`, text: 'archived' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },

@@ -8,6 +8,7 @@ import { studiesPage, studyPage } from './studies.js';
 import { submitPage } from './submit.js';
 import { lengthFitPage } from './length_fit.js';
 import { comparePage } from './compare.js';
+import { loadFrictionLabels } from './friction_labels.js';
 
 const view = document.getElementById('view');
 let current = null; // {stop()}
@@ -72,5 +73,6 @@ async function version() {
 
 tokenBox();
 window.addEventListener('hashchange', route);
-route();
+// The friction labels come from the job schema: the pages' first drawing waits for them.
+loadFrictionLabels().then(route);
 version();

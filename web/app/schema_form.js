@@ -6,9 +6,9 @@
 //   a small table of rows (add, remove);  object -> a group (fieldset), nested as deep as the
 //   schema;  anything else -> a JSON box.
 // Units (x-unit), descriptions and ranges are shown with each field; x-methods says for which
-// methods a field is shown, x-when for which choice of another field ({pointer, values}: mu_s
-// only with the law slip_weakening); x-order gives an object's properties in the reader's order
-// (law before its parameters). Every input carries data-pointer (its JSON pointer), so that the
+// methods a field is shown, x-when for which choices of other fields ({pointer, values}: mu_s
+// only with the law slip_weakening; or a list of such, one of which must hold); x-order gives
+// an object's properties in the reader's order (law before its parameters). Every input carries data-pointer (its JSON pointer), so that the
 // server's 422 errors find their field.
 import { h, fmt } from './dom.js';
 
@@ -185,7 +185,7 @@ export class SchemaForm {
     this.element.append(...wide);
     if (looseFields.length) { this.element.prepend(loose); this.groups.push({ element: loose, fields: looseFields }); }
     // A choice that other fields depend on (x-when) shows or hides them when it changes.
-    const selectors = new Set(this.fields.map((f) => f.when?.pointer).filter(Boolean));
+    const selectors = new Set(this.fields.flatMap((f) => (f.when || []).map((c) => c.pointer)));
     for (const f of this.fields) if (selectors.has(f.pointer)) f.element.addEventListener('change', () => this.refresh());
   }
 
@@ -207,7 +207,7 @@ export class SchemaForm {
   // One field: its label (name and unit), input and help; registered for reading.
   field(pointer, name, schema, groupFields) {
     const kind = kindOf(schema);
-    const record = { pointer, schema, kind, methods: schema['x-methods'] || null, when: schema['x-when'] || null };
+    const record = { pointer, schema, kind, methods: schema['x-methods'] || null, when: conditionsOf(schema['x-when']) };
     let control;
     if (kind === 'rows') {
       const rows = new RowEditor(pointer, schema);
@@ -252,7 +252,7 @@ export class SchemaForm {
   refresh() {
     for (const f of this.fields) {
       const byMethod = !f.methods || this.method === null || f.methods.includes(this.method);
-      f.element.hidden = !byMethod || (!!f.when && !f.when.values.includes(this.choice(f.when.pointer)));
+      f.element.hidden = !byMethod || (!!f.when && !f.when.some((c) => c.values.includes(this.choice(c.pointer))));
     }
     for (const g of this.groups) {
       const own = g.element.dataset.methods;
@@ -345,6 +345,12 @@ class RowEditor {
     this.values = Array.isArray(value) ? value.map((v) => ({ ...v })) : [];
     this.render();
   }
+}
+
+// x-when as a list of conditions of which one must hold ({pointer, values} alone is one).
+function conditionsOf(when) {
+  if (!when) return null;
+  return Array.isArray(when) ? when : [when];
 }
 
 // The value at a JSON pointer ("/a/b"), undefined when absent.

@@ -8,7 +8,16 @@ namespace {
 
 class NoRegularization final : public RegularizationLaw {
 public:
-  FrictionParameters parameters() const override { return {}; }
+  const LawDescription& description() const override {
+    static const LawDescription d = [] {
+      LawDescription d;
+      d.name = "none";
+      d.meaning = "the contact pressure";
+      return d;
+    }();
+    return d;
+  }
+  bool filters() const override { return false; }
   double advance(const FrictionValues& /*values*/, StrengthUpdate /*update*/, double /*filtered*/,
                  double /*c_start*/, double c_end, double /*slip_speed*/,
                  double /*dt*/) const override {

@@ -10,9 +10,23 @@ namespace {
 
 class SlipScale final : public RegularizationLaw {
 public:
-  FrictionParameters parameters() const override {
-    return {&FrictionValues::L, &FrictionValues::v_star};
+  const LawDescription& description() const override {
+    static const LawDescription d = [] {
+      LawDescription d;
+      d.name = "slip_scale";
+      d.meaning = "paper eq. 1, L and v_star";
+      d.label = "L = {L} m";
+      d.parameters = {
+          {"L", &FrictionValues::L, "m", "characteristic length of the slip-scale regularisation",
+           Bounds::positive()},
+          {"v_star", &FrictionValues::v_star, "m/s",
+           "reference velocity V* of the slip-scale regularisation", Bounds::positive()}};
+      d.choices = {strength_update_choice()};
+      return d;
+    }();
+    return d;
   }
+  bool slip_filter() const override { return true; }
   double advance(const FrictionValues& v, StrengthUpdate update, double filtered, double c_start,
                  double c_end, double slip_speed, double dt) const override {
     const double x = dt * (slip_speed + v.v_star) / v.L; // k dt

@@ -5,27 +5,35 @@
 namespace slipfront {
 
 StrengthLaw::StrengthLaw(const Friction& friction)
-    : coefficient_(&coefficient_law(friction.law)),
-      regularization_(&regularization_law(effective_regularization(friction))),
-      update_(friction.update) {}
+    : job_(friction), coefficient_(&coefficient_law(friction)),
+      regularization_(&effective_regularization(friction)) {}
 
-FrictionState StrengthLaw::resting_state(const FrictionValues& values, double pressure) const {
-  return {coefficient_->static_coefficient(values) * std::max(0.0, pressure), 0.0};
+FrictionState StrengthLaw::resting_state(const FrictionValues& values, double pressure,
+                                         double shear_stress) const {
+  return coefficient_->initial_state(job_, values, pressure, shear_stress);
+}
+
+double StrengthLaw::normal_stress_seen(const FrictionValues& values,
+                                       const FrictionState& state) const {
+  const double mu_0 = coefficient_->static_coefficient(values);
+  return mu_0 > 0.0 ? state.filtered / mu_0 : 0.0;
 }
 
 namespace {
 
-// (mu(s) / mu_0) c*: exactly c* for a constant mu (x / x = 1); mu_0 = 0 holds nothing.
-double scaled_strength(const CoefficientLaw& law, const FrictionValues& values, double mu_0,
-                       const FrictionState& state) {
+// (mu / mu_0) c*: exactly c* for a constant mu (x / x = 1); mu_0 = 0 holds nothing.
+double scaled_strength(const CoefficientLaw& law, const FrictionValues& values,
+                       const FrictionState& state, double slip_rate) {
+  const double mu_0 = law.static_coefficient(values);
   if (!(mu_0 > 0.0)) return 0.0;
-  return law.coefficient(values, state.slip_path) / mu_0 * state.filtered;
+  return law.coefficient(values, state, slip_rate) / mu_0 * state.filtered;
 }
 
 } // namespace
 
-double StrengthLaw::strength(const FrictionValues& values, const FrictionState& state) const {
-  return scaled_strength(*coefficient_, values, coefficient_->static_coefficient(values), state);
+double StrengthLaw::strength(const FrictionValues& values, const FrictionState& state,
+                             double slip_rate) const {
+  return scaled_strength(*coefficient_, values, state, slip_rate);
 }
 
 FrictionStep StrengthLaw::advance(const FrictionValues& values, const FrictionState& state,
@@ -35,17 +43,17 @@ FrictionStep StrengthLaw::advance(const FrictionValues& values, const FrictionSt
   const double c_start = mu_0 * std::max(0.0, pressure_start);
   const double c_end = mu_0 * std::max(0.0, pressure_end);
   FrictionStep out;
+  out.state = state;
   out.state.filtered =
-      regularization_->advance(values, update_, state.filtered, c_start, c_end, slip_speed, dt);
-  out.state.slip_path = state.slip_path + dt * slip_speed;
-  out.strength = scaled_strength(*coefficient_, values, mu_0, out.state);
+      regularization_->advance(values, job_.update, state.filtered, c_start, c_end, slip_speed, dt);
+  coefficient_->advance_state(job_, values, out.state, slip_speed, dt);
+  out.strength = scaled_strength(*coefficient_, values, out.state, slip_speed);
   return out;
 }
 
 bool StrengthLaw::uses(double FrictionValues::*parameter) const {
-  const FrictionParameters a = coefficient_->parameters(), b = regularization_->parameters();
-  return std::find(a.begin(), a.end(), parameter) != a.end() ||
-         std::find(b.begin(), b.end(), parameter) != b.end();
+  return coefficient_->description().uses(parameter) ||
+         regularization_->description().uses(parameter);
 }
 
 } // namespace slipfront

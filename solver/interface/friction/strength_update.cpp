@@ -16,6 +16,17 @@ const char* to_string(StrengthUpdate update) {
   return "unknown";
 }
 
+LawChoice strength_update_choice() {
+  return {"strength_update",
+          "how the strength ODE is advanced in a step (docs/physics.md): exact for \\|V\\| "
+          "frozen and p linear over the step (second order); exact for \\|V\\| and p frozen at "
+          "the step's end (the reference scheme of docs/physics.md, first order); or forward "
+          "Euler (unstable once dt k > 2, k = (\\|V\\|+V*)/L or 1/t*; for failure studies)",
+          {"exponential_ramp", "exponential", "explicit_euler"},
+          [](const Friction& f) { return int(f.update); },
+          [](Friction& f, int i) { f.update = StrengthUpdate(i); }};
+}
+
 double filtered_strength(StrengthUpdate update, double filtered, double c_start, double c_end,
                          double x) {
   switch (update) {

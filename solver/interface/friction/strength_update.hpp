@@ -11,11 +11,15 @@
 //   explicit_euler (failure studies): c*_end = c* - x (c* - c_end); unstable once x > 2.
 #pragma once
 
+#include "solver/interface/friction/law_description.hpp"
 #include "solver/params.hpp"
 
 namespace slipfront {
 
 const char* to_string(StrengthUpdate update); // the job JSON spelling
+
+// `strength_update`, the choice of the regularisations that filter (slip and time scale).
+LawChoice strength_update_choice();
 
 double filtered_strength(StrengthUpdate update, double filtered, double c_start, double c_end,
                          double x);

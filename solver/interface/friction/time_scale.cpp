@@ -11,7 +11,19 @@ namespace {
 
 class TimeScale final : public RegularizationLaw {
 public:
-  FrictionParameters parameters() const override { return {&FrictionValues::t_star}; }
+  const LawDescription& description() const override {
+    static const LawDescription d = [] {
+      LawDescription d;
+      d.name = "time_scale";
+      d.meaning = "t_star";
+      d.label = "t* = {t_star} s";
+      d.parameters = {{"t_star", &FrictionValues::t_star, "s",
+                       "time of the time-scale regularisation", Bounds::positive()}};
+      d.choices = {strength_update_choice()};
+      return d;
+    }();
+    return d;
+  }
   double advance(const FrictionValues& v, StrengthUpdate update, double filtered, double c_start,
                  double c_end, double /*slip_speed*/, double dt) const override {
     return filtered_strength(update, filtered, c_start, c_end, dt / v.t_star);

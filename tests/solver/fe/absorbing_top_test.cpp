@@ -50,7 +50,7 @@ Velocities interface_rates(SimulationParams p, int component, double t_return, d
 TEST(AbsorbingTop, NormallyIncidentSWaveLeavesTheBlock) {
   const double h = 4.0;
   SimulationParams p = verification::small_block(1.0, h, 20.0);
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.friction.mu = 0.5;
   const double V = (p.loading.shear_stress - 0.5 * std::abs(p.loading.normal_stress)) /
                    (p.material.density * p.material.s_wave_speed());

@@ -31,7 +31,7 @@ SimulationParams held_block(double width, double height, double nd) {
   SimulationParams p = verification::small_block(width, height, nd);
   p.loading.normal_stress = -1.0;
   p.loading.shear_stress = 0.0;
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.friction.mu = 1000.0;
   return p;
 }

@@ -48,7 +48,7 @@ WaveResult standing_wave(int component, double nodes_per_meter, double height, i
   SimulationParams p = verification::small_block(1.0, height, nodes_per_meter);
   p.loading.normal_stress = -1.0;
   p.loading.shear_stress = 0.0;
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.friction.mu = 1000.0;
   MeshStepper mesh(p);
   ThreadTeam team(1);

@@ -131,7 +131,7 @@ TEST(StableTimeStep, PatchEstimateEqualsWholeMeshPowerIteration) {
 RunResult disturbed_run(double safety_factor, double mesh_damping = 0.0) {
   SimulationParams p = verification::small_block(2.0, 2.0, 10.0);
   p.fe.mesh_damping = mesh_damping;
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.time.safety_factor = safety_factor;
   p.time.duration = 6.0;
   p.output.interval = 0.05;

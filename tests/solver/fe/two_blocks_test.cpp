@@ -170,7 +170,7 @@ NormalTractionRecord run_and_watch_pressure(MeshStepper& mesh, double p0, int st
 TEST(TwoSolids, UniformSlipIsTheTwoImpedancesInSeries) {
   const double height = 4.0, nd = 20.0;
   SimulationParams p = verification::small_block(1.0, height, nd);
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.friction.mu = 0.5;
   p.lower.side = LowerSide::elastic;
   p.lower.material = bimaterial_lower();
@@ -333,7 +333,7 @@ TEST(TwoSolids, ABimaterialRunIsStableBalancesItsEnergyAndDissipates) {
 TEST(TwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
   SimulationParams p = two_solid_scene(bimaterial_lower(), 2.0, TopBoundary::traction);
   p.geometry.height = 2.0;
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   const auto ill_posed = [&] {
     for (const std::string& w : FiniteElementMethod(p).end_warnings(0.0))
       if (w.find("ill-posed") != std::string::npos) return true;
@@ -343,10 +343,10 @@ TEST(TwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
   p.lower.material = p.material; // identical solids: the homogeneous problem, well-posed
   EXPECT_FALSE(ill_posed());
   p.lower.material = bimaterial_lower();
-  p.friction.law = FrictionLaw::prakash_clifton;
+  p.friction.law = "prakash_clifton";
   EXPECT_FALSE(ill_posed());
   p.lower = LowerSolid{}; // the rigid plane
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   EXPECT_FALSE(ill_posed());
 }
 

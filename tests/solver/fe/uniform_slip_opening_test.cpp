@@ -38,7 +38,7 @@ struct Window {
 TEST(UniformSlip, WholeInterfaceSlidesAtTheImpedanceVelocityUntilTheSWaveReturns) {
   const double height = 4.0, nd = 20.0;
   SimulationParams p = verification::small_block(1.0, height, nd);
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.friction.mu = 0.5; // tau_r = 0.0075 Pa < tau1_0 = 0.0105 Pa
   const double p0 = std::abs(p.loading.normal_stress);
   const double tau_r = p.friction.mu * p0;

@@ -9,7 +9,7 @@ namespace {
 
 Friction coulomb() {
   Friction f;
-  f.law = FrictionLaw::coulomb;
+  f.law = "coulomb";
   f.mu = 0.5;
   return f;
 }
@@ -71,7 +71,7 @@ TEST(InterfaceLaw, OpenNodeMovesFreely) {
 
 TEST(InterfaceLaw, SlipSpeedDrivesTheStrengthUpdate) {
   Friction f = coulomb();
-  f.law = FrictionLaw::prakash_clifton;
+  f.law = "prakash_clifton";
   f.L = 1e-3;
   f.v_star = 1e-4;
   const InterfaceNodeConstants c = constants(f);

@@ -12,7 +12,7 @@ namespace {
 
 SimulationParams with_profiles() {
   SimulationParams p;
-  p.friction.law = FrictionLaw::slip_weakening;
+  p.friction.law = "slip_weakening";
   Profile barrier; // mu_s = 10 beyond |x1| > 3
   barrier.x1_min = -3.0;
   barrier.x1_max = 3.0;

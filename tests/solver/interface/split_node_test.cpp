@@ -16,7 +16,7 @@ InterfaceNodeConstants constants() {
   c.dt = 0.1;
   c.tributary_length = 0.5;
   Friction coulomb;
-  coulomb.law = FrictionLaw::coulomb;
+  coulomb.law = "coulomb";
   c.law = StrengthLaw(coulomb);
   return c;
 }

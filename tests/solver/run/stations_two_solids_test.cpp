@@ -26,7 +26,7 @@ SimulationParams two_solid_scene() {
   p.method = Method::spectral_bi;
   p.lower.side = LowerSide::elastic;
   p.lower.material = p.material;
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.spectral.time_step_factor = 0.25;
   p.time.duration = 2.0;
   p.extra_load = [](double x1, double) {

@@ -46,7 +46,7 @@ Material softer_and_lighter() {
 TEST(SpectralTwoSolids, UniformSlipIsTwoDashpotsInSeriesExactly) {
   for (const Material& lower : {Material{}, softer_and_lighter()}) {
     SimulationParams p = two_solids(2.0, 20.0, lower);
-    p.friction.law = FrictionLaw::coulomb;
+    p.friction.law = "coulomb";
     p.friction.mu = 0.5;
     const double p0 = std::abs(p.loading.normal_stress), tau_r = p.friction.mu * p0;
     const double eta_up = p.material.density * p.material.s_wave_speed();
@@ -134,7 +134,7 @@ TEST(SpectralTwoSolids, TheTimeStepIsTheFasterSolidsAndTheOtherWouldDiverge) {
 
 TEST(SpectralTwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
   SimulationParams p = two_solids(2.0, 10.0, softer_and_lighter());
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.spectral.time_step_factor = 0.25;
   const auto flagged = spectral::SpectralMethod(p).end_warnings(1.0);
   ASSERT_EQ(flagged.size(), 1u);
@@ -142,18 +142,18 @@ TEST(SpectralTwoSolids, PlainCoulombBetweenDifferentSolidsIsFlaggedIllPosed) {
   p.lower.material = p.material; // identical solids: the homogeneous problem, well-posed
   EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
   p.lower.material = softer_and_lighter();
-  p.friction.law = FrictionLaw::prakash_clifton;
+  p.friction.law = "prakash_clifton";
   EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
   // Any law without regularisation is flagged (slip weakening slides at mu_d once weakened);
   // a time-scale regularisation is not.
-  p.friction.law = FrictionLaw::slip_weakening;
+  p.friction.law = "slip_weakening";
   const auto weakening = spectral::SpectralMethod(p).end_warnings(1.0);
   ASSERT_EQ(weakening.size(), 1u);
   EXPECT_NE(weakening[0].find("without regularisation (law slip_weakening)"), std::string::npos)
       << weakening[0];
-  p.friction.regularization = Regularization::time_scale;
+  p.friction.regularization = "time_scale";
   EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   EXPECT_TRUE(spectral::SpectralMethod(p).end_warnings(1.0).empty());
 }
 
@@ -222,7 +222,7 @@ TEST(SpectralTwoSolids, IdenticalSolidsKeepTheNormalTractionToRoundOff) {
 double difference_from_rigid(double stiffness_factor) {
   SimulationParams p = two_solids(20.0, 10.0, Material{});
   p.geometry.x_min = -10.0;
-  p.friction.law = FrictionLaw::coulomb;
+  p.friction.law = "coulomb";
   p.spectral.time_step_factor = 0.25;
   p.time.duration = 2.0;
   p.extra_load = [](double x1, double) {
