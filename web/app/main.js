@@ -8,6 +8,7 @@ import { studiesPage, studyPage } from './studies.js';
 import { submitPage } from './submit.js';
 import { lengthFitPage } from './length_fit.js';
 import { comparePage } from './compare.js';
+import { loadMethods } from './methods.js';
 
 const view = document.getElementById('view');
 let current = null; // {stop()}
@@ -72,5 +73,5 @@ async function version() {
 
 tokenBox();
 window.addEventListener('hashchange', route);
-route();
+loadMethods().finally(route); // the methods' labels first (methods.js)
 version();
