@@ -77,14 +77,16 @@ const std::vector<const MethodOptions*>& method_options() {
   return table();
 }
 
-const MethodOptions& options_of(Method method) {
+const MethodOptions* find_options(Method method) {
   for (const MethodOptions* options : table())
-    if (options->method == method) return *options;
-  throw std::logic_error("the method \"" + std::string(method.name()) +
-                         "\" has no options in api/job_methods.cpp");
+    if (options->method == method) return options;
+  return nullptr;
 }
 
 void register_method_options(const MethodOptions& options) {
+  if (find_method(options.method.name()) == nullptr)
+    throw std::invalid_argument("no rupture method is called \"" +
+                                std::string(options.method.name()) + "\"");
   for (const MethodOptions* known : table())
     if (known->method == options.method || std::string(known->section) == options.section)
       throw std::invalid_argument("the options of \"" + std::string(options.method.name()) +

@@ -1,7 +1,8 @@
 // The methods in the job JSON, beside the solver's registry (solver/methods.hpp): what the
 // api must know of a method that is JSON — the job's section of its options (the section's
 // reader, the words of its fields, the fields its time step depends on, the value the spec
-// hash leaves out) — one entry per method in one table; and the method a job document names.
+// hash leaves out) — one entry per method that has options, in one table; and the method a job
+// document names.
 #pragma once
 
 #include "api/json_fields.hpp"
@@ -44,12 +45,12 @@ struct MethodOptions {
 // of their errors): the built-in ones, then those registered.
 const std::vector<const MethodOptions*>& method_options();
 
-// The options of `method`; throws std::logic_error if it has none (every method has an entry
-// in both tables).
-const MethodOptions& options_of(Method method);
+// The options of `method`, or nullptr for a method without any (no section in the job).
+const MethodOptions* find_options(Method method);
 
 // Adds the options of a method registered with register_method (solver/methods.hpp), under
-// the same conditions: before any job is read, from one thread.
+// the same conditions: before any job is read, from one thread. Throws std::invalid_argument
+// for a method not registered, or one whose options or section are registered already.
 void register_method_options(const MethodOptions& options);
 
 // A field's pointer and words.

@@ -52,8 +52,9 @@ const Input common_inputs[] = {
 std::vector<Input> inputs() {
   std::vector<Input> all(std::begin(common_inputs), std::end(common_inputs));
   for (const MethodEntry* method : methods())
-    for (const StepInput& input : options_of(method->method).step_inputs)
-      all.push_back({input.pointer, input.take});
+    if (const MethodOptions* options = find_options(method->method))
+      for (const StepInput& input : options->step_inputs)
+        all.push_back({input.pointer, input.take});
   return all;
 }
 
