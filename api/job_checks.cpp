@@ -3,6 +3,7 @@
 #include "api/interface_checks.hpp"
 #include "api/memory_size.hpp"
 #include "api/number_text.hpp"
+#include "solver/methods.hpp"
 #include "solver/simulation.hpp"
 
 #include <algorithm>
@@ -96,7 +97,7 @@ void check_mesh(const JobSpec& job, std::vector<FieldError>& errors) {
                          min_elements_along_x1, errors);
   }
   const SimulationParams& p = job.params;
-  if (p.method == Method::finite_element) { // BI: half-spaces, no height
+  if (method_entry(p.method).supports.block_height) { // else half-spaces: no height
     check_block_height(job, "geometry", g.height, g.auto_height, p.material, errors);
     if (p.lower.elastic())
       check_block_height(job, "lower", p.lower.height, p.lower.auto_height, p.lower.material,

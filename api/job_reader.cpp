@@ -1,6 +1,7 @@
 #include "api/job_reader.hpp"
 
 #include "api/interface_reader.hpp"
+#include "api/job_methods.hpp"
 #include "api/material_reader.hpp"
 #include "api/run_annotations.hpp" // max_tags, max_tag_length
 
@@ -32,55 +33,65 @@ void read_height(ObjectReader& in, double& height, bool& auto_height) {
 }
 
 // A field that the chosen method has no use for is an error, not silently ignored.
-void reject_for_method(ObjectReader& in, const std::string& key, const char* why) {
+void reject_for_method(ObjectReader& in, const std::string& key, const MethodEntry& method,
+                       const std::string& why) {
   if (in.raw(key) != nullptr)
-    in.error(key, std::string("is not used by method \"spectral_bi\": ") + why);
+    in.error(key, "is not used by method \"" + std::string(method.method.name()) + "\": " + why);
 }
 
 void read_geometry(ObjectReader& in, SimulationParams& params) {
+  const MethodEntry& method = method_entry(params.method);
   in.number("width", params.geometry.width, positive());
-  if (params.method == Method::finite_element) {
+  if (method.supports.block_height) {
     read_height(in, params.geometry.height, params.geometry.auto_height);
   } else {
-    reject_for_method(in, "height", "the half-space has no height; remove the field");
+    reject_for_method(in, "height", method, "the half-space has no height; remove the field");
   }
   in.number("x_min", params.geometry.x_min, any_finite());
   in.number("nodes_per_meter", params.geometry.nodes_per_meter, positive());
-  if (params.method == Method::finite_element) {
+  if (method.supports.block_height) {
     in.choice("top_boundary", params.top,
               {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
   } else {
-    reject_for_method(in, "top_boundary", "the half-space has no top; remove the field");
+    reject_for_method(in, "top_boundary", method, "the half-space has no top; remove the field");
   }
 }
 
-// The fields of an elastic lower solid: its material and, for the FE block, its height and
-// far (bottom) boundary.
-void read_elastic_lower(ObjectReader& in, LowerSolid& lower, Method method) {
+// The fields of an elastic lower solid: its material and, for a block, its height and far
+// (bottom) boundary.
+void read_elastic_lower(ObjectReader& in, LowerSolid& lower, const MethodEntry& method) {
   read_material(in, lower.material);
-  if (method == Method::finite_element) {
+  if (method.supports.block_height) {
     read_height(in, lower.height, lower.auto_height);
     in.choice("bottom_boundary", lower.bottom,
               {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
   } else {
-    reject_for_method(in, "height", "the lower half-space has no height; remove the field");
-    reject_for_method(in, "bottom_boundary",
+    reject_for_method(in, "height", method, "the lower half-space has no height; remove the field");
+    reject_for_method(in, "bottom_boundary", method,
                       "the lower half-space has no far boundary; remove the field");
   }
 }
 
 // What lies below the interface (docs/physics.md "Two solids"): the rigid plane (the default,
-// which has no other field) or a second elastic solid.
+// which has no other field) or a second elastic solid, each where the method supports it.
 void read_lower(ObjectReader& in, SimulationParams& params) {
   LowerSolid& lower = params.lower;
+  const MethodEntry& method = method_entry(params.method);
   in.choice("solid", lower.side, {{"rigid", LowerSide::rigid}, {"elastic", LowerSide::elastic}});
+  const std::string name(method.method.name());
+  if (lower.elastic() && !method.supports.two_solids)
+    in.error("solid", "method \"" + name +
+                          "\" has no elastic solid below the interface: "
+                          "remove the field (the rigid plane)");
+  if (!lower.elastic() && !method.supports.rigid_base)
+    in.error("solid", "method \"" + name + "\" has no rigid plane: give \"elastic\"");
   if (lower.elastic()) {
-    read_elastic_lower(in, lower, params.method);
+    read_elastic_lower(in, lower, method);
     return;
   }
   const auto elastic_fields = [&](ObjectReader& r) {
     LowerSolid ignored;
-    read_elastic_lower(r, ignored, params.method);
+    read_elastic_lower(r, ignored, method);
   };
   for (const std::string& key : in.present_fields_of(elastic_fields))
     in.error(key, "is used only with \"solid\": \"elastic\" (below the interface is the rigid "
@@ -92,30 +103,17 @@ void read_loading(ObjectReader& in, Loading& loading) {
   in.number("shear_stress", loading.shear_stress, any_finite());
 }
 
-void read_time(ObjectReader& in, TimeControl& time, Method method) {
+void read_time(ObjectReader& in, TimeControl& time, const MethodEntry& method) {
   in.number("duration", time.duration, positive());
-  if (method == Method::finite_element) {
+  if (method.time_step.safety_factor) {
     in.number("safety_factor", time.safety_factor,
               left_open(0.0, 2.0)); // > 1: unstable, for failure studies
   } else {
-    reject_for_method(in, "safety_factor",
-                      "its time step is spectral_bi.time_step_factor * dx / c_s");
+    reject_for_method(in, "safety_factor", method,
+                      std::string("its time step is ") + method.time_step.rule);
   }
   in.boolean("stop_on_arrest", time.stop_on_arrest);
   in.number("arrest_window", time.arrest_window, positive());
-}
-
-// The options of the spectral boundary-integral method (docs/spectral-bi.md).
-void read_spectral(ObjectReader& in, SpectralOptions& options) {
-  // beta = 1 diverges within ~50 steps on every mesh tried, 0.75 is stable (docs/spectral-bi.md).
-  in.number("time_step_factor", options.time_step_factor, left_open(0.0, 0.75));
-  in.number("memory_periods", options.memory_periods, left_open(0.0, 256.0));
-  in.integer("corrector_passes", options.corrector_passes, 0, 4);
-}
-
-// The options of the finite-element method: the mesh-scale damping (docs/physics.md).
-void read_fe(ObjectReader& in, FeOptions& options) {
-  in.number("mesh_damping", options.mesh_damping, closed_interval(0.0, 4.0));
 }
 
 void read_output(ObjectReader& in, OutputSampling& output) {
@@ -140,18 +138,20 @@ void read_stations(ObjectReader& in, Stations& stations) {
 
 void read_job_fields(ObjectReader& in, JobSpec& job) {
   SimulationParams& params = job.params;
-  // The method first: it decides which other fields exist.
-  in.choice("method", params.method,
-            {{"fe", Method::finite_element}, {"spectral_bi", Method::spectral_bi}});
-  if (params.method == Method::spectral_bi) {
-    in.object("spectral_bi", [&](ObjectReader& b) { read_spectral(b, params.spectral); });
-  } else if (in.raw("spectral_bi") != nullptr) {
-    in.error("spectral_bi", "is used only with \"method\": \"spectral_bi\" (the method is \"fe\")");
-  }
-  if (params.method == Method::finite_element) {
-    in.object("fe", [&](ObjectReader& f) { read_fe(f, params.fe); });
-  } else if (in.raw("fe") != nullptr) {
-    in.error("fe", "is used only with \"method\": \"fe\" (the method is \"spectral_bi\")");
+  // The method first: it decides which other fields exist (solver/methods.hpp).
+  std::vector<std::pair<std::string, Method>> names;
+  for (const MethodEntry* entry : methods())
+    names.emplace_back(entry->method.name(), entry->method);
+  in.choice("method", params.method, names);
+  // Its section of options (api/job_methods.hpp); another method's is an error.
+  for (const MethodOptions* options : method_options()) {
+    if (options->method == params.method) {
+      in.object(options->section, [&](ObjectReader& o) { options->read(o, params); });
+    } else if (in.raw(options->section) != nullptr) {
+      in.error(options->section, "is used only with \"method\": \"" +
+                                     std::string(options->method.name()) + "\" (the method is \"" +
+                                     std::string(params.method.name()) + "\")");
+    }
   }
   in.object("material", [&](ObjectReader& m) { read_material(m, params.material); });
   in.object("geometry", [&](ObjectReader& g) { read_geometry(g, params); });
@@ -160,7 +160,8 @@ void read_job_fields(ObjectReader& in, JobSpec& job) {
   in.object("friction", [&](ObjectReader& f) { read_friction(f, params.friction); });
   read_profiles(in, params.friction, params.profiles);
   in.object("nucleation", [&](ObjectReader& n) { read_nucleation(n, params.nucleation); });
-  in.object("time", [&](ObjectReader& t) { read_time(t, params.time, params.method); });
+  in.object("time",
+            [&](ObjectReader& t) { read_time(t, params.time, method_entry(params.method)); });
   in.object("output", [&](ObjectReader& o) { read_output(o, params.output); });
   in.object("probe", [&](ObjectReader& p) { read_probes(p, params.probes); });
   in.object("stations", [&](ObjectReader& s) { read_stations(s, params.stations); });

@@ -1,6 +1,7 @@
 #include "api/job_schema.hpp"
 
 #include "api/friction_fields.hpp"
+#include "api/job_methods.hpp"
 #include "api/job_reader.hpp"
 #include "api/presets.hpp"
 
@@ -19,29 +20,13 @@ struct Words {
   std::string meaning;
 };
 
-// The unit and meaning of every field but friction's (docs/api-job-spec.md shows them beside
-// the type, default and range that the reader records). Rules across fields are named here
-// too; the code that checks them is api/job_checks.cpp. The friction fields' words come from
-// the laws' descriptions (friction_words()).
+// The unit and meaning of every field but friction's and the methods' (docs/api-job-spec.md
+// shows them beside the type, default and range that the reader records). Rules across fields
+// are named here too; the code that checks them is api/job_checks.cpp. The friction fields'
+// words come from the laws' descriptions (friction_words()), the words of "method" and of each
+// method's section from the method (method_field_words, api/job_methods.hpp).
 const std::map<std::string, Words>& fixed_words() {
   static const std::map<std::string, Words> words = {
-      {"/method",
-       {"",
-        "`\"fe\"`: the explicit Q4 finite elements of the paper (a block of height h; "
-        "docs/physics.md); "
-        "`\"spectral_bi\"`: the elastic half-space by the spectral boundary-integral method, only "
-        "the interface discretised (docs/spectral-bi.md)"}},
-      {"/spectral_bi/time_step_factor",
-       {"", "beta: dt = beta · dx / c_s; beta = 1 diverges; with plain Coulomb friction use 0.25 "
-            "(docs/spectral-bi.md)"}},
-      {"/spectral_bi/memory_periods",
-       {"", "q: each Fourier mode k keeps q periods 2 pi / (\\|k\\| c_s) of its history"}},
-      {"/spectral_bi/corrector_passes", {"", "local solves after the predictor in each step"}},
-      {"/fe/mesh_damping",
-       {"", "ζ of the mesh-scale stiffness-proportional (Kelvin–Voigt) damping force `−a K v`, "
-            "`a = ζ dx / c_s`, which vanishes under refinement; 0 is the paper's undamped "
-            "scheme. It shrinks the stable step to `sqrt(a² + dt0²) − a` (ζ = 0.1: 0.84 dt0) and "
-            "costs about twice the work per step (docs/physics.md, docs/small-l-study.md)"}},
       {"/material/density", {"kg/m^3", "rho: mass density of the solid above the interface"}},
       {"/material/young_modulus", {"Pa", "E: Young's modulus of the solid above the interface"}},
       {"/material/poisson_ratio",
@@ -294,37 +279,57 @@ std::string allowed_text(const nlohmann::json& schema) {
 
 } // namespace
 
+bool JobField::read_by(std::string_view method) const {
+  return std::find(methods.begin(), methods.end(), method) != methods.end();
+}
+
 std::vector<JobField> job_fields() {
-  // FE is the default method: its record gives the defaults of the fields both methods read.
-  // The fields of an elastic lower solid are read only when it is chosen: two more records.
-  const nlohmann::json elastic_lower = {{"solid", "elastic"}};
-  const std::pair<SchemaRecorder, bool> records[] = {
-      {record_fields(nlohmann::json::object()), false},
-      {record_fields({{"method", "spectral_bi"}}), true},
-      {record_fields({{"lower", elastic_lower}}), false},
-      {record_fields({{"method", "spectral_bi"}, {"lower", elastic_lower}}), true},
-  };
+  // The default method's record gives the defaults of the fields every method reads. The
+  // fields of an elastic lower solid are read only when it is chosen: a record of each
+  // method with it, after those on the rigid plane (where the method supports each).
+  std::vector<std::pair<SchemaRecorder, std::string>> records;
+  for (const bool elastic : {false, true})
+    for (const MethodEntry* method : methods()) {
+      if (!(elastic ? method->supports.two_solids : method->supports.rigid_base)) continue;
+      const std::string name(method->method.name());
+      nlohmann::json document = nlohmann::json::object();
+      if (method != &default_method()) document["method"] = name;
+      if (elastic) document["lower"] = {{"solid", "elastic"}};
+      records.emplace_back(record_fields(document), name);
+    }
   std::vector<JobField> fields;
   std::map<std::string, std::size_t> index;
-  for (const auto& [record, spectral_bi] : records) {
+  for (const auto& [record, method] : records) {
     for (const auto& r : record) {
       auto found = index.find(r.pointer);
       if (found == index.end()) {
         found = index.emplace(r.pointer, fields.size()).first;
-        fields.push_back({r.pointer, r.schema, false, false, "", ""});
+        fields.push_back({r.pointer, r.schema, {}, "", ""});
       }
-      (spectral_bi ? fields[found->second].spectral_bi : fields[found->second].fe) = true;
+      if (!fields[found->second].read_by(method)) fields[found->second].methods.push_back(method);
     }
   }
-  fields[index.at("/method")].schema["default"] = "fe";
+  fields[index.at("/method")].schema["default"] = default_method().method.name();
+  std::map<std::string, FieldWords> method_words;
+  for (FieldWords& words : method_field_words())
+    method_words[words.pointer] = words;
   const std::map<std::string, Words> all_words = field_words();
   for (JobField& field : fields) {
-    const auto words = all_words.find(field.pointer);
-    if (words == all_words.end())
+    // In the registry's order, whatever the order of the records.
+    std::vector<std::string> ordered;
+    for (const MethodEntry* method : methods())
+      if (field.read_by(method->method.name())) ordered.emplace_back(method->method.name());
+    field.methods = ordered;
+    if (const auto words = all_words.find(field.pointer); words != all_words.end()) {
+      field.unit = words->second.unit;
+      field.meaning = words->second.meaning;
+    } else if (const auto own = method_words.find(field.pointer); own != method_words.end()) {
+      field.unit = own->second.unit;
+      field.meaning = own->second.meaning;
+    } else {
       throw std::logic_error("job schema: no unit and meaning for " + field.pointer +
-                             " (api/job_schema.cpp)");
-    field.unit = words->second.unit;
-    field.meaning = words->second.meaning;
+                             " (api/job_schema.cpp, or the method's in api/job_methods.cpp)");
+    }
   }
   return fields;
 }
@@ -392,6 +397,8 @@ std::vector<std::string> documented_job_pointers() {
   std::vector<std::string> pointers;
   for (const auto& [pointer, words] : field_words())
     pointers.push_back(pointer);
+  for (const FieldWords& words : method_field_words())
+    pointers.push_back(words.pointer);
   return pointers;
 }
 
@@ -427,10 +434,7 @@ nlohmann::json job_json_schema() {
     nlohmann::json schema = field.schema;
     schema["description"] = field.meaning + (field.unit.empty() ? "" : " [" + field.unit + "]");
     if (!field.unit.empty()) schema["x-unit"] = field.unit;
-    nlohmann::json methods = nlohmann::json::array();
-    if (field.fe) methods.push_back("fe");
-    if (field.spectral_bi) methods.push_back("spectral_bi");
-    schema["x-methods"] = methods;
+    schema["x-methods"] = field.methods;
     if (auto rule = rules.find(field.pointer); rule != rules.end())
       schema["x-when"] = when_json(rule->second);
     (*parent)["properties"][name] = schema;
@@ -464,7 +468,9 @@ nlohmann::json job_json_schema() {
       {"description", "start from this preset (GET /api/v1/presets): the job is the preset's "
                       "spec with the other members merged over it (JSON merge patch, RFC 7396; "
                       "docs/presets.md)"},
-      {"x-methods", {"fe", "spectral_bi"}}};
+      {"x-methods", method_names()}};
+  // The methods' labels, for the views (api/job_methods.hpp).
+  root["properties"]["method"]["x-labels"] = method_labels_json();
   return root;
 }
 
@@ -480,8 +486,12 @@ std::string job_fields_markdown() {
     const std::string title = section.empty() ? "top level" : section;
     if (std::find(titles.begin(), titles.end(), title) == titles.end()) titles.push_back(title);
     std::string meaning = field.meaning;
-    if (!field.spectral_bi) meaning += " (method `fe` only)";
-    if (!field.fe) meaning += " (method `spectral_bi` only)";
+    if (field.methods.size() < methods().size()) { // "(method `fe` only)"
+      std::string names;
+      for (const std::string& method : field.methods)
+        names += (names.empty() ? "`" : ", `") + method + "`";
+      meaning += (field.methods.size() == 1 ? " (method " : " (methods ") + names + " only)";
+    }
     rows[title] += "| `" + name + "` | " + type_text(field.schema) + " | " +
                    default_text(field.schema) + " | " + allowed_text(field.schema) + " | " +
                    field.unit + " | " + meaning + " |\n";

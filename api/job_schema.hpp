@@ -12,20 +12,21 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace slipfront::api {
 
 struct JobField {
-  std::string pointer;   // JSON pointer, e.g. "/friction/L"
-  nlohmann::json schema; // JSON Schema of the value, with "default"
-  bool fe = false;       // read with "method": "fe"
-  bool spectral_bi = false;
-  std::string unit;    // SI unit, "" for dimensionless or non-numbers
-  std::string meaning; // one or two sentences
+  std::string pointer;              // JSON pointer, e.g. "/friction/L"
+  nlohmann::json schema;            // JSON Schema of the value, with "default"
+  std::vector<std::string> methods; // the methods that read it, in the registry's order
+  std::string unit;                 // SI unit, "" for dimensionless or non-numbers
+  std::string meaning;              // one or two sentences
+  bool read_by(std::string_view method) const;
 };
 
-// Every field, in the reader's order.
+// Every field, in the reader's order (the default method's fields first).
 std::vector<JobField> job_fields();
 
 // The pointers that have words (unit, meaning) in job_schema.cpp: for the test that the

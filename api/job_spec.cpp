@@ -1,6 +1,7 @@
 #include "api/job_spec.hpp"
 
 #include "api/job_checks.hpp"
+#include "api/job_methods.hpp"
 #include "api/job_reader.hpp"
 #include "api/json_fields.hpp"
 #include "api/json_parse.hpp"
@@ -61,14 +62,17 @@ nlohmann::json physics_canonical(const nlohmann::json& canonical) {
   nlohmann::json physics = canonical;
   for (const char* key : {"name", "tags", "threads", "output"})
     physics.erase(key);
-  // "method": "fe" is the method every record had before the field existed: leaving it out
-  // keeps FE hashes (the result cache, the studies' scenes) those of the older records.
-  if (physics.value("method", "fe") == "fe") physics.erase("method");
-  // "fe": {"mesh_damping": 0} is the undamped scheme of every record before the section
-  // existed: left out for the same reason.
-  if (const auto fe = physics.find("fe"); fe != physics.end() && fe->is_object() &&
-                                          fe->size() == 1 && fe->value("mesh_damping", -1.0) == 0.0)
-    physics.erase("fe");
+  // The default method ("fe") is the method every record had before the field existed:
+  // leaving it out keeps FE hashes (the result cache, the studies' scenes) those of the older
+  // records.
+  if (method_name_of(physics) == default_method().method.name()) physics.erase("method");
+  // A section of options at the value older records did not have ("fe": {"mesh_damping": 0},
+  // the undamped scheme of every record before the section existed): left out for the same
+  // reason (api/job_methods.hpp).
+  for (const MethodOptions* options : method_options())
+    if (const auto section = physics.find(options->section);
+        section != physics.end() && !options->unhashed.is_null() && *section == options->unhashed)
+      physics.erase(options->section);
   // "lower": {"solid": "rigid"} is the rigid plane of every record before the section existed.
   if (const auto lower = physics.find("lower");
       lower != physics.end() && *lower == nlohmann::json{{"solid", "rigid"}})
@@ -93,24 +97,8 @@ std::string scene_hash(const nlohmann::json& canonical) {
 }
 
 nlohmann::json counterpart_document(const nlohmann::json& job) {
-  nlohmann::json other = job;
-  if (other.value("method", "fe") == "spectral_bi") {
-    other["method"] = "fe";
-    other.erase("spectral_bi");
-  } else {
-    other["method"] = "spectral_bi";
-    other.erase("fe");
-    if (other.contains("geometry") && other["geometry"].is_object()) {
-      other["geometry"].erase("height");
-      other["geometry"].erase("top_boundary");
-    }
-    if (other.contains("lower") && other["lower"].is_object()) {
-      other["lower"].erase("height");
-      other["lower"].erase("bottom_boundary");
-    }
-    if (other.contains("time") && other["time"].is_object()) other["time"].erase("safety_factor");
-  }
-  return other;
+  const MethodEntry* own = find_method(method_name_of(job));
+  return method_document(job, method_entry((own != nullptr ? *own : default_method()).counterpart));
 }
 
 std::string counterpart_scene_hash(const nlohmann::json& canonical) {

@@ -58,7 +58,8 @@ std::string canonical_text(const nlohmann::json& canonical);
 // The canonical spec without what does not change the metrics (`name`, `tags`, `threads`,
 // `output`; `stations` is in it when the job has stations, since they add their rupture times
 // to the metrics, and left out of the canonical form when it has none) and without the
-// defaults that older records did not have (`"method": "fe"`, the undamped `"fe"` section,
+// defaults that older records did not have (the default `"method": "fe"`, a method's section
+// at its unhashed value — the undamped `"fe"` section, api/job_methods.hpp — and
 // `"lower": {"solid": "rigid"}`), so that their hashes stay those of the records made before
 // these fields existed.
 nlohmann::json physics_canonical(const nlohmann::json& canonical);
@@ -70,10 +71,11 @@ std::string spec_hash(const nlohmann::json& canonical);
 // name, tags and threads: runs with the same scene hash belong to one convergence map.
 std::string scene_hash(const nlohmann::json& canonical);
 
-// The same physics by the other method: the job with "method" swapped and the fields only one
-// method has dropped (FE: geometry.height, geometry.top_boundary, lower.height,
-// lower.bottom_boundary, time.safety_factor and the "fe" section; BI: the "spectral_bi"
-// section). Not checked: parse it.
+// The same physics by the job's counterpart method (its entry's `counterpart`: FE and the
+// spectral BI method are each other's): method_document of api/job_methods.hpp, the fields
+// only the job's method reads dropped (from FE: geometry.height, geometry.top_boundary,
+// lower.height, lower.bottom_boundary, time.safety_factor and the "fe" section; from BI: the
+// "spectral_bi" section). Not checked: parse it.
 nlohmann::json counterpart_document(const nlohmann::json& job);
 // The scene hash of counterpart_document(canonical); empty if that job is not valid.
 std::string counterpart_scene_hash(const nlohmann::json& canonical);

@@ -4,25 +4,19 @@
 #include "api/run_job.hpp"
 #include "solver/interface/friction/regularization_law.hpp"
 #include "solver/interface/friction/strength_update.hpp"
+#include "solver/methods.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 namespace slipfront::api {
 
 namespace {
-
-constexpr const char* discretisation = "Q4 2x2 Gauss, lumped mass, central differences";
 
 nlohmann::json numbers(const std::vector<double>& values) {
   nlohmann::json array = nlohmann::json::array();
   for (double value : values)
     array.push_back(json_number(value));
   return array;
-}
-
-const char* top_name(TopBoundary top) {
-  return top == TopBoundary::absorbing ? "absorbing" : "traction";
 }
 
 // The rupture time at each station (docs/metrics.md "Stations"), null where it never ruptured.
@@ -36,37 +30,9 @@ nlohmann::json stations_json(const StationRecords& stations) {
 
 } // namespace
 
-const char* method_name(Method method) {
-  return method == Method::spectral_bi ? "spectral_bi" : "fe";
-}
-
 std::string method_description(const SimulationParams& params) {
-  std::string method;
-  if (params.method == Method::spectral_bi) {
-    char text[200];
-    const bool two = params.lower.elastic(); // docs/spectral-bi.md "Two half-spaces"
-    std::snprintf(text, sizeof text,
-                  "spectral boundary integral, %s (velocity-form memory "
-                  "truncated after %g mode periods), dt = %g dx / %s, %d corrector pass%s",
-                  two ? "two elastic half-spaces" : "elastic half-space",
-                  params.spectral.memory_periods, params.spectral.time_step_factor,
-                  two ? "max c_s" : "c_s", params.spectral.corrector_passes,
-                  params.spectral.corrector_passes == 1 ? "" : "es");
-    method = text;
-  } else {
-    method = std::string(discretisation) + "; top boundary: " + top_name(params.top);
-    if (params.lower.elastic())
-      method += std::string("; lower solid: elastic block (split-node interface), bottom "
-                            "boundary: ") +
-                top_name(params.lower.bottom);
-    if (params.fe.mesh_damping > 0) {
-      char text[200];
-      std::snprintf(text, sizeof text,
-                    "; mesh-scale stiffness-proportional damping -a K v, a = %g dx / c_s",
-                    params.fe.mesh_damping);
-      method += text;
-    }
-  }
+  // The discretisation and its options are the method's (its entry's describe).
+  std::string method = method_entry(params.method).describe(params);
   const RegularizationLaw& regularization = effective_regularization(params.friction);
   method += "; friction: " + params.friction.law;
   if (!regularization.filters()) return method;
@@ -110,14 +76,15 @@ nlohmann::json metrics_json(const RunResult& result) {
   }
   if (!result.stations.empty()) j["stations"] = stations_json(result.stations);
   j["code_version"] = code_version();
-  j["method"] = "fe";
-  j["method_description"] = discretisation;
+  const MethodEntry& method = method_entry(result.mesh.method);
+  j["method"] = std::string(method.method.name());
+  j["method_description"] = method.discretisation;
   return j;
 }
 
 nlohmann::json metrics_json(const RunResult& result, const SimulationParams& params) {
   nlohmann::json j = metrics_json(result);
-  j["method"] = method_name(params.method);
+  j["method"] = std::string(params.method.name());
   j["method_description"] = method_description(params);
   return j;
 }

@@ -1,6 +1,7 @@
 #include "api/presets.hpp"
 
 #include "api/json_fields.hpp"
+#include "api/job_methods.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -16,8 +17,9 @@ std::string text_member(const nlohmann::json& object, const char* key) {
   return it != object.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
-// A scene preset's file is {title, description, reference, spec}; an example's file is the
-// job itself, its "name" the title.
+// A scene preset's file is {title, description, reference, spec} and, by a method's name, the
+// members only that method reads ("fe"); an example's file is the job itself, its "name" the
+// title.
 Preset read_preset(const nlohmann::json& entry) {
   Preset preset;
   preset.name = entry.at("name").get<std::string>();
@@ -30,14 +32,14 @@ Preset read_preset(const nlohmann::json& entry) {
     preset.description = text_member(file, "description");
     preset.reference = text_member(file, "reference");
     preset.spec = file["spec"];
-    if (file.contains("fe")) preset.fe = file["fe"];
+    for (const std::string& method : method_names())
+      if (file.contains(method) && file[method].is_object()) preset.own[method] = file[method];
   } else {
     preset.spec = file;
     preset.title = text_member(file, "name");
     preset.description = "The job file examples/" + preset.name + ".json.";
   }
   if (preset.title.empty()) preset.title = preset.name;
-  if (!preset.fe.is_object()) preset.fe = nlohmann::json::object();
   return preset;
 }
 
@@ -72,31 +74,30 @@ const Preset* find_preset(std::string_view name) {
 namespace {
 
 std::string own_method(const Preset& preset) {
-  const auto it = preset.spec.find("method");
-  return it != preset.spec.end() && it->is_string() ? it->get<std::string>() : "fe";
+  return method_name_of(preset.spec);
 }
 
 } // namespace
 
 nlohmann::json preset_job(const Preset& preset, const std::string& method) {
   nlohmann::json job = preset.spec;
-  if (method == "fe") {
-    job.merge_patch(preset.fe);
-  } else {
-    job["method"] = method;
-  }
+  if (method != default_method().method.name()) job["method"] = method;
+  if (const auto own = preset.own.find(method); own != preset.own.end())
+    job.merge_patch(own->second);
   return job;
 }
 
 nlohmann::json preset_json(const Preset& preset) {
+  nlohmann::json specs = nlohmann::json::object();
+  for (const std::string& method : method_names())
+    specs[method] = preset_job(preset, method);
   return {{"name", preset.name},
           {"origin", preset.origin},
           {"title", preset.title},
           {"description", preset.description},
           {"reference", preset.reference},
           {"spec", preset_job(preset, own_method(preset))},
-          {"specs",
-           {{"fe", preset_job(preset, "fe")}, {"spectral_bi", preset_job(preset, "spectral_bi")}}}};
+          {"specs", specs}};
 }
 
 nlohmann::json expand_preset(const nlohmann::json& job, std::vector<FieldError>& errors) {

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,9 +27,10 @@ struct Preset {
   std::string title;       // one line
   std::string description; // what the scene is and what it shows
   std::string reference;   // where its numbers come from ("" for the examples)
-  nlohmann::json spec;     // the job for either method, as a user would write it
-  nlohmann::json fe;       // members only the FE method reads (block heights, boundaries),
-                           // merged over `spec` when the job runs by FE; {} if none
+  nlohmann::json spec;     // the job for any method, as a user would write it
+  // By a method's name, the members only that method reads ("fe": block heights, boundaries),
+  // merged over `spec` when the job runs by it.
+  std::map<std::string, nlohmann::json> own;
 };
 
 // Every preset: the scene presets first, then the examples, each group sorted by name.
@@ -37,8 +39,8 @@ const std::vector<Preset>& presets();
 // The preset called `name`, or nullptr.
 const Preset* find_preset(std::string_view name);
 
-// The preset's job for `method` ("fe" or "spectral_bi"): `spec`, with `fe` merged over it
-// for FE and "method" set for any other method.
+// The preset's job for `method` (a method's name: "fe", "spectral_bi"): `spec`, with "method"
+// set for any but the default method and the method's own members merged over it.
 nlohmann::json preset_job(const Preset& preset, const std::string& method);
 
 // As a JSON object: {name, origin, title, description, reference, spec, specs}: `spec` the

@@ -1,5 +1,6 @@
 #include "api/run_bounds.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/material_reader.hpp"
 #include "api/number_text.hpp"
 #include "solver/run/station_recorder.hpp"
@@ -20,8 +21,9 @@ struct Input {
   void (*take)(SimulationParams& params, const SimulationParams& job);
 };
 
-// Every such field (a field the job's method does not read changes nothing: never named).
-const Input inputs[] = {
+// Every such field of the job outside the methods' sections (a field the job's method does not
+// read changes nothing: never named).
+const Input common_inputs[] = {
     {"/material/density",
      [](auto& p, const auto& job) { p.material.density = job.material.density; }},
     {"/material/young_modulus",
@@ -43,10 +45,18 @@ const Input inputs[] = {
      [](auto& p, const auto& job) {
        p.lower.material.poisson_ratio = job.lower.material.poisson_ratio;
      }},
-    {"/fe/mesh_damping", [](auto& p, const auto& job) { p.fe.mesh_damping = job.fe.mesh_damping; }},
-    {"/spectral_bi/time_step_factor",
-     [](auto& p, const auto& job) { p.spectral.time_step_factor = job.spectral.time_step_factor; }},
 };
+
+// The common fields, then each method's own (its section's: api/job_methods.hpp), in the
+// registry's order.
+std::vector<Input> inputs() {
+  std::vector<Input> all(std::begin(common_inputs), std::end(common_inputs));
+  for (const MethodEntry* method : methods())
+    if (const MethodOptions* options = find_options(method->method))
+      for (const StepInput& input : options->step_inputs)
+        all.push_back({input.pointer, input.take});
+  return all;
+}
 
 using Quantity = double (*)(const SimulationParams&);
 enum class Direction { too_large, too_small };
@@ -58,9 +68,9 @@ const char* culprit(const SimulationParams& job, Quantity quantity, Direction di
   scene.method = job.method;
   scene.lower.side = job.lower.side; // a rigid plane's fields are never named
   const double base = std::log(quantity(scene));
-  const char* named = inputs[0].pointer;
+  const char* named = common_inputs[0].pointer;
   double furthest = -std::numeric_limits<double>::infinity();
-  for (const Input& input : inputs) {
+  for (const Input& input : inputs()) {
     SimulationParams one = scene;
     input.take(one, job);
     double shift = std::log(quantity(one)) - base; // +-inf where the quantity overflows or is 0
@@ -128,11 +138,11 @@ bool check_wave_speeds(const SimulationParams& p, const Solid& solid,
                       "the impedance density * c_p is not a finite number (" + speeds + ")"});
     return false;
   }
-  if (p.method == Method::spectral_bi && c_p / c_s > max_bi_wave_speed_ratio) {
-    errors.push_back(
-        {solid.pointer, "c_p / c_s = " + text(c_p / c_s) + " is more than the " +
-                            text(max_bi_wave_speed_ratio) +
-                            " the spectral_bi kernel allows (poisson_ratio at most 0.49995)"});
+  // The method's own limit (its kernel's quadrature, say; solver/method_entry.hpp).
+  const WaveSpeedLimit& limit = method_entry(p.method).wave_speeds;
+  if (c_p / c_s > limit.max_ratio) {
+    errors.push_back({solid.pointer, "c_p / c_s = " + text(c_p / c_s) + " is more than the " +
+                                         text(limit.max_ratio) + " " + limit.why});
     return false;
   }
   return true;
@@ -142,7 +152,8 @@ bool check_wave_speeds(const SimulationParams& p, const Solid& solid,
 // step_count_bound), all in double: checked before anything becomes an integer.
 void check_time_steps(const SimulationParams& p, std::vector<FieldError>& errors) {
   const TimeStepBounds dt = time_step_bounds(p);
-  const bool exact = p.method == Method::spectral_bi; // FE: bounds of the stable step
+  // A stable step found when the run starts is known within bounds; any other, exactly.
+  const bool exact = !method_entry(p.method).time_step.safety_factor;
   if (!(dt.shortest >= min_time_step)) {
     errors.push_back({culprit(p, shortest_step, Direction::too_small),
                       "the time step would be " + std::string(exact ? "" : "as short as ") +

@@ -31,13 +31,11 @@ JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunH
 // including the cost (wall_time_s, steps, dt), mesh facts and the code version.
 nlohmann::json metrics_json(const RunResult& result);
 
-// As above, with "method" ("fe" or "spectral_bi", the job field's spelling) and
+// As above, with "method" (the job field's spelling: "fe", "spectral_bi") and
 // "method_description" naming the discretisation, its options and the friction law of
-// `params` (run_job uses this one; the one-argument form describes the FE discretisation).
+// `params` (run_job uses this one; the one-argument form names the method that ran,
+// result.mesh.method, and its discretisation in a phrase).
 nlohmann::json metrics_json(const RunResult& result, const SimulationParams& params);
-
-// The job field's spelling of a method: "fe" or "spectral_bi".
-const char* method_name(Method method);
 
 // The numerical method that produced a result, e.g. "Q4 2x2 Gauss, lumped mass, central
 // differences; top boundary: traction; friction: prakash_clifton, exponential strength update".

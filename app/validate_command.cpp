@@ -5,11 +5,9 @@
 #include "app/options.hpp"
 
 #include "api/memory_size.hpp"
-#include "solver/mesh_size.hpp"
-#include "solver/simulation.hpp"
+#include "solver/methods.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -47,32 +45,12 @@ int validate(const ValidateOptions& options) {
       load_job("slipfront validate", options.job_path, options.threads, options.limits);
   if (!job) return exit_code::bad_input;
 
-  const Geometry& g = job->params.geometry;
-  char mesh[200];
-  if (job->params.method == Method::spectral_bi) {
-    std::snprintf(mesh, sizeof mesh,
-                  "%ld interface nodes, dx = %g m, half-space (spectral boundary integral)",
-                  std::lround(g.width * g.nodes_per_meter), 1.0 / g.nodes_per_meter);
-  } else {
-    const double height = resolved_height(job->params);
-    std::snprintf(mesh, sizeof mesh, "%ld x %ld nodes, dx = %g m, height = %g m%s",
-                  std::lround(g.width * g.nodes_per_meter),
-                  std::lround(height * g.nodes_per_meter) + 1, 1.0 / g.nodes_per_meter, height,
-                  g.auto_height ? " (auto)" : "");
-  }
+  // The mesh (and the lower solid's) as the method describes it (solver/methods.hpp).
   std::cout << "ok\n"
             << "spec_sha256: " << job->sha256 << '\n'
             << "memory_estimate_bytes: " << std::llround(job->memory_estimate_bytes) << " ("
             << api::byte_size_text(job->memory_estimate_bytes) << ")\n"
-            << "mesh: " << mesh << '\n';
-  const LowerSolid& lower = job->params.lower;
-  if (lower.elastic() && job->params.method == Method::finite_element) {
-    const MeshSize m = lower_mesh_size(job->params);
-    std::cout << "lower block: " << m.nx << " x " << m.ny << " nodes, height = " << m.height << " m"
-              << (lower.auto_height ? " (auto)" : "") << '\n';
-  } else if (lower.elastic()) {
-    std::cout << "lower solid: elastic half-space\n";
-  }
+            << method_entry(job->params.method).mesh_summary(job->params);
   return exit_code::success;
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -152,12 +153,28 @@ struct InterfaceTraction {
 };
 using ExtraInterfaceLoad = std::function<InterfaceTraction(double x1, double t)>;
 
-// The numerical method (the job's "method"; docs/physics.md "Methods"): a result always says which
-// one produced it.
-enum class Method {
-  finite_element, // "fe": Q4 elements of the block, explicit central differences (the paper's)
-  spectral_bi,    // "spectral_bi": the elastic half-space by the spectral boundary-integral method
+// The numerical method, by its name: the job's "method", the metrics' and the result file's
+// (docs/physics.md "Methods"). What a method is, supports and costs is its entry in the
+// registry of methods (solver/methods.hpp); a result always says which one produced it.
+class Method {
+public:
+  constexpr Method() = default; // the paper's finite elements
+  // `name` must outlive every copy: a literal, or a registered method's name.
+  constexpr explicit Method(std::string_view name) : name_(name) {}
+  constexpr std::string_view name() const { return name_; }
+  constexpr bool operator==(const Method&) const = default;
+
+  // The built-in methods (solver/fe/, solver/spectral/).
+  static const Method finite_element; // "fe": Q4 elements of the block, explicit central
+                                      // differences (the paper's)
+  static const Method spectral_bi;    // "spectral_bi": the elastic half-space by the spectral
+                                      // boundary-integral method
+
+private:
+  std::string_view name_ = "fe";
 };
+inline constexpr Method Method::finite_element{"fe"};
+inline constexpr Method Method::spectral_bi{"spectral_bi"};
 
 // Options of the spectral boundary-integral method (docs/spectral-bi.md).
 struct SpectralOptions {

@@ -2,12 +2,10 @@
 // and memory estimates of a run.
 #include "solver/simulation.hpp"
 
-#include "solver/fe/finite_element_method.hpp"
-#include "solver/make_rupture_method.hpp"
 #include "solver/mesh_size.hpp"
+#include "solver/methods.hpp"
 #include "solver/run/station_recorder.hpp"
 #include "solver/run/time_loop.hpp"
-#include "solver/spectral/spectral_method.hpp"
 #include "solver/thread_team.hpp"
 
 #include <chrono>
@@ -22,22 +20,15 @@ double resolved_height(const SimulationParams& params) {
 double estimated_memory_bytes(const SimulationParams& params) {
   // The station records are the time loop's, the same for every method.
   const double stations = StationRecorder::record_bytes(params.stations, step_count_bound(params));
-  if (params.method == Method::spectral_bi)
-    return spectral::SpectralMethod::estimated_memory_bytes(params) + stations;
-  return fe::FiniteElementMethod::estimated_memory_bytes(params) + stations;
+  return method_entry(params.method).estimated_memory_bytes(params) + stations;
 }
 
 TimeStepBounds time_step_bounds(const SimulationParams& params) {
-  if (params.method == Method::spectral_bi) {
-    const double dt = spectral::SpectralMethod::time_step(params);
-    return {dt, dt};
-  }
-  return fe::FiniteElementMethod::time_step_bounds(params);
+  return method_entry(params.method).time_step_bounds(params);
 }
 
 double step_count_bound(const SimulationParams& params) {
-  if (params.method == Method::spectral_bi) return spectral::SpectralMethod::step_bound(params);
-  return fe::FiniteElementMethod::step_count_bound(params);
+  return method_entry(params.method).step_count_bound(params);
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {
@@ -45,7 +36,7 @@ RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) 
   // built with denormals flushed, as it is stepped.
   const auto started = std::chrono::steady_clock::now();
   FloatModeGuard float_mode;
-  const std::unique_ptr<RuptureMethod> method = make_rupture_method(params);
+  const std::unique_ptr<RuptureMethod> method = method_entry(params.method).make(params);
   return run_time_loop(*method, params, hooks, started);
 }
 

@@ -2,8 +2,8 @@
 //
 //   RunResult r = run_simulation(params, hooks);
 //
-// It builds the rupture method the job asks for (make_rupture_method.hpp) and runs the time
-// loop on it (run/time_loop.hpp). The run reports progress through a callback, stops
+// It builds the rupture method the job asks for (its entry in solver/methods.hpp) and runs
+// the time loop on it (run/time_loop.hpp). The run reports progress through a callback, stops
 // cooperatively when the cancel flag is set, streams sampled interface fields to an
 // optional SampleSink (the HDF5 writer; run/run_hooks.hpp), and returns the metrics of
 // docs/metrics.md with the front profile and the probe records (run/run_result.hpp).

@@ -150,12 +150,11 @@ nlohmann::json critical_length(const std::vector<StudyRun>& runs,
   return result;
 }
 
-nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
-                                  const std::vector<StudyRun>& bi_runs,
+nlohmann::json cross_method_table(const MethodRuns& first, const MethodRuns& second,
                                   const ConvergenceTolerances& tol) {
-  const TwoMethods both(fe_runs, bi_runs, tol);
-  std::vector<double> Ls = study_values(fe_runs, &StudyRun::L);
-  for (double L : study_values(bi_runs, &StudyRun::L))
+  const TwoMethods both(first, second, tol);
+  std::vector<double> Ls = study_values(first.runs, &StudyRun::L);
+  for (double L : study_values(second.runs, &StudyRun::L))
     Ls.push_back(L);
   Ls = unique_sorted(Ls);
   // spectral_velocity: the peak |V| at the spectrum probe (x1 = 6 m in the paper's scene).
@@ -173,23 +172,23 @@ nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
   };
   json rows = json::array();
   for (double L : Ls) {
-    const StudyRun* fe = both.fe_reference(L);
-    const StudyRun* bi = both.bi_reference(L);
-    json row = {{"L", L}, {"fe", side(fe)}, {"spectral_bi", side(bi)}};
-    if (fe && bi) {
+    const StudyRun* a = both.first_reference(L);
+    const StudyRun* b = both.second_reference(L);
+    json row = {{"L", L}, {first.method, side(a)}, {second.method, side(b)}};
+    if (a && b) {
       json differences;
-      for (const char* key : keys) // (fe - bi) / bi
-        differences[key] = json_number(relative_change(metric(*fe, key), metric(*bi, key)));
+      for (const char* key : keys) // (a - b) / b
+        differences[key] = json_number(relative_change(metric(*a, key), metric(*b, key)));
       row["differences"] = differences;
-      const Comparison c = compare(*fe, *bi, tol);
+      const Comparison c = compare(*a, *b, tol);
       row["agree"] = c.agree;
       row["reason"] = c.reason;
     } else {
       row["differences"] = nullptr;
       row["agree"] = nullptr;
-      row["reason"] = std::string("no mesh-converged run of this L by ") + (fe   ? "spectral_bi"
-                                                                            : bi ? "fe"
-                                                                                 : "either method");
+      row["reason"] = "no mesh-converged run of this L by " + (a   ? second.method
+                                                               : b ? first.method
+                                                                   : std::string("either method"));
     }
     rows.push_back(std::move(row));
   }

@@ -16,11 +16,11 @@ namespace slipfront::api {
 nlohmann::json critical_length(const std::vector<StudyRun>& runs,
                                const ConvergenceTolerances& tol = {});
 
-// The same L by both methods: the reference (finest, mesh-converged) run of each, its
-// metrics, and the relative differences (fe - spectral_bi) / spectral_bi. One row per L of
-// either set; a side is null where that method has no mesh-converged run of the L.
-nlohmann::json cross_method_table(const std::vector<StudyRun>& fe_runs,
-                                  const std::vector<StudyRun>& bi_runs,
+// The same L by two methods (FE and spectral_bi, in that order): the reference (finest,
+// mesh-converged) run of each under its method's name, its metrics, and the relative
+// differences (first - second) / second. One row per L of either set; a side is null where
+// that method has no mesh-converged run of the L.
+nlohmann::json cross_method_table(const MethodRuns& first, const MethodRuns& second,
                                   const ConvergenceTolerances& tol = {});
 
 } // namespace slipfront::api

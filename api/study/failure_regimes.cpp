@@ -1,5 +1,6 @@
 #include "api/study/failure_regimes.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/number_text.hpp"
 #include "api/study/run_rules.hpp"
 
@@ -57,9 +58,11 @@ const std::vector<Regime>& failure_regimes() {
 
 nlohmann::json regime_patch(const Regime& regime, const nlohmann::json& base) {
   nlohmann::json patch = regime.overrides;
-  const bool spectral = base.value("method", "fe") == "spectral_bi";
+  // A block method: the lower block as high as the base's upper one.
+  const MethodEntry* method = find_method(method_name_of(base));
+  const bool blocks = (method != nullptr ? *method : default_method()).supports.block_height;
   const auto geometry = base.find("geometry");
-  if (patch.contains("lower") && !spectral && geometry != base.end() && geometry->is_object() &&
+  if (patch.contains("lower") && blocks && geometry != base.end() && geometry->is_object() &&
       geometry->contains("height"))
     patch["lower"]["height"] = (*geometry)["height"];
   return patch;

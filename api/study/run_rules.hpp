@@ -76,18 +76,22 @@ const StudyRun* reference_run(const std::vector<StudyRun>& runs,
 // {"propagation_distance": change, "arrival_time": change}, null where undefined.
 nlohmann::json changes_json(double distance_change, double arrival_change);
 
-// The runs of one scene by both methods, with each method's reference run of an L.
+// The runs of one scene by two methods (in the registry's order: FE first, then the spectral
+// BI method), with each method's reference run of an L.
 struct TwoMethods {
-  const std::vector<StudyRun>& fe_runs;
-  const std::vector<StudyRun>& bi_runs;
-  std::vector<RunConvergence> fe_statuses, bi_statuses;
+  const MethodRuns& first;
+  const MethodRuns& second;
+  std::vector<RunConvergence> first_statuses, second_statuses;
 
-  TwoMethods(const std::vector<StudyRun>& fe, const std::vector<StudyRun>& bi,
-             const ConvergenceTolerances& tol)
-      : fe_runs(fe), bi_runs(bi), fe_statuses(convergence_statuses(fe, tol)),
-        bi_statuses(convergence_statuses(bi, tol)) {}
-  const StudyRun* fe_reference(double L) const { return reference_run(fe_runs, fe_statuses, L); }
-  const StudyRun* bi_reference(double L) const { return reference_run(bi_runs, bi_statuses, L); }
+  TwoMethods(const MethodRuns& a, const MethodRuns& b, const ConvergenceTolerances& tol)
+      : first(a), second(b), first_statuses(convergence_statuses(a.runs, tol)),
+        second_statuses(convergence_statuses(b.runs, tol)) {}
+  const StudyRun* first_reference(double L) const {
+    return reference_run(first.runs, first_statuses, L);
+  }
+  const StudyRun* second_reference(double L) const {
+    return reference_run(second.runs, second_statuses, L);
+  }
 };
 
 } // namespace slipfront::api::study_rules

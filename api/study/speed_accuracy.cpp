@@ -69,25 +69,24 @@ nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs, const Convergen
   return list;
 }
 
-nlohmann::json speed_accuracy_across_methods(const std::vector<StudyRun>& fe_runs,
-                                             const std::vector<StudyRun>& bi_runs,
+nlohmann::json speed_accuracy_across_methods(const MethodRuns& first, const MethodRuns& second,
                                              const ConvergenceTolerances& tol) {
-  const TwoMethods both(fe_runs, bi_runs, tol);
-  // The reference of an L: the finer of the two methods' references (BI on a tie).
-  auto reference_of = [&](double L) -> std::pair<const StudyRun*, const char*> {
-    const StudyRun* fe = both.fe_reference(L);
-    const StudyRun* bi = both.bi_reference(L);
-    if (fe && (!bi || finer(fe->n_d, bi->n_d))) return {fe, "fe"};
-    return {bi, bi ? "spectral_bi" : nullptr};
+  const TwoMethods both(first, second, tol);
+  // The reference of an L: the finer of the two methods' references (the second on a tie).
+  auto reference_of = [&](double L) -> std::pair<const StudyRun*, const std::string*> {
+    const StudyRun* a = both.first_reference(L);
+    const StudyRun* b = both.second_reference(L);
+    if (a && (!b || finer(a->n_d, b->n_d))) return {a, &first.method};
+    return {b, b ? &second.method : nullptr};
   };
   json list = json::array();
-  for (const auto& [runs, method] : {std::pair{&fe_runs, "fe"}, std::pair{&bi_runs, "spectral_bi"}})
-    for (const StudyRun& run : *runs) {
+  for (const MethodRuns* side : {&first, &second})
+    for (const StudyRun& run : side->runs) {
       if (!has_result(state_of(run))) continue;
       const auto [ref, ref_method] = reference_of(run.L);
       json entry = speed_accuracy_entry(run, ref);
-      entry["method"] = method;
-      entry["reference_method"] = ref_method ? json(ref_method) : json(nullptr);
+      entry["method"] = side->method;
+      entry["reference_method"] = ref_method ? json(*ref_method) : json(nullptr);
       list.push_back(std::move(entry));
     }
   return list;

@@ -20,11 +20,11 @@ namespace slipfront::api {
 nlohmann::json speed_accuracy(const std::vector<StudyRun>& runs,
                               const ConvergenceTolerances& tol = {});
 
-// As speed_accuracy, over the runs of both methods of one scene: each entry names its
-// "method", and its errors are against the finest reference run of its L by either method
-// (spectral_bi on a tie), named by "reference_run_id" and "reference_method".
-nlohmann::json speed_accuracy_across_methods(const std::vector<StudyRun>& fe_runs,
-                                             const std::vector<StudyRun>& bi_runs,
+// As speed_accuracy, over the runs of two methods of one scene (FE and spectral_bi, in that
+// order): each entry names its "method", and its errors are against the finest reference run
+// of its L by either method (the second on a tie: spectral_bi), named by "reference_run_id"
+// and "reference_method".
+nlohmann::json speed_accuracy_across_methods(const MethodRuns& first, const MethodRuns& second,
                                              const ConvergenceTolerances& tol = {});
 
 // ||v_a - v_ref|| / ||v_ref|| in L2 over time, on the samples of `a` that lie in the common

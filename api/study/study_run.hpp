@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace slipfront::api {
 
@@ -21,6 +22,13 @@ struct StudyRun {
   std::optional<nlohmann::json> metrics; // the metrics JSON (docs/metrics.md), when it has one
   double wall_time_s = 0.0;
   double memory_bytes = 0.0;
+};
+
+// The runs of one scene by one method, named by the job's spelling ("fe", "spectral_bi"): a
+// side of a comparison across methods.
+struct MethodRuns {
+  std::string method;
+  const std::vector<StudyRun>& runs;
 };
 
 // docs/metrics.md "Convergence status", paper §3.1: refining the mesh changes propagation_distance

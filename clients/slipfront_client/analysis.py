@@ -12,6 +12,8 @@ scene, ask it instead (`plot convergence --from-server`, `--study`).
 
 import math
 
+from . import methods
+
 DISTANCE_TOL = 0.005
 ARRIVAL_TOL = 0.001
 STATUSES = ("converged", "not_converged", "diverged", "pending", "unknown", "failed")
@@ -208,13 +210,14 @@ def rows_from_speed_accuracy(doc, method=None):
 
     `across_methods.runs` (every run of both methods' scenes, each against the finest
     converged run of its L by either method) is used when the server gives it; otherwise
-    `runs` (the study's own method: `method`, else the document's, else "fe")."""
+    `runs` (the study's own method: `method`, else the document's, else the default)."""
     across = doc.get("across_methods") if isinstance(doc, dict) else None
     if isinstance(across, dict) and across.get("runs") is not None:
-        runs, default = across["runs"], method or "fe"
+        runs, default = across["runs"], method or methods.default()
     else:
         runs = doc.get("runs") if isinstance(doc, dict) else doc
-        default = method or (doc.get("method") if isinstance(doc, dict) else None) or "fe"
+        default = (method or (doc.get("method") if isinstance(doc, dict) else None)
+                   or methods.default())
     rows = []
     for r in runs or []:
         errors = r.get("errors") or {}

@@ -168,6 +168,11 @@ class Api:
                                 headers=headers, ok=(200, 201), idempotent=True)
         return response.json()
 
+    def job_schema(self):
+        """GET /schema/job.json: the job's JSON Schema (with the methods and their labels in
+        `properties.method`: slipfront_client.methods)."""
+        return self.get_json(f"{API}/schema/job.json")
+
     def presets(self):
         """GET /presets: [{name, origin, title, description, reference, spec}]."""
         return self.get_json(f"{API}/presets")["presets"]

@@ -4,7 +4,7 @@ import argparse
 import sys
 
 from . import (__version__, commands_compare, commands_fit, commands_jobs, commands_keep,
-               commands_plot, commands_study, config)
+               commands_plot, commands_study, config, methods)
 from .api import Api
 from .errors import EXIT_INTERRUPTED, EXIT_SERVER, ClientError
 
@@ -30,6 +30,7 @@ class Context:
             server, source = config.server_url(self.args.server)
             self._api = Api(server, token=config.token(self.args.token),
                             timeout=self.args.http_timeout, url_source=source)
+            methods.use(self._api)  # the server's methods and labels, read when first needed
         return self._api
 
     def close(self):

@@ -8,7 +8,7 @@ import argparse
 import importlib
 import os
 
-from . import compare
+from . import compare, methods
 from .errors import UsageError
 from .output import log, print_json
 
@@ -53,7 +53,7 @@ def add_parsers(sub, common):
 
 def _by_scene(job):
     spec = job.get("spec") or {}
-    return (job.get("method") or spec.get("method") or "fe",
+    return (job.get("method") or spec.get("method") or methods.default(),
             -((spec.get("friction") or {}).get("L") or 0),
             (spec.get("geometry") or {}).get("nodes_per_meter") or 0)
 

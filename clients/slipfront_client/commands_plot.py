@@ -9,7 +9,7 @@ import os
 
 import importlib
 
-from . import analysis
+from . import analysis, methods
 from .errors import UsageError
 from .output import log
 
@@ -271,7 +271,8 @@ def study_cost_rows(api, study_ids):
     finest = []
     for sid in study_ids:
         jobs = list(api.list_jobs({"study_id": sid}, limit=None))
-        base = [dict(results().row_from_job(j), method=(j.get("spec") or {}).get("method") or "fe")
+        base = [dict(results().row_from_job(j),
+                     method=(j.get("spec") or {}).get("method") or methods.default())
                 for j in jobs]
         by_method = {}
         for r in base:

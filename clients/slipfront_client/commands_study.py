@@ -1,6 +1,6 @@
 """`study create|wait|show|cancel`: a grid of runs over L × n_d (docs/studies-api.md)."""
 
-from . import jobspec, studies
+from . import jobspec, methods, studies
 from .errors import ServerError, UsageError
 from .output import log, print_json, table
 
@@ -79,7 +79,7 @@ def add_accuracy_parser(sub, common):
                                   "max_slip_velocity, rupture_speed.max or rupture_speed.mean")
     a.add_argument("tolerance", help="the relative error allowed: 0.005 or 0.5%%")
     a.add_argument("--L", dest="length", type=float, help="friction.L [m] (default 5e-5)")
-    a.add_argument("--method", choices=["auto", "fe", "spectral_bi"],
+    a.add_argument("--method", choices=["auto", *methods.names()],
                    help="default auto: spectral_bi where it applies")
     a.add_argument("--base", help="base job JSON file (default: the paper's scene)")
     a.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE")

@@ -10,9 +10,8 @@ returns a list of lines and tolerates missing keys (an older server), saying "â€
 
 import math
 
-METHOD_NAMES = {"fe": "finite elements (`fe`)",
-                "spectral_bi": "spectral boundary integral (`spectral_bi`)"}
-SHORT = {"fe": "FE", "spectral_bi": "BI"}
+from . import methods
+
 NO_L_MEETS = "no L meets the rule"
 
 
@@ -38,7 +37,12 @@ def percent(value, digits=3):
 
 
 def method_of(study):
-    return study.get("method") or (study.get("base") or {}).get("method") or "fe"
+    return study.get("method") or (study.get("base") or {}).get("method") or methods.default()
+
+
+def method_name(method):
+    """'finite elements (`fe`)': a method in words and by its name."""
+    return f"{methods.title(method)} (`{method}`)"
 
 
 def same_L(a, b):
@@ -113,7 +117,7 @@ def verdict_lines(study, heading="###"):
     method = method_of(study)
     cl = study.get("critical_length") or {}
     verdict = verdict_text(study)
-    lines = [f"{heading} {METHOD_NAMES.get(method, method)}: {verdict}\n"]
+    lines = [f"{heading} {method_name(method)}: {verdict}\n"]
     lines.append(f"Study `{study.get('id')}`, {study.get('status', '?')}.")
     if verdict.startswith("L_c ="):
         nxt = cl.get("next_larger_L")

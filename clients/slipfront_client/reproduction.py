@@ -16,6 +16,7 @@ import platform
 import tempfile
 import time
 
+from . import methods
 from . import report as report_mod
 from . import results as results_mod
 from .local_server import log
@@ -38,7 +39,7 @@ __all__ = ["BI_LADDER", "DAMPED", "FE_ONLY", "FINAL_JOB", "FULL_L", "FULL_LADDER
 def progress_line(study):
     p = study.get("progress") or {}
     states = ", ".join(f"L={L}: {r.get('state')}" for L, r in (study.get("refinement") or {}).items())
-    method = report_mod.SHORT.get(report_mod.method_of(study), "")
+    method = methods.label(report_mod.method_of(study))
     return (f"{method} study {study.get('status')}: {p.get('done')}/{p.get('total')} runs final"
             f"  [{states}]")
 

@@ -9,6 +9,7 @@ frequency and estimate (docs/metrics.md "Spectral estimate") with the search's L
 
 import numpy as np
 
+from . import methods
 from . import results as results_mod
 from .report import fmt
 from .reproduction_story import V_STAR
@@ -67,14 +68,16 @@ def spectral_points(refs, metrics):
 
 
 def mesh_frequencies(studies, metrics):
-    """{"FE n_d = 20": 1/(pi stable_dt)} of every FE mesh in the studies (paper Fig. 5c)."""
+    """{"FE n_d = 20": 1/(pi stable_dt)} of every mesh in the studies whose method has a stable
+    step (FE's; the spectral BI method has none: null) (paper Fig. 5c)."""
     from .plots.filter_response import highest_frequency
     out = {}
     for study in studies:
         for r in (study or {}).get("runs") or []:
             m = metrics.get(r["job_id"]) or r.get("_metrics") or {}
-            if (m.get("method") or "fe") == "fe" and m.get("stable_dt"):
-                out[f"FE $\\bar f_{{{float(r['n_d']):g}}}$"] = highest_frequency(m["stable_dt"])
+            if m.get("stable_dt"):
+                label = methods.label(m.get("method"))
+                out[f"{label} $\\bar f_{{{float(r['n_d']):g}}}$"] = highest_frequency(m["stable_dt"])
     return out
 
 

@@ -4,6 +4,7 @@ shape checks (library of clients/reproduce_paper.py)."""
 import json
 import os
 
+from . import methods
 from . import report as report_mod
 from .analysis import merge_rows, rows_from_speed_accuracy, has_across_methods
 from .report import converged_n_d, fmt
@@ -155,7 +156,7 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     lines.extend(paper_lines(study, bi_study, search.get("study")))
 
     add("## L_c verdict, by method\n")
-    add("- " + "; ".join(f"**{report_mod.SHORT.get(report_mod.method_of(s), '?')}: "
+    add("- " + "; ".join(f"**{methods.label(report_mod.method_of(s))}: "
                          f"{report_mod.verdict_text(s)}** (spectral estimate "
                          f"{fmt(s.get('spectral_critical_length'), unit='m')})"
                          for s in (study, bi_study) if s) + ".\n")
@@ -253,7 +254,7 @@ def write_report(path, args, study, bi, chosen, results, metrics, figures, timin
     for st in (study, bi_study):
         if st:
             cl = st.get("critical_length") or {}
-            add(f"| {report_mod.SHORT.get(report_mod.method_of(st), '?')} | "
+            add(f"| {methods.label(report_mod.method_of(st))} | "
                 f"{report_mod.verdict_text(st)} | {fmt(st.get('spectral_critical_length'), unit='m')} | "
                 f"{fmt(cl.get('spectral_from_L'), unit='m')} | L_c ≈ 1e-5 m |")
     add("\nThe reasons, the change per step in L and the n_d per L: the verdicts at the top.\n")

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import h5py
 import numpy as np
 
+from . import methods
 from .errors import UsageError
 from .friction_labels import friction_label
 
@@ -57,9 +58,6 @@ class Result:
         return solid_wave_speeds(self.spec.get("material") or {})
 
 
-METHODS = {"fe": "FE", "spectral_bi": "BI"}
-
-
 def _number(value, unit=""):
     return "?" if value is None else f"{value:g}{unit}"
 
@@ -83,10 +81,10 @@ def run_label(spec, metrics=None):
     n_d: 'FE, L = 5e-05 m, n_d = 40', 'BI, Coulomb, n_d = 20', 'BI, bimaterial, slip weakening
     D_c = 0.000744 m, t* = 0.00035 s, n_d = 5'."""
     spec = spec or {}
-    method = spec.get("method") or (metrics or {}).get("method") or "fe"
+    method = spec.get("method") or (metrics or {}).get("method") or methods.default()
     n_d = (spec.get("geometry") or {}).get("nodes_per_meter")
     damping = (spec.get("fe") or {}).get("mesh_damping")
-    parts = [METHODS.get(method, method), below_label(spec), friction_label(spec.get("friction")),
+    parts = [methods.label(method), below_label(spec), friction_label(spec.get("friction")),
              f"mesh damping {_number(damping)}" if damping else "", f"n_d = {_number(n_d)}"]
     return ", ".join(p for p in parts if p)
 

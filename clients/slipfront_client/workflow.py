@@ -11,7 +11,7 @@ load a result as numpy arrays, run a study, and the run table as a pandas DataFr
 import json
 import os
 
-from . import config, studies
+from . import config, methods, studies
 from .api import Api
 from .result_download import download_result, write_xdmf
 from .results import cache_dir, load_result
@@ -22,7 +22,9 @@ def connect(server=None, token=None, timeout=30.0):
     """An `Api` for the server at `server` (else SLIPFRONT_SERVER, the config file, or
     http://127.0.0.1:8080); see slipfront_client.config."""
     url, source = config.server_url(server)
-    return Api(url, token=config.token(token), timeout=timeout, url_source=source)
+    api = Api(url, token=config.token(token), timeout=timeout, url_source=source)
+    methods.use(api)  # the server's methods and their labels, read when first needed
+    return api
 
 
 def submit(api, spec, wait=False, timeout=None, fresh=False):

@@ -3,6 +3,7 @@
 #include "api/job_spec.hpp"
 #include "api/run_job.hpp"
 #include "server/core/comma_list.hpp"
+#include "solver/methods.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -76,10 +77,11 @@ struct Whitelist {
 const Whitelist& whitelist() {
   static const Whitelist w = [] {
     Whitelist out;
-    for (const char* method : {"fe", "spectral_bi"}) {
+    for (const MethodEntry* entry : methods()) {
+      const std::string method(entry->method.name());
       auto parsed = api::parse_job(nlohmann::json{{"method", method}});
       if (!parsed.ok())
-        throw std::logic_error(std::string("the default job of method ") + method +
+        throw std::logic_error("the default job of method " + method +
                                " does not validate: " + parsed.errors.front().reason);
       collect_leaves(parsed.spec->canonical, "", out.spec);
     }

@@ -1,6 +1,7 @@
 #include "server/core/study_request.hpp"
 
 #include "api/free_text.hpp"
+#include "api/job_methods.hpp"
 #include "api/number_text.hpp"
 #include "server/core/priority.hpp"
 
@@ -238,10 +239,14 @@ void parse_accuracy(const json& a, StudyRequest& r, Errors& errors) {
                      "a relative error in [1e-6, 0.5] (0.005 is 0.5 %)", 0.0, errors);
   target.L = bounded_number(a, "L", at, 1e-12, 1.0, "a number in [1e-12, 1] (m)", 5e-5, errors);
   if (auto it = a.find("method"); it != a.end()) {
-    if (!it->is_string() || (*it != "auto" && *it != "fe" && *it != "spectral_bi"))
-      errors.push_back({at + "/method", "must be \"auto\", \"fe\" or \"spectral_bi\""});
-    else
+    if (!it->is_string() || (*it != "auto" && find_method(it->get<std::string>()) == nullptr)) {
+      std::vector<std::string> choices = {"\"auto\""};
+      for (const std::string& name : api::method_names())
+        choices.push_back("\"" + name + "\"");
+      errors.push_back({at + "/method", "must be " + api::or_list(choices)});
+    } else {
       r.method_choice = it->get<std::string>();
+    }
   }
   if (r.method_choice != "auto" && r.base.contains("method") && r.base["method"] != r.method_choice)
     errors.push_back({at + "/method", "differs from /base/method: give the method once"});

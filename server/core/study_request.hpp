@@ -29,7 +29,7 @@ struct StudyRequest {
   double n_d_max = 0.0;                           // convergence: the cap
   std::optional<api::LSearch> search;             // convergence without L: L holds its whole ladder
   std::optional<api::AccuracyTarget> accuracy;    // accuracy: L holds its one L, n_d the ladder
-  std::string method_choice = "auto";             // accuracy: "auto", "fe" or "spectral_bi"
+  std::string method_choice = "auto";             // accuracy: "auto" or a method's name
   std::optional<std::size_t> accuracy_start;      // accuracy: index in n_d of its first mesh
   std::optional<int> priority;
   std::optional<bool> fresh;

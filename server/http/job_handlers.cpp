@@ -1,4 +1,5 @@
 // POST /jobs, GET /jobs, GET /jobs/{id}, POST /jobs/{id}/cancel.
+#include "api/job_methods.hpp"
 #include "api/json_number.hpp"
 #include "server/core/job_id.hpp"
 #include "server/core/priority.hpp"
@@ -190,19 +191,20 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
   return problem_response(rc.request, http::status::internal_server_error, "unreachable");
 }
 
-// GET /job-defaults?method=fe|spectral_bi: the canonical spec of an empty job of that method
-// (every field with its default), what the web view's submit form starts from.
+// GET /job-defaults?method=NAME (fe, spectral_bi: solver/methods.hpp): the canonical spec of
+// an empty job of that method (every field with its default), what the web view's submit form
+// starts from.
 Response job_defaults(RequestContext& rc) {
-  std::string method = "fe";
+  std::string method(default_method().method.name());
   for (const auto& [key, value] : rc.query) {
     if (key != "method")
       return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
                               {{"/query/" + key, "unknown query parameter (known: method)"}});
     method = value;
   }
-  if (method != "fe" && method != "spectral_bi")
+  if (find_method(method) == nullptr)
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
-                            {{"/query/method", "must be fe or spectral_bi"}});
+                            {{"/query/method", "must be " + api::or_list(api::method_names())}});
   auto parsed = api::parse_job(nlohmann::json{{"method", method}});
   if (!parsed.ok())
     return problem_response(rc.request, http::status::internal_server_error,

@@ -1,5 +1,6 @@
 #include "server/http/job_json.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/json_number.hpp"
 #include "server/http/api_prefix.hpp"
 
@@ -17,7 +18,7 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["status"] = to_string(job.status);
   j["name"] = job.name;
   j["tags"] = job.tags;
-  j["method"] = job.spec.is_object() ? job.spec.value("method", "fe") : "fe";
+  j["method"] = api::method_name_of(job.spec);
   j["spec"] = job.spec;
   j["spec_sha256"] = job.spec_sha256;
   j["submitted_by"] = text_or_null(job.submitted_by);

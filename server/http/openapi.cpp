@@ -254,7 +254,7 @@ const char* document = R"json({
     },
     "/api/v1/job-defaults": {
       "get": {"summary": "The canonical spec of an empty job of a method: every field with its default (the web view's submit form starts from it)",
-        "parameters": [{"name": "method", "in": "query", "schema": {"type": "string", "enum": ["fe", "spectral_bi"], "default": "fe"}}],
+        "parameters": [{"name": "method", "in": "query", "schema": "the methods: added by openapi_document()"}],
         "responses": {"200": {"description": "{method, spec, memory_estimate_bytes}", "content": {"application/json": {}}},
           "400": {"$ref": "#/components/responses/Problem"}}}
     },
@@ -389,6 +389,12 @@ nlohmann::json openapi_document() {
   doc["components"]["schemas"]["StudyRequest"]["properties"]["priority"] = priority_schema();
   for (auto& parameter : doc["paths"]["/api/v1/jobs"]["post"]["parameters"])
     if (parameter["name"] == "priority") parameter["schema"] = priority_schema();
+  // The methods, from the registry (solver/methods.hpp) as the job schema has them.
+  for (auto& parameter : doc["paths"]["/api/v1/job-defaults"]["get"]["parameters"])
+    if (parameter["name"] == "method")
+      parameter["schema"] = {{"type", "string"},
+                             {"enum", job["properties"]["method"]["enum"]},
+                             {"default", job["properties"]["method"]["default"]}};
   add_keep_share_paths(doc); // openapi_keep.cpp
   const nlohmann::json unavailable = {{"$ref", "#/components/responses/Unavailable"}};
   const nlohmann::json unsupported = {

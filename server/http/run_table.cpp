@@ -1,5 +1,6 @@
 #include "server/http/run_table.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/json_number.hpp"
 #include "server/http/api_prefix.hpp"
 
@@ -49,7 +50,7 @@ nlohmann::ordered_json run_row(const Job& job, const std::string& convergence_st
   row["id"] = job.id;
   row["name"] = job.name;
   row["status"] = to_string(job.status);
-  row["method"] = job.spec.is_object() ? job.spec.value("method", "fe") : "fe";
+  row["method"] = api::method_name_of(job.spec);
   std::string tags;
   for (const auto& t : job.tags)
     tags += (tags.empty() ? "" : ";") + t;

@@ -1,5 +1,6 @@
 #include "server/http/study_json.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/json_number.hpp"
 #include "server/http/api_prefix.hpp"
 
@@ -20,7 +21,7 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   j["updated_at"] = s.updated_at.empty() ? json(nullptr) : json(s.updated_at);
   j["finished_at"] = s.finished_at.empty() ? json(nullptr) : json(s.finished_at);
   j["scene_hash"] = s.scene_hash;
-  j["method"] = s.base.is_object() ? s.base.value("method", "fe") : "fe";
+  j["method"] = api::method_name_of(s.base);
   j["progress"] = {{"done", s.runs_done},
                    {"total", s.runs_total},
                    {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};

@@ -118,14 +118,14 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& rows, const jso
   if (!finished) study.finished_at.clear();
 }
 
-json cross_method(const std::vector<StudyRunRow>& fe_rows,
-                  const std::vector<StudyRunRow>& bi_rows) {
-  std::vector<api::StudyRun> fe, bi;
-  for (const auto& r : fe_rows)
-    fe.push_back(to_study_run(r));
-  for (const auto& r : bi_rows)
-    bi.push_back(to_study_run(r));
-  return api::cross_method_table(fe, bi);
+json cross_method(const std::string& first, const std::vector<StudyRunRow>& first_rows,
+                  const std::string& second, const std::vector<StudyRunRow>& second_rows) {
+  std::vector<api::StudyRun> a, b;
+  for (const auto& r : first_rows)
+    a.push_back(to_study_run(r));
+  for (const auto& r : second_rows)
+    b.push_back(to_study_run(r));
+  return api::cross_method_table({first, a}, {second, b});
 }
 
 json scene_analysis(const std::vector<StudyRunRow>& rows) {

@@ -21,8 +21,9 @@ void analyse_study(StudyRecord& study, std::vector<StudyRunRow>& runs,
 // The map and L_c of any set of runs of one scene (GET /convergence-map).
 nlohmann::json scene_analysis(const std::vector<StudyRunRow>& runs);
 
-// The cross-method table (api::cross_method_table) of one scene's FE and BI runs.
-nlohmann::json cross_method(const std::vector<StudyRunRow>& fe_rows,
-                            const std::vector<StudyRunRow>& bi_rows);
+// The cross-method table (api::cross_method_table) of one scene's runs by two methods (by
+// name, in the registry's order: FE, then spectral_bi).
+nlohmann::json cross_method(const std::string& first, const std::vector<StudyRunRow>& first_rows,
+                            const std::string& second, const std::vector<StudyRunRow>& second_rows);
 
 } // namespace slipfront::server

@@ -6,6 +6,7 @@
 #include "server/core/log.hpp"
 #include "server/services/study_progress.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
 #include "api/result_reader.hpp"
@@ -61,21 +62,27 @@ void add_search_stations(StudyRequest& r, JobService& jobs) {
 }
 
 // An accuracy study (docs/studies-api.md "Accuracy target"): the method, when the request
-// leaves it to the service (the spectral BI method where it applies to the scene: its runs
-// cost less at the same n_d), and the first mesh of the ladder, from the runs the database
-// already has of the scene. Written into the stored request, so that a restart and an
-// idempotent replay see the same choices.
+// leaves it to the service (the cheapest method that applies to the scene, by the registry's
+// cost_rank: the spectral BI method where it applies, its runs cost less at the same n_d; else
+// the default), and the first mesh of the ladder, from the runs the database already has of
+// the scene. Written into the stored request, so that a restart and an idempotent replay see
+// the same choices.
 void prepare_accuracy(StudyRequest& r, JobService& jobs, StudyStore& studies) {
   if (r.kind != StudyKind::accuracy) return;
   if (!r.base.contains("method")) {
     json chosen = r.base;
-    chosen["method"] = "fe";
-    if (r.method_choice != "fe") {
-      json bi = api::counterpart_document(chosen);
-      StudyRequest trial = r;
-      trial.base = bi;
-      const bool applies = validate_run(trial, jobs, r.n_d[0]).spec.has_value();
-      if (applies || r.method_choice == "spectral_bi") chosen = std::move(bi);
+    chosen["method"] = std::string(default_method().method.name());
+    if (r.method_choice != "auto") {
+      chosen = api::method_document(chosen, method_entry(Method(r.method_choice)));
+    } else {
+      for (const MethodEntry* cheaper : api::cheaper_methods()) {
+        StudyRequest trial = r;
+        trial.base = api::method_document(chosen, *cheaper);
+        if (validate_run(trial, jobs, r.n_d[0]).spec.has_value()) {
+          chosen = std::move(trial.base);
+          break;
+        }
+      }
     }
     r.base = chosen;
     r.body["base"] = chosen;
@@ -320,7 +327,13 @@ std::optional<MethodScenes> StudyService::method_scenes(const StudyRecord& study
   request.base = study.base;
   auto base = jobs_.validate(run_document(request, study.id, json::object(), "", 5e-5, 10));
   if (!base.spec) return std::nullopt;
-  return MethodScenes{base.spec->params.method == Method::finite_element, study.scene_hash,
+  const MethodEntry& method = method_entry(base.spec->params.method);
+  const auto order = [](Method m) {
+    const auto& all = methods();
+    return std::find(all.begin(), all.end(), &method_entry(m)) - all.begin();
+  };
+  return MethodScenes{std::string(method.method.name()), std::string(method.counterpart.name()),
+                      order(method.method) < order(method.counterpart), study.scene_hash,
                       api::counterpart_scene_hash(base.spec->canonical)};
 }
 
@@ -334,7 +347,9 @@ std::optional<StudyView> StudyService::view(const std::string& id) {
     if (!scenes->other_scene.empty()) {
       const auto mine = studies_.scene_runs(scenes->scene);
       const auto theirs = studies_.scene_runs(scenes->other_scene);
-      view.cross_method = scenes->is_fe ? cross_method(mine, theirs) : cross_method(theirs, mine);
+      view.cross_method = scenes->method_first
+                              ? cross_method(scenes->method, mine, scenes->other, theirs)
+                              : cross_method(scenes->other, theirs, scenes->method, mine);
     }
   }
   return view;
@@ -392,13 +407,16 @@ std::optional<json> StudyService::speed_accuracy(const std::string& id) {
       by_id.emplace(scene_rows[k].job_id, &scene_rows[k]);
       (k < own ? mine : theirs).push_back(to_study_run(scene_rows[k]));
     }
-    json across_runs = scenes->is_fe ? api::speed_accuracy_across_methods(mine, theirs)
-                                     : api::speed_accuracy_across_methods(theirs, mine);
+    const api::MethodRuns study_side{scenes->method, mine}, other_side{scenes->other, theirs};
+    json across_runs = scenes->method_first
+                           ? api::speed_accuracy_across_methods(study_side, other_side)
+                           : api::speed_accuracy_across_methods(other_side, study_side);
     for (auto& entry : across_runs)
       l2.add_to(entry);
     across = {{"runs", across_runs},
-              {"reference", "the finest reference run of the same L by either method "
-                            "(spectral_bi on a tie), from every run of the two scenes"}};
+              {"reference", "the finest reference run of the same L by either method (" +
+                                (scenes->method_first ? scenes->other : scenes->method) +
+                                " on a tie), from every run of the two scenes"}};
   }
   return json{{"study_id", id},
               {"runs", list},

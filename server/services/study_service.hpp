@@ -37,9 +37,11 @@ struct StudyCancelResult {
   std::vector<std::string> cancel_requested_jobs;      // were running: they stop at their next step
 };
 
-// The study's scene and the same physics by the other method (docs/studies.md).
+// The study's scene and the same physics by its method's counterpart (docs/studies.md).
 struct MethodScenes {
-  bool is_fe = true;
+  std::string method;      // the study's: "fe"
+  std::string other;       // its counterpart's: "spectral_bi"
+  bool method_first;       // the study's method comes first in the registry (solver/methods.hpp)
   std::string scene;       // the study's own scene hash
   std::string other_scene; // "" when the swapped spec is not valid
 };

@@ -4,6 +4,7 @@
 #include "server/core/log.hpp"
 #include "server/services/study_progress.hpp"
 
+#include "api/job_methods.hpp"
 #include "api/job_spec.hpp"
 #include "api/json_number.hpp"
 #include "api/number_text.hpp"
@@ -185,22 +186,33 @@ json search_json(const StudyRequest& r, std::size_t active, bool settled,
           {"confirm", search.confirm}};
 }
 
-// Why an accuracy study runs the method it runs (the service chose it when "auto").
+// Why an accuracy study runs the method it runs (the service chose it when "auto": the
+// cheapest that applies, api::cheaper_methods, else the default).
 std::string method_reason(const StudyRequest& r, JobService& jobs, const std::string& study_id) {
-  const std::string method = r.base.value("method", "fe");
   if (r.method_choice != "auto") return "asked for (accuracy.method)";
-  if (method == "spectral_bi")
-    return "chosen by the service: the scene is a half-space problem the spectral BI method "
-           "solves, at less cost than FE at the same n_d";
-  StudyRequest trial = r;
-  trial.base = api::counterpart_document(r.base);
-  const auto bi =
-      jobs.validate(run_document(trial, study_id, json::object(), "", r.L[0], r.n_d[0]));
-  if (bi.spec) return "named by the base (/base/method)";
-  return "chosen by the service: the spectral BI method cannot run this scene (" +
-         (bi.errors.empty() ? std::string("invalid")
-                            : bi.errors[0].pointer + " " + bi.errors[0].reason) +
-         ")";
+  const MethodEntry* method = find_method(api::method_name_of(r.base));
+  const MethodEntry& fallback = default_method();
+  if (method != nullptr && method != &fallback)
+    return std::string("chosen by the service: the scene is a ") +
+           (method->supports.block_height ? "block" : "half-space") + " problem the " +
+           method->heading + " method solves, at less cost than " + fallback.heading +
+           " at the same n_d";
+  std::string first_error;
+  for (const MethodEntry* cheaper : api::cheaper_methods()) {
+    StudyRequest trial = r;
+    trial.base = api::method_document(r.base, *cheaper);
+    const auto tried =
+        jobs.validate(run_document(trial, study_id, json::object(), "", r.L[0], r.n_d[0]));
+    if (tried.spec) return "named by the base (/base/method)";
+    if (first_error.empty())
+      first_error =
+          std::string("the ") + cheaper->heading + " method cannot run this scene (" +
+          (tried.errors.empty() ? std::string("invalid")
+                                : tried.errors[0].pointer + " " + tried.errors[0].reason) +
+          ")";
+  }
+  if (first_error.empty()) return "named by the base (/base/method)";
+  return "chosen by the service: " + first_error;
 }
 
 } // namespace
@@ -238,7 +250,7 @@ json StudySupervisor::accuracy_step(const StudyRecord& study, const StudyRequest
     wall += run.wall_time_s;
   json out = api::to_json(v);
   out["target"] = {{"metric", target.metric}, {"tolerance", target.tolerance}, {"L", target.L}};
-  out["method"] = {{"name", request.base.value("method", "fe")},
+  out["method"] = {{"name", api::method_name_of(request.base)},
                    {"reason", method_reason(request, jobs_, study.id)}};
   const json& start = request.body["accuracy"];
   out["start"] = start.contains("start") ? start["start"] : json(nullptr);

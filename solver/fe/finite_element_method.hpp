@@ -4,6 +4,7 @@
 #pragma once
 
 #include "solver/fe/mesh_stepper.hpp"
+#include "solver/method_entry.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
 #include "solver/step_count.hpp"
@@ -46,5 +47,8 @@ private:
   ThreadTeam team_;
   std::string ill_posed_warning_; // plain Coulomb between two different solids, else empty
 };
+
+// The method's entry in the registry of methods (solver/methods.hpp; fe_entry.cpp).
+const MethodEntry& method_entry();
 
 } // namespace slipfront::fe

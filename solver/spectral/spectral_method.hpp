@@ -23,6 +23,7 @@
 #include "solver/interface/interface_law.hpp"
 #include "solver/interface/interface_parameters.hpp"
 #include "solver/interface/split_node.hpp"
+#include "solver/method_entry.hpp"
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
 #include "solver/spectral/half_space.hpp"
@@ -96,5 +97,8 @@ private:
   EnergyBalance energy_;
   long step_ = 0;
 };
+
+// The method's entry in the registry of methods (solver/methods.hpp; spectral_entry.cpp).
+const MethodEntry& method_entry();
 
 } // namespace slipfront::spectral

@@ -38,7 +38,7 @@ TEST(Presets, EveryPresetIsAValidJobByBothMethods) {
 TEST(Presets, FeOnlyMembersApplyToFeJobsOnly) {
   const Preset* tpv3 = find_preset("scec_tpv3_2d");
   ASSERT_NE(tpv3, nullptr);
-  ASSERT_FALSE(tpv3->fe.empty());
+  ASSERT_FALSE(tpv3->own.at("fe").empty());
   std::vector<FieldError> errors;
   const nlohmann::json fe = expand_preset({{"preset", "scec_tpv3_2d"}}, errors);
   const nlohmann::json bi =

@@ -19,6 +19,7 @@ import h5py
 import numpy as np
 
 from harness import LONG, SCRIPT, TINY, Server, binary_from_argv, run_client, wait_until
+from slipfront_client import methods
 from slipfront_client.api import Api
 from slipfront_client.result_download import download_result
 from slipfront_client.plots import slip_map
@@ -67,6 +68,20 @@ class EndToEnd(unittest.TestCase):
         return run_client(*args, server=cls.server.base, env=env, **kw)
 
     # -- jobs ---------------------------------------------------------------------------
+
+    def test_the_offline_methods_are_the_servers(self):
+        # The client's built-in list (methods.py, used when the server cannot say) is the
+        # server's registry of methods (its job schema's method).
+        methods.reset()
+        try:
+            self.assertTrue(methods.load(self.api))
+            self.assertEqual(methods.names(), methods.BUILT_IN["names"])
+            self.assertEqual(methods.default(), methods.BUILT_IN["default"])
+            for name in methods.names():
+                for key, value in methods.BUILT_IN["labels"][name].items():
+                    self.assertEqual(methods._labels(name).get(key), value, (name, key))
+        finally:
+            methods.reset()
 
     def test_submit_wait_download_in_one_command(self):
         out = os.path.join(self.tmp, "one.h5")

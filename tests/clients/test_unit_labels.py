@@ -14,7 +14,8 @@ import unittest
 
 import harness
 import numpy as np
-from slipfront_client.plots import speed, velocity
+from slipfront_client import methods
+from slipfront_client.plots import common, cost, speed, velocity
 from slipfront_client.results import Result, friction_label, run_label
 
 PRESETS = os.path.join(harness.REPO, "presets")
@@ -103,6 +104,50 @@ class RunLabels(unittest.TestCase):
         self.assertEqual(run_label(spec), "FE, bimaterial, L = 5e-05 m, n_d = 40")
         spec["lower"] = {"solid": "rigid"}
         self.assertEqual(run_label(spec), "FE, L = 5e-05 m, n_d = 40")
+
+
+class MethodsFromTheServer(unittest.TestCase):
+    """The methods and their labels come from the server's job schema (methods.py): a method
+    the client has never heard of gets its labels and a style of its own, with no other edit."""
+
+    SCHEMA = {"properties": {"method": {
+        "enum": ["fe", "spectral_bi", "toy"], "default": "fe",
+        "x-labels": {"fe": {"label": "FE", "title": "finite elements"},
+                     "spectral_bi": {"label": "BI", "title": "spectral boundary integral"},
+                     "toy": {"label": "TOY", "heading": "toy FE", "title": "toy elements"}}}}}
+
+    class Api:
+        def __init__(self, schema=None):
+            self.schema, self.calls = schema, 0
+
+        def job_schema(self):
+            self.calls += 1
+            if self.schema is None:
+                raise ConnectionError("no server")
+            return self.schema
+
+    def tearDown(self):
+        methods.reset()
+
+    def test_a_toy_method_of_the_server_is_labelled_and_styled(self):
+        api = self.Api(self.SCHEMA)
+        methods.use(api)
+        self.assertEqual(api.calls, 0)  # read when first needed
+        self.assertEqual(run_label(paper("toy")), "TOY, L = 5e-05 m, n_d = 40")
+        self.assertEqual(api.calls, 1)
+        self.assertEqual(methods.names(), ["fe", "spectral_bi", "toy"])
+        self.assertEqual((methods.heading("toy"), methods.title("toy")), ("toy FE", "toy elements"))
+        styles = [common.method_style({"method": m}) for m in methods.names()]
+        self.assertEqual(len({(s["ls"], s["marker"]) for s in styles}), 3)
+        self.assertEqual(cost.style_of("toy")["label"], "TOY (toy elements)")
+        self.assertEqual(api.calls, 1)
+
+    def test_offline_the_built_in_methods(self):
+        self.assertFalse(methods.load(self.Api(None)))
+        self.assertEqual(methods.names(), ["fe", "spectral_bi"])
+        self.assertEqual(run_label(paper("spectral_bi")), "BI, L = 5e-05 m, n_d = 40")
+        self.assertEqual(cost.style_of("spectral_bi")["label"], "BI (spectral boundary integral)")
+        self.assertEqual(cost.style_of("other")["label"], "other")  # not listed: its name
 
 
 class LabelledCurves(unittest.TestCase):

@@ -13,7 +13,7 @@
 // c_s / dx, i.e. a dimensionless rate rate dx / c_s about constant under refinement.
 #include "verification_support.hpp"
 
-#include "solver/make_rupture_method.hpp"
+#include "solver/methods.hpp"
 #include "solver/run/periodic_line.hpp"
 
 #include <gtest/gtest.h>
@@ -72,7 +72,7 @@ Growth growth_rate(SimulationParams p, double t_end = 6.0) {
     }
     return load;
   };
-  auto method = make_rupture_method(p);
+  auto method = method_entry(p.method).make(p);
   std::vector<double> ts, logs;
   Growth g;
   double mean_v = 0;

@@ -545,7 +545,7 @@ TEST(CrossMethod, SameLByBothMethodsWithTheirReferencesAndDifferences) {
       {converged_pair("fe-a", 5e-5, 14.25, 9.0467), converged_pair("fe-b", 1e-4, 15.00, 9.120)});
   auto bi = joined({converged_pair("bi-a", 5e-5, 14.25, 9.0439)});
   bi.push_back(finished("bi-x", 1e-3, 20, 0.0, never, "no_rupture"));
-  const json table = slipfront::api::cross_method_table(fe, bi);
+  const json table = slipfront::api::cross_method_table({"fe", fe}, {"spectral_bi", bi});
   ASSERT_EQ(table.size(), 3u); // every L of either method, ascending
   EXPECT_EQ(table[0]["L"], 5e-5);
   EXPECT_EQ(table[0]["fe"]["run_id"], "fe-a-40");
@@ -578,7 +578,7 @@ TEST(CrossMethod, SpeedAccuracyAcrossMethodsUsesTheFinerReferenceOfEitherMethod)
   auto fe = joined({converged_pair("fe", 5e-5, 14.25, 9.0467)});
   auto bi = joined({converged_pair("bi", 5e-5, 14.25, 9.0439)});
   bi.push_back(finished("bi-80", 5e-5, 80, 14.25, 9.0440));
-  const json list = slipfront::api::speed_accuracy_across_methods(fe, bi);
+  const json list = slipfront::api::speed_accuracy_across_methods({"fe", fe}, {"spectral_bi", bi});
   ASSERT_EQ(list.size(), 5u);
   for (const json& e : list) {
     EXPECT_EQ(e["reference_run_id"], "bi-80") << e.dump();
@@ -589,7 +589,7 @@ TEST(CrossMethod, SpeedAccuracyAcrossMethodsUsesTheFinerReferenceOfEitherMethod)
   EXPECT_NEAR(list[1]["errors"]["arrival_time"].get<double>(), (9.0467 - 9.0440) / 9.0440, 1e-12);
   // With FE finer than BI, FE's reference wins.
   fe.push_back(finished("fe-160", 5e-5, 160, 14.25, 9.0445));
-  const json again = slipfront::api::speed_accuracy_across_methods(fe, bi);
+  const json again = slipfront::api::speed_accuracy_across_methods({"fe", fe}, {"spectral_bi", bi});
   EXPECT_EQ(again[0]["reference_run_id"], "fe-160");
   EXPECT_EQ(again[0]["reference_method"], "fe");
 }

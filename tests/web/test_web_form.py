@@ -37,6 +37,30 @@ class SubmitForm(BrowserCase):
         self.open("/#/submit")
         self.wait(lambda d: self.css("#f_geometry_nodes_per_meter"), message="the form is built")
 
+    def test_methods_and_their_labels_come_from_the_server(self):
+        # web/app/methods.js: the server's methods (its job schema's method); its built-in
+        # list, used when the server cannot say, is the same; the study form offers them, the
+        # cheapest first.
+        method = self.server.get("/api/v1/schema/job.json").json()["properties"]["method"]
+        self.open("/#/submit/study")
+        self.wait(lambda d: self.css("#study-method option"), message="the study form")
+        seen = self.driver.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "import('/app/methods.js').then((m) => done({names: m.methodNames(), default: m.defaultMethod(),"
+            " labels: m.methodNames().map(m.methodLabel), headings: m.methodNames().map(m.methodHeading),"
+            " builtIn: m.BUILT_IN_METHODS, toy: m.methodsOf({properties: {method: {enum: ['toy'], 'x-labels': {toy: {label: 'TOY'}}}}})}));")
+        self.assertEqual(seen["names"], method["enum"])
+        self.assertEqual(seen["default"], method["default"])
+        self.assertEqual(seen["labels"], [method["x-labels"][n]["label"] for n in method["enum"]])
+        self.assertEqual(seen["headings"], [method["x-labels"][n]["heading"] for n in method["enum"]])
+        self.assertEqual((seen["builtIn"]["names"], seen["builtIn"]["default"], seen["builtIn"]["labels"]),
+                         (method["enum"], method["default"], method["x-labels"]))
+        self.assertEqual(seen["toy"], {"names": ["toy"], "default": "toy", "labels": {"toy": {"label": "TOY"}}})
+        by_cost = sorted(method["enum"], key=lambda n: method["x-labels"][n]["cost_rank"])
+        self.assertEqual([o.get_attribute("value") for o in self.css("#study-method option")], by_cost)
+        self.assertEqual([o.text for o in self.css("#study-method option")],
+                         [f"{n} ({method['x-labels'][n]['run_cost']})" for n in by_cost])
+
     def test_form_is_built_from_the_schema(self):
         schema = self.server.get("/api/v1/schema/job.json").json()
         self.open_form()

@@ -6,7 +6,8 @@
 import { h, clear, fill, fmt, badge, link, shortId } from './dom.js';
 import { get, qs } from './api.js';
 import { PALETTE } from './plots.js';
-import { cellText, compareLabels, compareRows, methodStyle } from './run_labels.js';
+import { cellText, compareLabels, compareRows } from './run_labels.js';
+import { defaultMethod, methodStyle } from './methods.js';
 import { drawCompareFigures } from './compare_figures.js';
 
 export const MAX_RUNS = 12; // overlaid curves beyond this read as noise
@@ -21,7 +22,7 @@ const GROUPS = { run: 'Run', spec: 'Parameters (the job spec, defaults filled)',
 
 // The order of a study's or a search's runs: by method, L from large to small, n_d up.
 function byScene(a, b) {
-  const key = (j) => [j.method || 'fe', -(j.spec?.friction?.L ?? 0), j.spec?.geometry?.nodes_per_meter ?? 0];
+  const key = (j) => [j.method || defaultMethod(), -(j.spec?.friction?.L ?? 0), j.spec?.geometry?.nodes_per_meter ?? 0];
   const [x, y] = [key(a), key(b)];
   for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) return x[i] < y[i] ? -1 : 1;
   return 0;

@@ -1,5 +1,5 @@
 // The figures of runs compared (compare.js), each run in its colour, its method's dash and
-// marker (run_labels.js METHOD_STYLE) and named by its legend text: |V|(t) at chosen x1 (the
+// marker (methods.js methodStyle) and named by its legend text: |V|(t) at chosen x1 (the
 // paper's 6 and 10 m by default) in stacked panels, V_r(x1) and the slip front overlaid, and a
 // scatter of any parameter against any metric. Drawn from the endpoints the run page uses
 // (/fields/slip_velocity at one node, /front); units as the run page's (job_figures.js).

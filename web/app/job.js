@@ -5,6 +5,7 @@ import { h, fill, fmt, fmtDuration, fmtBytes, fmtTime, badge, progressBar, kvTab
 import { get, getJSON } from './api.js';
 import { drawFigures } from './job_figures.js';
 import { belowText } from './run_labels.js';
+import { methodHeading } from './methods.js';
 import { drawStations, hasStations } from './job_stations.js';
 import { cancelJob, frictionText, jobNd } from './jobs.js';
 import { cellText, mapIsFinal, statusBadge } from './convergence_grid.js';
@@ -32,7 +33,7 @@ export async function jobPage(view, page, id) {
   const renderHead = () => {
     fill(head, 
       h('h1', {}, job.name || `job ${shortId(job.id)}`, ' ', badge(job.status)),
-      h('div', { class: 'sub muted' }, [job.method === 'spectral_bi' ? 'spectral BI' : 'FE', belowText(job.spec), frictionText(job.spec), `n_d = ${fmt(jobNd(job))} /m`, 'id '].filter(Boolean).join(' · '), h('code', { text: job.id }),
+      h('div', { class: 'sub muted' }, [methodHeading(job.method), belowText(job.spec), frictionText(job.spec), `n_d = ${fmt(jobNd(job))} /m`, 'id '].filter(Boolean).join(' · '), h('code', { text: job.id }),
         job.study_id ? h('span', {}, ' · ', link(`#/studies/${job.study_id}`, 'its study')) : null));
   };
 

@@ -8,10 +8,12 @@ import { get, post, token } from './api.js';
 import { SchemaForm, valueAt } from './schema_form.js';
 import { loadPresets } from './presets.js';
 import { showErrors } from './form_errors.js';
+import { defaultMethod, jobSchema, methodNames } from './methods.js';
 
-// The order of the groups on the page (the physics first, as docs/api-job-spec.md); groups
-// the schema adds later follow these in the schema's order.
-const GROUP_ORDER = ['material', 'geometry', 'loading', 'friction', 'nucleation', 'time', 'output', 'probe', 'fe', 'spectral_bi'];
+// The order of the groups on the page (the physics first, as docs/api-job-spec.md, then each
+// method's options, a section named after its method); groups the schema adds later follow
+// these in the schema's order.
+const GROUP_ORDER = ['material', 'geometry', 'loading', 'friction', 'nucleation', 'time', 'output', 'probe'];
 
 export async function jobForm(view) {
   const holder = h('div', { id: 'job-fields' });
@@ -31,9 +33,9 @@ export async function jobForm(view) {
   view.append(form);
   fill(holder, h('p', { class: 'muted', text: 'Loading the job schema…' }));
 
-  const [schema, { presets, source, note }] = await Promise.all([get('/api/v1/schema/job.json'), loadPresets()]);
+  const [schema, { presets, source, note }] = await Promise.all([jobSchema(), loadPresets()]);
   // "preset" is chosen in the preset box above, which fills the form from the preset's spec.
-  const fields = new SchemaForm(schema, { order: GROUP_ORDER, skip: ['preset'] });
+  const fields = new SchemaForm(schema, { order: [...GROUP_ORDER, ...methodNames()], skip: ['preset'] });
   fill(holder, fields.element);
   const methodInput = form.querySelector('[data-pointer="/method"]');
   let defaults = {};
@@ -56,7 +58,7 @@ export async function jobForm(view) {
 
   const applyPreset = async () => {
     const preset = presets[Number(presetBox.value)] || presets[0];
-    const method = valueAt(preset.spec, '/method') ?? schema.properties?.method?.default ?? 'fe';
+    const method = valueAt(preset.spec, '/method') ?? schema.properties?.method?.default ?? defaultMethod();
     defaults = await loadDefaults(method);
     const unknown = fields.write(defaults, preset.spec);
     fields.showMethod(method);

@@ -2,6 +2,7 @@
 // 2 s (If-None-Match: an unchanged listing costs a 304), with cancel for active jobs.
 import { h, clear, fmt, fmtDuration, badge, progressBar, shortId } from './dom.js';
 import { getJSON, post, qs } from './api.js';
+import { defaultMethod, methodLabel } from './methods.js';
 
 const FIELDS = 'id,name,tags,method,spec,status,progress,metrics,wall_time_s,cached_from,submitted_by,created_at,study_id,error,archived_at';
 
@@ -13,7 +14,7 @@ export { frictionText } from './friction_labels.js';
 
 const COLUMNS = [
   { key: 'name', label: 'Name', value: (j) => j.name || '', cell: (j) => h('td', { title: j.name || '' }, h('a', { href: `#/jobs/${j.id}`, class: 'jobname', text: j.name || `(${shortId(j.id)})` }), j.study_id ? h('a', { class: 'tag', href: `#/studies/${j.study_id}`, title: 'run of a study', text: 'study' }) : null, j.archived_at ? h('span', { class: 'tag archived', title: `archived ${j.archived_at}`, text: 'archived' }) : null, (j.tags || []).filter((t) => !String(t).startsWith('study:')).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))) },
-  { key: 'method', label: 'Method', value: (j) => j.method || 'fe', cell: (j) => h('td', { text: j.method === 'spectral_bi' ? 'BI' : 'FE', title: j.method }) },
+  { key: 'method', label: 'Method', value: (j) => j.method || defaultMethod(), cell: (j) => h('td', { text: methodLabel(j.method), title: j.method }) },
   { key: 'L', label: 'L [m]', num: true, value: jobL, cell: (j) => h('td', { class: 'num', text: fmt(jobL(j)) }) },
   { key: 'n_d', label: 'n_d [1/m]', num: true, value: jobNd, cell: (j) => h('td', { class: 'num', text: fmt(jobNd(j)) }) },
   { key: 'status', label: 'Status', value: (j) => j.status, cell: (j) => h('td', {}, badge(j.status)) },

@@ -9,6 +9,7 @@ import { submitPage } from './submit.js';
 import { lengthFitPage } from './length_fit.js';
 import { comparePage } from './compare.js';
 import { loadFrictionLabels } from './friction_labels.js';
+import { loadMethods } from './methods.js';
 
 const view = document.getElementById('view');
 let current = null; // {stop()}
@@ -73,6 +74,7 @@ async function version() {
 
 tokenBox();
 window.addEventListener('hashchange', route);
-// The friction labels come from the job schema: the pages' first drawing waits for them.
-loadFrictionLabels().then(route);
+// The methods' and the friction laws' labels come from the job schema: the pages' first
+// drawing waits for them (methods.js, friction_labels.js).
+Promise.all([loadMethods(), loadFrictionLabels()]).finally(route);
 version();

@@ -6,20 +6,7 @@
 import { fmt } from './dom.js';
 import { frictionText, jobNd } from './jobs.js';
 import { lowerWaveSpeeds, waveSpeeds } from './job_figures.js';
-
-export function methodName(method) {
-  return method === 'spectral_bi' ? 'BI' : 'FE';
-}
-
-// One line style per method, so that FE and BI runs of the same scene read apart at a glance
-// (with the method in the legend text as well).
-export const METHOD_STYLE = {
-  fe: { dash: 'solid', symbol: 'circle' },
-  spectral_bi: { dash: 'dash', symbol: 'square' },
-};
-export function methodStyle(method) {
-  return METHOD_STYLE[method] || METHOD_STYLE.fe;
-}
+import { methodLabel } from './methods.js';
 
 // What is below the interface when it is not the rigid plane (as the CLI's run labels):
 // 'bimaterial' for two different elastic solids, 'full space' for two identical ones.
@@ -33,7 +20,7 @@ export function belowText(spec) {
 // The parts of a run's label: ['FE', 'L = 1.00e-4 m', 'n_d = 10'] (with 'bimaterial' after
 // the method when there is a lower solid).
 export function runLabelParts(job) {
-  return [methodName(job.method || job.spec?.method), belowText(job.spec), frictionText(job.spec), `n_d = ${fmt(jobNd(job))}`].filter(Boolean);
+  return [methodLabel(job.method || job.spec?.method), belowText(job.spec), frictionText(job.spec), `n_d = ${fmt(jobNd(job))}`].filter(Boolean);
 }
 
 // {'friction.L': 1e-4, 'geometry.nodes_per_meter': 10, ...}: a nested object's leaves by

@@ -7,6 +7,7 @@
 // shown as crosses.
 import { fmt } from './dom.js';
 import { axis, chart, chartMessage, PALETTE } from './plots.js';
+import { defaultMethod, methodLabel, methodStyle } from './methods.js';
 
 // [key, the menu's text, the chart title's text]
 export const METRICS = [
@@ -28,7 +29,7 @@ export function entryError(entry, metric) {
 // The curves of the chart: [{method, L, runs: [entry...] (increasing n_d, one per mesh),
 // repeats: [entry...] (the other runs of a mesh already on the curve)}], sorted by method
 // then L (large to small). Entries without a positive error or wall time are left out.
-export function refinementCurves(entries, metric, fallbackMethod = 'fe') {
+export function refinementCurves(entries, metric, fallbackMethod = defaultMethod()) {
   const groups = new Map();
   for (const entry of entries) {
     if (entryError(entry, metric) === null || !(entry.wall_time_s > 0)) continue;
@@ -53,8 +54,6 @@ export function refinementCurves(entries, metric, fallbackMethod = 'fe') {
   return curves.sort((a, b) => a.method.localeCompare(b.method) || b.L - a.L);
 }
 
-const methodName = (m) => (m === 'spectral_bi' ? 'BI' : 'FE');
-
 // Draws the chart into `box`; a click on a point opens its run.
 export async function drawSpeedChart(box, entries, metric, fallbackMethod, filename) {
   const curves = refinementCurves(entries, metric, fallbackMethod);
@@ -64,16 +63,16 @@ export async function drawSpeedChart(box, entries, metric, fallbackMethod, filen
   const hover = 'run %{customdata[0]}<br>n_d = %{customdata[1]} /m<br>wall time %{x:.3g} s<br>error %{y:.3g}<extra>%{fullData.name}</extra>';
   for (const c of curves) {
     const colour = PALETTE[Ls.indexOf(c.L) % PALETTE.length];
-    const bi = c.method === 'spectral_bi';
-    const name = `${methodName(c.method)}, L = ${fmt(c.L)} m`;
+    const style = methodStyle(c.method);
+    const name = `${methodLabel(c.method)}, L = ${fmt(c.L)} m`;
     const point = (e) => [e.id, e.n_d];
     traces.push({
       type: 'scatter', mode: 'lines+markers+text', name, legendgroup: name,
       x: c.runs.map((e) => e.wall_time_s), y: c.runs.map((e) => entryError(e, metric)),
-      text: c.runs.map((e) => fmt(e.n_d)), textposition: bi ? 'bottom right' : 'top right', textfont: { size: 10, color: colour },
+      text: c.runs.map((e) => fmt(e.n_d)), textposition: style.text, textfont: { size: 10, color: colour },
       customdata: c.runs.map(point), hovertemplate: hover,
-      line: { color: colour, width: 1.4, dash: bi ? 'dash' : 'solid' },
-      marker: { color: colour, size: 8, symbol: bi ? 'square-open' : 'circle', line: { color: colour, width: 1.5 } },
+      line: { color: colour, width: 1.4, dash: style.dash },
+      marker: { color: colour, size: 8, symbol: style.marker, line: { color: colour, width: 1.5 } },
     });
     if (c.repeats.length) {
       traces.push({

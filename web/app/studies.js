@@ -7,6 +7,7 @@ import { convergenceGrid, mapIsFinal, statusBadge } from './convergence_grid.js'
 import { METRICS, drawSpeedChart } from './speed_chart.js';
 import { searchSection } from './study_search.js';
 import { accuracySection } from './study_accuracy.js';
+import { defaultMethod, methodHeading, methodLabel } from './methods.js';
 
 export function studiesPage(view, page) {
   const table = h('table', { class: 'grid', id: 'studies-table' });
@@ -23,7 +24,7 @@ export function studiesPage(view, page) {
       const p = s.progress || {};
       body.append(h('tr', { dataset: { id: s.id } },
         h('td', {}, h('a', { href: `#/studies/${s.id}`, text: s.name || `study ${shortId(s.id)}` })),
-        h('td', { text: s.method === 'spectral_bi' ? 'BI' : 'FE' }),
+        h('td', { text: methodLabel(s.method) }),
         h('td', { text: s.kind }),
         h('td', {}, badge(s.status)),
         h('td', { class: 'pcell' }, progressBar(p.fraction, `${p.done ?? 0} / ${p.total ?? 0}`)),
@@ -61,7 +62,7 @@ export async function studyPage(view, page, id) {
     const cl = study.critical_length || {};
     const out = h('span');
     fill(head, h('h1', {}, study.name || `study ${shortId(study.id)}`, ' ', badge(study.status)),
-      h('div', { class: 'sub muted' }, `${study.kind} study · ${study.method === 'spectral_bi' ? 'spectral BI' : 'FE'} · id `, h('code', { text: study.id })));
+      h('div', { class: 'sub muted' }, `${study.kind} study · ${methodHeading(study.method)} · id `, h('code', { text: study.id })));
     fill(summary, h('h2', { text: study.kind === 'accuracy' ? 'Progress and answer' : 'Progress and L_c' }),
       progressBar(p.fraction, `${p.done ?? 0} of ${p.total ?? 0} runs final${study.status === 'running' ? ' (a convergence study adds finer meshes as it goes)' : ''}`),
       kvTable(study.kind === 'accuracy' ? [
@@ -103,7 +104,7 @@ export async function studyPage(view, page, id) {
     const box = h('div', { class: 'fig', id: 'fig-speed' });
     saCard.append(box);
     try {
-      await drawSpeedChart(box, sa?.across_methods?.runs || sa?.runs || [], metric, study.method || 'fe', `slipfront-study-${shortId(study.id)}-speed`);
+      await drawSpeedChart(box, sa?.across_methods?.runs || sa?.runs || [], metric, study.method || defaultMethod(), `slipfront-study-${shortId(study.id)}-speed`);
     } catch (e) { box.append(h('p', { class: 'error', text: e.message })); }
   };
 
@@ -112,15 +113,14 @@ export async function studyPage(view, page, id) {
   const renderScene = async () => {
     try {
       const scene = await get(`/api/v1/convergence-map?study=${id}`);
-      const name = (m) => (m === 'spectral_bi' ? 'spectral BI' : 'FE');
-      fill(sceneCard, h('h2', { text: `Shared map of the scene, ${name(study.method)} (every run of the group)` }),
+      fill(sceneCard, h('h2', { text: `Shared map of the scene, ${methodHeading(study.method)} (every run of the group)` }),
         h('p', { class: 'muted', text: `${scene.count} run(s) with this physics but L and n_d, from any study or user. L_c on the scene: ${scene.critical_length?.L_c != null ? `${fmt(scene.critical_length.L_c)} m` : 'not determined'}.` }),
         convergenceGrid(scene.convergence_map, [], 'scene-cmap', sceneOptions(scene)));
-      const other = (sa?.across_methods?.runs || []).find((e) => e.method && e.method !== (study.method || 'fe'));
+      const other = (sa?.across_methods?.runs || []).find((e) => e.method && e.method !== (study.method || defaultMethod()));
       if (other) {
         const job = await get(`/api/v1/jobs/${other.id}?fields=scene_hash`);
         const otherScene = await get(`/api/v1/convergence-map?scene=${job.scene_hash}`);
-        sceneCard.append(h('h2', { text: `The same scene by ${name(other.method)}` }),
+        sceneCard.append(h('h2', { text: `The same scene by ${methodHeading(other.method)}` }),
           h('p', { class: 'muted', text: `${otherScene.count} run(s). L_c: ${otherScene.critical_length?.L_c != null ? `${fmt(otherScene.critical_length.L_c)} m` : 'not determined'}.` }),
           convergenceGrid(otherScene.convergence_map, [], 'scene-cmap-other', sceneOptions(otherScene)));
       }

@@ -2,6 +2,7 @@
 // how it was estimated, the method and first mesh the service chose, and the value of every
 // mesh with its estimate as a chart (error bars) and a table.
 import { h, fmt } from './dom.js';
+import { methodHeading } from './methods.js';
 import { axis, chart } from './plots.js';
 
 const STATES = {
@@ -35,7 +36,7 @@ export function accuracySection(answer, studyId) {
       h('span', { id: 'accuracy-answer', text: answer.value != null ? `${fmt(answer.value, 6)} ± ${fmt(answer.error, 3)} (${percent(answer.relative_error)}, ${answer.estimate || '—'}) at n_d = ${fmt(answer.n_d)}` : '—' })),
     answer.extrapolated != null ? h('p', { class: 'muted', text: `Richardson: observed order ${fmt(answer.observed_order, 3)}, extrapolated value ${fmt(answer.extrapolated, 6)}.` }) : null,
     h('p', { class: 'muted', id: 'accuracy-reason', text: answer.reason || '' }),
-    h('p', { class: 'muted', text: `Method ${answer.method?.name === 'spectral_bi' ? 'spectral BI' : 'FE'}: ${answer.method?.reason || ''}. First mesh n_d = ${fmt(answer.start?.n_d)}: ${answer.start?.reason || ''}. Cost: ${answer.cost?.runs ?? '?'} run(s), ${fmt(answer.cost?.wall_time_s, 3)} s of run wall time.` }),
+    h('p', { class: 'muted', text: `Method ${methodHeading(answer.method?.name)}: ${answer.method?.reason || ''}. First mesh n_d = ${fmt(answer.start?.n_d)}: ${answer.start?.reason || ''}. Cost: ${answer.cost?.runs ?? '?'} run(s), ${fmt(answer.cost?.wall_time_s, 3)} s of run wall time.` }),
     box,
     rows.length ? h('table', { class: 'data', id: 'accuracy-steps' },
       h('thead', {}, h('tr', {}, ...['n_d', target.metric, 'estimated error', 'relative', 'estimate', 'wall', ''].map((t) => h('th', { text: t })))),

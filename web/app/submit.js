@@ -5,6 +5,7 @@ import { h } from './dom.js';
 import { post } from './api.js';
 import { showErrors } from './form_errors.js';
 import { jobForm } from './job_form.js';
+import { defaultMethod, methodChoiceText, methodsByCost } from './methods.js';
 
 export async function submitPage(view, page, which) {
   const tabs = h('div', { class: 'tabs' },
@@ -26,7 +27,7 @@ function numbers(text) {
 
 function studyForm(view) {
   const name = h('input', { type: 'text', id: 'study-name', size: 36, placeholder: 'e.g. L_c sweep' });
-  const method = h('select', { id: 'study-method' }, h('option', { value: 'spectral_bi', text: 'spectral_bi (seconds per run)' }), h('option', { value: 'fe', text: 'fe (minutes per run at fine meshes)' }));
+  const method = h('select', { id: 'study-method' }, methodsByCost().map((m) => h('option', { value: m, text: methodChoiceText(m) }))); // the cheapest first
   const kind = h('select', { id: 'study-kind' }, h('option', { value: 'convergence', text: 'convergence: refine n_d per L until two meshes agree' }), h('option', { value: 'grid', text: 'grid: every L × n_d at once' }));
   const Ls = h('input', { type: 'text', id: 'study-L', size: 40, value: '1e-3, 1e-4, 5e-5, 1e-5, 5e-6' });
   const nds = h('input', { type: 'text', id: 'study-nd', size: 30, value: '10, 20, 40' });
@@ -59,7 +60,7 @@ function studyForm(view) {
         return;
       }
     }
-    if (method.value !== 'fe') baseSpec.method = method.value;
+    if (method.value !== defaultMethod()) baseSpec.method = method.value;
     const body = { base: baseSpec };
     if (name.value.trim()) body.name = name.value.trim();
     if (fresh.checked) body.fresh = true;

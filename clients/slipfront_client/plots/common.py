@@ -8,6 +8,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from .. import methods  # noqa: E402
 from ..errors import UsageError  # noqa: E402
 
 FORMATS = ("png", "pdf", "svg")
@@ -47,15 +48,13 @@ def clip_speed_axis(ax, c_p):
     ax.set_ylim(0, 1.2 * c_p)
 
 
-# One line style and marker per method, so that FE and BI runs of one scene overlaid read apart
-# at a glance (their labels say the method too; the web view uses the same: run_labels.js).
-METHOD_STYLES = {"fe": {"ls": "-", "marker": "o"}, "spectral_bi": {"ls": "--", "marker": "s"}}
-
-
 def method_style(spec, metrics=None):
-    """{ls, marker} of a run's method (its spec's, else its metrics', else FE)."""
-    method = (spec or {}).get("method") or (metrics or {}).get("method") or "fe"
-    return METHOD_STYLES.get(method, METHOD_STYLES["fe"])
+    """{ls, marker} of a run's method (its spec's, else its metrics', else the default), so
+    that FE and BI runs of one scene overlaid read apart at a glance (their labels say the
+    method too; the styles are methods.STYLES, as the web view's methods.js)."""
+    method = (spec or {}).get("method") or (metrics or {}).get("method") or methods.default()
+    style = methods.style(method) or methods.style(methods.default())
+    return {"ls": style["ls"], "marker": style["marker"]}
 
 
 def save_figure(fig, out_dir, stem, formats, dpi=150):

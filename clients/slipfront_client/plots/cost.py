@@ -17,13 +17,21 @@ import math
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter, LogLocator, MaxNLocator, NullFormatter
 
+from .. import methods as methods_mod
 from ..errors import UsageError
 from .common import colours, new_figure
 
-STYLE = {"fe": {"marker": "o", "linestyle": "-", "label": "FE (finite elements)"},
-         "spectral_bi": {"marker": "s", "linestyle": "--", "label": "BI (spectral boundary integral)"}}
-OTHER = {"marker": "^", "linestyle": ":"}
-LABEL_OFFSET = {"fe": (4, 3), "spectral_bi": (4, -9)}
+OTHER = {"marker": "^", "linestyle": ":", "open": False, "offset": (4, 3)}  # a method not listed
+
+
+def style_of(m):
+    """Marker, line style, open marker, point-label offset and legend label of a method
+    (methods.STYLES: FE filled circles on solid lines, BI open squares on dashed ones)."""
+    s = methods_mod.style(m)
+    if s is None:
+        return {**OTHER, "label": m}
+    return {"marker": s["marker"], "linestyle": s["ls"], "open": s["open"], "offset": s["offset"],
+            "label": f"{methods_mod.label(m)} ({methods_mod.title(m)})"}
 
 
 def _positive(value):
@@ -68,7 +76,7 @@ def readable_log_axis(axis, values):
 
 
 def method(row):
-    return row.get("method") or "fe"
+    return row.get("method") or methods_mod.default()
 
 
 ERROR_DEFINITION = ("error = max(|d - d_ref| / d_ref, |t - t_ref| / t_ref);  "
@@ -89,7 +97,7 @@ def plot_cost(rows, title=None, reference="converged"):
     for r in rows:
         groups.setdefault((method(r), float(r["L"])), []).append(r)
     lengths = sorted({L for _, L in groups}, reverse=True)
-    methods = sorted({m for m, _ in groups}, key=lambda m: (m not in STYLE, m))
+    methods = sorted({m for m, _ in groups}, key=lambda m: (not methods_mod.known(m), m))
     colour_of = dict(zip(lengths, colours(len(lengths))))
     panels = [("wall_time_s", 1.0, "wall time [s]")]
     if any(_positive(r.get("memory_bytes")) for r in rows):
@@ -103,15 +111,15 @@ def plot_cost(rows, title=None, reference="converged"):
                 continue
             x = [float(r[key]) / scale for r in runs]
             err = [float(r["error"]) for r in runs]
-            style = STYLE.get(m, OTHER)
+            style = style_of(m)
             ax.plot(x, err, marker=style["marker"], linestyle=style["linestyle"],
                     color=colour_of[L], markersize=5, linewidth=1.2,
-                    markerfacecolor="none" if m == "spectral_bi" else colour_of[L])
+                    markerfacecolor="none" if style["open"] else colour_of[L])
             entry = data.setdefault((m, L), {"n_d": [float(r["n_d"]) for r in runs], "error": err})
             entry[key] = [float(r[key]) for r in runs]
             for r, xi, e in zip(runs, x, err):
                 ax.annotate(f"{float(r['n_d']):g}", (xi, e), textcoords="offset points",
-                            xytext=LABEL_OFFSET.get(m, (4, 3)), fontsize="x-small",
+                            xytext=style["offset"], fontsize="x-small",
                             color=colour_of[L])
         ax.set_xscale("log")
         ax.margins(x=0.08, y=0.12)  # markers and their n_d labels inside the frame
@@ -123,10 +131,10 @@ def plot_cost(rows, title=None, reference="converged"):
         ax.set_ylabel("relative error")
         ax.grid(True, which="major", alpha=0.3)
     handles = [Line2D([], [], color=colour_of[L], linewidth=3, label=f"L = {length_label(L)}") for L in lengths]
-    handles += [Line2D([], [], color="0.3", marker=STYLE.get(m, OTHER)["marker"],
-                       linestyle=STYLE.get(m, OTHER)["linestyle"],
-                       markerfacecolor="none" if m == "spectral_bi" else "0.3",
-                       label=STYLE.get(m, {}).get("label", m)) for m in methods]
+    handles += [Line2D([], [], color="0.3", marker=style_of(m)["marker"],
+                       linestyle=style_of(m)["linestyle"],
+                       markerfacecolor="none" if style_of(m)["open"] else "0.3",
+                       label=style_of(m)["label"]) for m in methods]
     axes[-1].legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0),
                     fontsize="small", borderaxespad=0.0)
     if reference not in REFERENCES:

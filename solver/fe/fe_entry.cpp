@@ -1,0 +1,84 @@
+// The finite-element method's entry in the registry of methods (solver/methods.hpp): the
+// paper's explicit Q4 elements of a block of height h, on the rigid plane or on a lower block.
+#include "solver/fe/finite_element_method.hpp"
+#include "solver/mesh_size.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace slipfront::fe {
+
+namespace {
+
+constexpr const char* discretisation = "Q4 2x2 Gauss, lumped mass, central differences";
+
+const char* boundary_name(TopBoundary boundary) {
+  return boundary == TopBoundary::absorbing ? "absorbing" : "traction";
+}
+
+std::string describe(const SimulationParams& params) {
+  std::string text = std::string(discretisation) + "; top boundary: " + boundary_name(params.top);
+  if (params.lower.elastic())
+    text += std::string("; lower solid: elastic block (split-node interface), bottom "
+                        "boundary: ") +
+            boundary_name(params.lower.bottom);
+  if (params.fe.mesh_damping > 0) {
+    char damping[200];
+    std::snprintf(damping, sizeof damping,
+                  "; mesh-scale stiffness-proportional damping -a K v, a = %g dx / c_s",
+                  params.fe.mesh_damping);
+    text += damping;
+  }
+  return text;
+}
+
+std::string mesh_summary(const SimulationParams& params) {
+  const Geometry& g = params.geometry;
+  const double height = mesh_size(params).height;
+  char mesh[200];
+  std::snprintf(mesh, sizeof mesh, "%ld x %ld nodes, dx = %g m, height = %g m%s",
+                std::lround(g.width * g.nodes_per_meter),
+                std::lround(height * g.nodes_per_meter) + 1, 1.0 / g.nodes_per_meter, height,
+                g.auto_height ? " (auto)" : "");
+  std::ostringstream out;
+  out << "mesh: " << mesh << '\n';
+  if (params.lower.elastic()) {
+    const MeshSize m = lower_mesh_size(params);
+    out << "lower block: " << m.nx << " x " << m.ny << " nodes, height = " << m.height << " m"
+        << (params.lower.auto_height ? " (auto)" : "") << '\n';
+  }
+  return out.str();
+}
+
+} // namespace
+
+const MethodEntry& method_entry() {
+  static const MethodEntry entry{
+      .method = Method::finite_element,
+      .label = "FE",
+      .heading = "FE",
+      .title = "finite elements",
+      .description = "the explicit Q4 finite elements of the paper (a block of height h; "
+                     "docs/physics.md)",
+      .run_cost = "minutes per run at fine meshes",
+      .cost_rank = 1,
+      .counterpart = Method::spectral_bi,
+      .supports = {.rigid_base = true, .two_solids = true, .block_height = true},
+      .time_step = {.safety_factor = true,
+                    .rule = "time.safety_factor * the stable step of the mesh"},
+      .wave_speeds = {},
+      .make = [](const SimulationParams& params) -> std::unique_ptr<RuptureMethod> {
+        return std::make_unique<FiniteElementMethod>(params);
+      },
+      .time_step_bounds = &FiniteElementMethod::time_step_bounds,
+      .step_count_bound = &FiniteElementMethod::step_count_bound,
+      .estimated_memory_bytes = &FiniteElementMethod::estimated_memory_bytes,
+      .discretisation = discretisation,
+      .describe = &describe,
+      .mesh_summary = &mesh_summary,
+  };
+  return entry;
+}
+
+} // namespace slipfront::fe
