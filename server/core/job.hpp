@@ -73,6 +73,9 @@ struct Job {
   std::string note;             // free text its owner keeps with it (api/run_annotations.hpp)
   std::string archived_at;      // ISO 8601 when archived (hidden from listings); "" = not archived
   nlohmann::json imported_from; // null, or {"server", "id", "exported_at"} of an imported run
+  // What the validation said when the job was accepted: {"warnings", "provenance", "estimate"}
+  // (api/scene_checks.hpp, api/scene_defaults.hpp); null for a job accepted before.
+  nlohmann::json validation;
 };
 
 } // namespace slipfront::server

@@ -50,7 +50,8 @@ const std::vector<std::string>& job_columns() {
                                                    "slurm_state",
                                                    "note",
                                                    "archived_at",
-                                                   "imported_from"};
+                                                   "imported_from",
+                                                   "validation"};
   return columns;
 }
 
@@ -116,6 +117,11 @@ const std::vector<std::pair<std::string, Binder>>& new_job_columns() {
        [](Statement& s, int i, const Job& j) {
          s.bind(i, j.imported_from.is_null() ? std::nullopt
                                              : std::optional<std::string>(j.imported_from.dump()));
+       }},
+      {"validation",
+       [](Statement& s, int i, const Job& j) {
+         s.bind(i, j.validation.is_null() ? std::nullopt
+                                          : std::optional<std::string>(j.validation.dump()));
        }},
   };
   return columns;
@@ -186,6 +192,7 @@ Job read_job(const Statement& s) {
   job.note = s.text("note");
   job.archived_at = s.text("archived_at");
   job.imported_from = parse_stored_json(s.text("imported_from"), "provenance of job " + job.id);
+  job.validation = parse_stored_json(s.text("validation"), "validation of job " + job.id);
   return job;
 }
 

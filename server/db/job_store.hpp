@@ -27,7 +27,7 @@ namespace slipfront::server {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 9;
+  static constexpr int schema_version = 10;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).

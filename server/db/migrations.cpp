@@ -17,6 +17,7 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m7_study_idempotency_keys()},
       {migrations::m8_accuracy_studies()},
       {migrations::m9_run_annotations()},
+      {migrations::m10_job_validation()},
   };
   return list;
 }

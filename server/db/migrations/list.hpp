@@ -17,5 +17,6 @@ const char* m6_search_indexes();
 const char* m7_study_idempotency_keys();
 const char* m8_accuracy_studies();
 const char* m9_run_annotations();
+const char* m10_job_validation();
 
 } // namespace slipfront::server::migrations
