@@ -99,6 +99,7 @@ const char* document = R"json({
         "progress": {"type": "object", "properties": {"done": {"type": "integer"}, "total": {"type": "integer"}, "fraction": {"type": "number"}}},
         "scene_hash": {"type": "string"}, "L_c": {"type": "number", "nullable": true},
         "spectral_critical_length": {"type": "number", "nullable": true},
+        "answer": {"type": "object", "description": "the headline answer (docs/studies.md \"The answer\"): {state, verdict, meaning, certainty, others: [{label, value, unit}]}"},
         "runs": {"type": "array", "items": {"$ref": "#/components/schemas/StudyRun"}},
         "critical_length": {"type": "object"}, "convergence_map": {"type": "object"},
         "refinement": {"type": "object", "description": "convergence studies: the plan per L"},
@@ -286,7 +287,7 @@ const char* document = R"json({
         "responses": {"200": {"description": "the preset", "content": {"application/json": {}}}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/length-fits": {
-      "post": {"summary": "The experimentalist's procedure of the paper (Sec. 6) on the record of one interface point: the fitted length L_m of the simplified Prakash-Clifton law with its 95 % interval, the measured critical frequency f_m, the contact pressure's spectrum and the verdict (L_m is the physical length, or only an upper bound); nothing is stored, no token is needed (docs/length-fit.md)",
+      "post": {"summary": "The experimentalist's procedure of the paper (Sec. 6) on the record of one interface point: the fitted length L_m of the simplified Prakash-Clifton law with its 95 % interval, the measured critical frequency f_m, the contact pressure's spectrum and the verdict (L_m is the physical length, or the event only bounds it, by its own critical length); nothing is stored, no token is needed (docs/length-fit.md)",
         "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/LengthFitRequest"}}}},
         "responses": {"200": {"description": "{law, record, fit, critical_frequency, spectrum, verdict, series} (docs/length-fit.md \"The answer\")", "content": {"application/json": {}}},
           "400": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},

@@ -1,10 +1,12 @@
 """Figures that follow the job (Result.positions, Result.event_window, Result.thresholds and the
-map and velocity plots that use them):
+map and velocity plots that use them) and a study's headline answer block (report.answer_lines,
+studies.summary_lines; docs/studies.md "The answer"):
 
 - a run's places to watch are its own stations, else its probes — never the paper's 6 and 10 m
   unless the job's are there;
 - the map opens on the event (where and when |V| exceeded 1 % of its peak, and the front), the
-  whole box on request; the front and the stations are labelled with their thresholds.
+  whole box on request; the front and the stations are labelled with their thresholds;
+- the answer block comes first, its verdict before every other number, each labelled.
 
     /usr/bin/python3 -m unittest discover -s tests/clients -p 'test_unit*.py'
 """
@@ -13,6 +15,7 @@ import unittest
 
 import harness
 import numpy as np
+from slipfront_client import report, studies
 from slipfront_client.plots import slip_map, velocity
 from slipfront_client.results import Result
 
@@ -89,6 +92,47 @@ class Thresholds(unittest.TestCase):
         two = made_up({"stations": dict(stations, rupture_threshold=1e-2)}, metrics)
         labels = slip_map.plot_map(two)[0].axes[0].get_legend_handles_labels()[1]
         self.assertIn("station rupture times (|V| > 0.01 m/s)", labels)
+
+
+ANSWER = {"state": "found", "verdict": "L_c = 8e-07 m, in [8e-07, 1.6e-06) m",
+          "meaning": "below L_c the regularisation no longer changes the rupture",
+          "certainty": "the L search's rule, from 20 runs",
+          "others": [{"label": "spectral estimate: an order of magnitude, not the rule's answer",
+                      "value": 9.38e-05, "unit": "m"},
+                     {"label": "the paper's value", "value": 1e-05, "unit": "m"}]}
+
+
+class AnswerBlock(unittest.TestCase):
+    def test_the_verdict_comes_first_every_other_number_labelled(self):
+        study = {"id": "s", "status": "finished", "L_c": 8e-07,
+                 "spectral_critical_length": 9.38e-05, "answer": ANSWER, "runs": []}
+        lines = report.answer_lines(study)
+        self.assertEqual(lines[0], "**L_c = 8e-07 m, in [8e-07, 1.6e-06) m**.")
+        text = "\n".join(lines)
+        self.assertLess(text.index("What it means"), text.index("How sure"))
+        self.assertIn("- 9.38e-05 m: spectral estimate: an order of magnitude, not the rule's "
+                      "answer", text)
+        self.assertIn("- 1e-05 m: the paper's value", text)
+        shown = studies.summary_lines(study)
+        first_number = next(i for i, line in enumerate(shown) if "e-0" in line)
+        self.assertTrue(shown[first_number].startswith("the answer: L_c = 8e-07 m"), shown)
+        self.assertIn("spectral estimate (an order of magnitude from the filter law, not the "
+                      "rule's answer): 9.38e-05", "\n".join(shown))
+
+    def test_the_reproduction_report_opens_with_the_l_searchs_answer(self):
+        from slipfront_client.reproduction_report import opening_lines
+        search = {"id": "search", "method": "spectral_bi", "search": {"state": "found"},
+                  "answer": ANSWER}
+        fe = {"id": "fe", "critical_length": {"reason": "no L meets the rule: ...",
+                                              "steps_in_L": [{"agree": False}]}}
+        lines = opening_lines(search, fe, None)
+        self.assertEqual(lines[:2], ["## The answer\n", "From the BI L search `search`:\n"])
+        self.assertEqual(lines[2], "**L_c = 8e-07 m, in [8e-07, 1.6e-06) m**.")
+        self.assertIn("- no L meets the rule: the FE convergence study over the paper's L "
+                      "(docs/reproduction.md \"L_c verdict, by method\")", lines)
+
+    def test_an_older_server_without_the_block_gives_the_verdict_alone(self):
+        self.assertEqual(report.answer_lines({"L_c": 1e-5}), ["**L_c = 1e-05 m**."])
 
 
 if __name__ == "__main__":

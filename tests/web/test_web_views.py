@@ -306,6 +306,13 @@ class WebViews(BrowserCase):
             self.assertEqual(row[0], "agree" if step["agree"] else "differ")
         lc = self.texts("#lc-value")[0]
         self.assertTrue(lc.endswith(" m") and "not determined" not in lc, lc)
+        # The headline answer first: the search's verdict with its bracket, then labelled numbers.
+        self.assertEqual(self.texts("#answer-verdict"), [study["answer"]["verdict"]])
+        self.assertTrue(study["answer"]["verdict"].startswith(f"L_c = {search['L_c']:g} m, in ["),
+                        study["answer"])
+        order = self.js("return [...document.querySelectorAll('#view section.card')].map(s => s.id)")
+        self.assertEqual(order[0], "study-answer")
+        self.assertIn("not the rule's answer", " ".join(self.texts("#study-answer")))
         # Plain Coulomb beside the L (the paper scene is well-posed under it): one row per L.
         coulomb = search["coulomb"]
         self.assertIn(coulomb["status"], self.texts("#search-coulomb p")[0])
