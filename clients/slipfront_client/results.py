@@ -51,21 +51,8 @@ class Result:
         return f"{label} ({self.note})" if self.note else label
 
     def positions(self, most=4):
-        """The run's own places to watch: its stations (at most `most`, spread along them),
-        else its probes (spectrum_x1, arrival_x1), each once: [(x1, what)]."""
-        stations = sorted((self.spec.get("stations") or {}).get("x1") or [])
-        if stations:
-            if len(stations) > most:
-                stations = [stations[round(i * (len(stations) - 1) / (most - 1))]
-                            for i in range(most)]
-            return [(float(x), "station") for x in stations]
-        probe = self.spec.get("probe") or {}
-        found = []
-        for key in ("spectrum_x1", "arrival_x1"):
-            x = probe.get(key)
-            if x is not None and all(abs(x - y) > 1e-12 for y, _ in found):
-                found.append((float(x), f"probe.{key}"))
-        return sorted(found)
+        """The run's own places to watch (job_positions of its spec)."""
+        return job_positions(self.spec, most)
 
     def thresholds(self):
         """(front, stations): the slip speeds [m/s] that define the front and the stations'
@@ -99,6 +86,24 @@ class Result:
         """(c_s, c_p) of the run's material (plane strain), in either form of the job's
         `material` (moduli, or wave speeds as given: docs/api-job-spec.md)."""
         return solid_wave_speeds(self.spec.get("material") or {})
+
+
+def job_positions(spec, most=4):
+    """A job's own places to watch: its stations (at most `most`, spread along them), else its
+    probes (spectrum_x1, arrival_x1), each once: [(x1, what)] (the web view's jobPositions)."""
+    stations = sorted((spec.get("stations") or {}).get("x1") or [])
+    if stations:
+        if len(stations) > most:
+            stations = [stations[round(i * (len(stations) - 1) / (most - 1))]
+                        for i in range(most)]
+        return [(float(x), "station") for x in stations]
+    probe = spec.get("probe") or {}
+    found = []
+    for key in ("spectrum_x1", "arrival_x1"):
+        x = probe.get(key)
+        if x is not None and all(abs(x - y) > 1e-12 for y, _ in found):
+            found.append((float(x), f"probe.{key}"))
+    return sorted(found)
 
 
 METHODS = {"fe": "FE", "spectral_bi": "BI"}
