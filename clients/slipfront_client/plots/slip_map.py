@@ -76,13 +76,13 @@ def plot_map(result, probes=None, vmax=None, title=None, scale="log", whole=Fals
     if data["front_x1"].size:
         order = np.argsort(data["front_x1"])
         ax.plot(data["front_x1"][order], data["front_time"][order], color="tab:orange", lw=1.4,
-                label=f"slip front (|V| > {front_threshold:g} m/s)")
+                label=f"slip front (|V| > {front_threshold:.3g} m/s)")
     ruptures = [(s["x1"], s["rupture_time"]) for s in result.metrics.get("stations") or []
                 if s.get("rupture_time") is not None]
     if ruptures:
         same = station_threshold == front_threshold
         ax.plot(*zip(*ruptures), ls="none", marker="D", ms=5, mfc="white", mec="tab:orange",
-                label=f"station rupture times (|V| > {station_threshold:g} m/s"
+                label=f"station rupture times (|V| > {station_threshold:.3g} m/s"
                       + (", as the front)" if same else ")"))
     lo, hi = float(data["x1"].min()), float(data["x1"].max())
     watched = result.positions() if probes is None else [(float(x), "") for x in probes]
@@ -90,7 +90,7 @@ def plot_map(result, probes=None, vmax=None, title=None, scale="log", whole=Fals
     for (x, what), style in zip(watched, ["--", ":", "-.", (0, (5, 2, 1, 2))]):
         if lo <= x <= hi:
             ax.axvline(x, color="tab:red", ls=style, lw=1.0,
-                       label=f"{what or 'probe'} x1 = {x:g} m")
+                       label=f"x1 = {x:g} m ({what})" if what else f"probe x1 = {x:g} m")
             drawn.append(x)
     data["probes"] = drawn
     window = None if whole else result.event_window()
@@ -100,9 +100,8 @@ def plot_map(result, probes=None, vmax=None, title=None, scale="log", whole=Fals
     data["window"] = window
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", fontsize="small", framealpha=0.9)
-    ax.set_xlabel("x1 [m]")
+    ax.set_xlabel("x1 [m]" + ("" if window is None else
+                              "  (zoomed to the event; the whole box: plot map --whole)"))
     ax.set_ylabel("t [s]")
-    ax.set_title(title or f"Slip velocity, {result.label()}"
-                 + ("" if window is None else " (the event; whole box: --whole)"),
-                 fontsize="medium")
+    ax.set_title(title or f"Slip velocity, {result.label()}", fontsize="medium")
     return fig, data
