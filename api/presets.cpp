@@ -16,6 +16,29 @@ std::string text_member(const nlohmann::json& object, const char* key) {
   return it != object.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
+// An FE example's members that only the FE method reads (block heights and boundaries, the
+// safety factor, the "fe" section: what counterpart_document drops) go to `fe`, as a scene
+// preset's would, so that the example runs by either method.
+void split_fe_members(Preset& preset) {
+  if (preset.spec.value("method", "fe") != "fe") return;
+  const nlohmann::json by_bi = counterpart_document(preset.spec);
+  nlohmann::json spec = preset.spec;
+  for (const auto& [key, value] : preset.spec.items()) {
+    if (key == "method") continue;
+    if (!by_bi.contains(key)) {
+      preset.fe[key] = value;
+      spec.erase(key);
+    } else if (value.is_object()) {
+      for (const auto& [member, v] : value.items())
+        if (!by_bi[key].contains(member)) {
+          preset.fe[key][member] = v;
+          spec[key].erase(member);
+        }
+    }
+  }
+  preset.spec = std::move(spec);
+}
+
 // A scene preset's file is {title, description, reference, spec}; an example's file is the
 // job itself, its "name" the title.
 Preset read_preset(const nlohmann::json& entry) {
@@ -38,6 +61,7 @@ Preset read_preset(const nlohmann::json& entry) {
   }
   if (preset.title.empty()) preset.title = preset.name;
   if (!preset.fe.is_object()) preset.fe = nlohmann::json::object();
+  if (preset.origin != "presets") split_fe_members(preset);
   return preset;
 }
 

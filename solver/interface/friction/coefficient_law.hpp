@@ -5,12 +5,20 @@
 
 #include "solver/params.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace slipfront {
 
 // The FrictionValues a law reads (a profile may set only these).
 using FrictionParameters = std::vector<double FrictionValues::*>;
+
+// How a coefficient law weakens with slip: mu falls by `drop` over the slip path `distance` [m]
+// (the scale of its process zone; api/scene_checks.cpp).
+struct Weakening {
+  double drop = 0.0;
+  double distance = 0.0;
+};
 
 class CoefficientLaw {
 public:
@@ -20,6 +28,8 @@ public:
   virtual double static_coefficient(const FrictionValues& values) const = 0;
   // mu(s) after a slip path s [m].
   virtual double coefficient(const FrictionValues& values, double slip_path) const = 0;
+  // How mu weakens with slip; none for a constant coefficient.
+  virtual std::optional<Weakening> weakening(const FrictionValues&) const { return std::nullopt; }
 };
 
 // A law of the job's choice with its job JSON spelling: a line of the tables in
