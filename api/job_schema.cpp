@@ -109,16 +109,25 @@ const std::map<std::string, Words>& fixed_words() {
             "unstable and the run ends `diverged` (for failure studies)"}},
       {"/time/stop_on_arrest", {"", "end the run once the rupture has arrested"}},
       {"/time/arrest_window",
-       {"s", "the front must have stood still this long to count as arrested (docs/metrics.md)"}},
+       {"s", "the front must have stood still this long to count as arrested (docs/metrics.md). "
+             "Default for another material than the paper's: a tenth of the duration, at most "
+             "width / c_s (docs/api-job-spec.md \"Defaults and the scene's scale\")"}},
       {"/output/interval",
-       {"s", "time between stored samples, rounded to whole steps (at least one)"}},
+       {"s", "time between stored samples, rounded to whole steps (at least one). Default for "
+             "another material: duration / 800"}},
       {"/output/space_stride",
        {"", "store every k-th interface node (at most the number of interface nodes)"}},
       {"/probe/arrival_x1",
-       {"m", "where `arrival_time_at_probe` is measured; inside [x_min, x_min + width)"}},
+       {"m", "where `arrival_time_at_probe` is measured; inside [x_min, x_min + width). Default "
+             "for another material: two nucleation-patch lengths beyond the patch, the way the "
+             "shear load drives"}},
       {"/probe/spectrum_x1",
-       {"m", "where tau_s(t) is recorded for the spectral L_c estimate; inside the domain"}},
-      {"/probe/front_threshold", {"m/s", "slip velocity that defines the slip front"}},
+       {"m", "where tau_s(t) is recorded for the spectral L_c estimate; inside the domain. "
+             "Default for another material: half a patch length beyond the patch"}},
+      {"/probe/front_threshold",
+       {"m/s", "slip velocity that defines the slip front. Default for another material: "
+               "1e-6 m/s scaled by (\\|normal_stress\\| + \\|shear_stress\\|) / (rho c_s) "
+               "against the paper's 0.0255 m/s"}},
       {"/stations/x1",
        {"m", "on-fault stations: each inside [x_min, x_min + width), each once; the interface is "
              "recorded there every step, linearly between the two nodes around it (exact on a "
@@ -126,7 +135,8 @@ const std::map<std::string, Words>& fixed_words() {
              "(docs/hdf5-layout.md). Empty: no stations"}},
       {"/stations/rupture_threshold",
        {"m/s", "a station's rupture time is the first time its \\|V\\| exceeds this "
-               "(interpolated linearly between steps)"}},
+               "(interpolated linearly between steps); default: probe.front_threshold (one "
+               "threshold unless the job gives two)"}},
       {"/threads", {"", "worker threads of the run; 0 = all hardware threads"}},
       {"/name", {"", "free text"}},
       {"/tags", {"", "free text, for filtering"}},
@@ -400,6 +410,11 @@ std::vector<std::string> documented_job_pointers() {
   for (const FieldWords& words : method_field_words())
     pointers.push_back(words.pointer);
   return pointers;
+}
+
+std::string field_unit(const std::string& pointer) {
+  const auto words = field_words().find(pointer);
+  return words == field_words().end() ? std::string() : std::string(words->second.unit);
 }
 
 nlohmann::json job_json_schema() {

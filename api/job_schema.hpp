@@ -33,6 +33,9 @@ std::vector<JobField> job_fields();
 // words and the fields are the same set.
 std::vector<std::string> documented_job_pointers();
 
+// The SI unit of a field ("s", "m/s"), "" for a dimensionless or unknown one.
+std::string field_unit(const std::string& pointer);
+
 // JSON Schema (draft 2020-12) of the job object; unknown members are not allowed.
 nlohmann::json job_json_schema();
 

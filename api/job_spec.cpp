@@ -8,6 +8,8 @@
 #include "api/presets.hpp"
 #include "api/result_estimate.hpp"
 #include "api/run_bounds.hpp"
+#include "api/scene_checks.hpp"
+#include "api/scene_defaults.hpp"
 #include "solver/simulation.hpp"
 
 namespace slipfront::api {
@@ -27,6 +29,8 @@ ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limit
   read_job_fields(reader, job);
   reader.finish();
   job.canonical = reader.canonical(); // the run bounds name fields in the form they were given
+  // The defaults of the job's own scale (derived probes are then checked as given ones).
+  if (result.errors.empty()) apply_scene_defaults(given, document, job);
   check_job_consistency(job, result.errors);
   if (!result.errors.empty()) return result;
   // The wave speeds, the time step and the step count before any estimate uses them.
@@ -40,6 +44,7 @@ ParseResult parse_job(const nlohmann::json& given, const ValidationLimits& limit
   if (!result.errors.empty()) return result;
 
   job.sha256 = spec_hash(job.canonical);
+  job.warnings = scene_warnings(job);
   result.spec = std::move(job);
   return result;
 }

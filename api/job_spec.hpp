@@ -22,6 +22,22 @@ struct FieldError {
   std::string reason;  // e.g. "must be in (0, 0.5), got 0.5"
 };
 
+// A remark on a valid job (api/scene_checks.hpp): a value the run will take that is likely not
+// what the scene needs. Shown beside the field it names; it never refuses the job.
+struct FieldWarning {
+  std::string pointer; // JSON pointer of the field to look at
+  std::string message;
+};
+
+// A value with a unit that the run takes, and where it came from (api/scene_defaults.hpp):
+// "given", "preset NAME", "default" (the paper's scene) or "derived: how".
+struct ValueSource {
+  std::string pointer;
+  double value = 0.0;
+  std::string unit;
+  std::string source;
+};
+
 struct ValidationLimits {
   double max_memory_bytes = 8.0e9; // a job whose memory estimate exceeds this is refused
   // A job whose result-file estimate exceeds this is refused (api/result_estimate.hpp).
@@ -35,8 +51,15 @@ struct JobSpec {
   nlohmann::json canonical;      // every field present (defaults filled); keys sorted on dump
   std::string sha256;            // SHA-256 (hex) of the canonical physics: see spec_hash()
   double memory_estimate_bytes = 0.0;
-  double result_estimate_bytes = 0.0; // upper bound, uncompressed
+  double result_estimate_bytes = 0.0;  // upper bound, uncompressed
+  std::vector<FieldWarning> warnings;  // api/scene_checks.hpp
+  std::vector<ValueSource> provenance; // every number with a unit, and its source
 };
+
+// {pointer, message} and {pointer, value, unit, source} as JSON arrays (the validation answer,
+// the job record, the metrics and the result file hold them in this form).
+nlohmann::json warnings_json(const std::vector<FieldWarning>& warnings);
+nlohmann::json provenance_json(const std::vector<ValueSource>& provenance);
 
 struct ParseResult {
   std::optional<JobSpec> spec; // set when errors is empty

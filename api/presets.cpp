@@ -17,6 +17,34 @@ std::string text_member(const nlohmann::json& object, const char* key) {
   return it != object.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
+// An example's members that only its own method reads (FE's block heights and boundaries,
+// its safety factor, its options section: what the document of its counterpart method drops,
+// counterpart_document) go to `own[method]`, as a scene preset's would, so that the example
+// runs by either method.
+void split_own_members(Preset& preset) {
+  const std::string method = method_name_of(preset.spec);
+  const nlohmann::json by_other = counterpart_document(preset.spec);
+  if (!by_other.is_object()) return;
+  nlohmann::json spec = preset.spec;
+  nlohmann::json own = nlohmann::json::object();
+  for (const auto& [key, value] : preset.spec.items()) {
+    if (key == "method") continue;
+    if (!by_other.contains(key)) {
+      own[key] = value;
+      spec.erase(key);
+    } else if (value.is_object()) {
+      for (const auto& [member, v] : value.items())
+        if (!by_other[key].contains(member)) {
+          own[key][member] = v;
+          spec[key].erase(member);
+        }
+    }
+  }
+  if (own.empty()) return;
+  preset.spec = std::move(spec);
+  preset.own[method] = std::move(own);
+}
+
 // A scene preset's file is {title, description, reference, spec} and, by a method's name, the
 // members only that method reads ("fe"); an example's file is the job itself, its "name" the
 // title.
@@ -40,6 +68,7 @@ Preset read_preset(const nlohmann::json& entry) {
     preset.description = "The job file examples/" + preset.name + ".json.";
   }
   if (preset.title.empty()) preset.title = preset.name;
+  if (preset.origin != "presets") split_own_members(preset);
   return preset;
 }
 

@@ -338,6 +338,11 @@ void ResultFileWriter::finish(const RunResult& result, const nlohmann::json& can
                             value != metrics.end() && value->is_string() ? value->get<std::string>()
                                                                          : std::string());
     }
+    // Where each number with a unit came from, and the job's warnings (api/scene_defaults.hpp).
+    for (const char* key : {layout::provenance_attribute, layout::job_warnings_attribute}) {
+      const auto value = metrics.find(key);
+      hdf5::write_attribute(root, key, value != metrics.end() ? value->dump() : std::string("[]"));
+    }
     hdf5::write_attribute(root, layout::created_attribute, iso_time_now());
     w.close();
   } catch (const hdf5::Error& e) {

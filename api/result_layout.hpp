@@ -84,6 +84,10 @@ inline constexpr const char* code_version_attribute = "code_version";
 inline constexpr const char* method_attribute = "method";
 inline constexpr const char* method_description_attribute = "method_description";
 inline constexpr const char* created_attribute = "created";
+// Where each number with a unit came from, and the job's warnings (JSON arrays; files written
+// before they existed lack them, so they are not required).
+inline constexpr const char* provenance_attribute = "provenance";
+inline constexpr const char* job_warnings_attribute = "job_warnings";
 inline constexpr std::array<const char*, 7> root_attributes = {
     spec_attribute,   spec_sha256_attribute,        metrics_attribute, code_version_attribute,
     method_attribute, method_description_attribute, created_attribute};

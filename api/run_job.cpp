@@ -27,8 +27,10 @@ private:
   SampleSink& second_;
 };
 
-// The record of a run that ended (the result file, if any, is added by the caller).
-RunRecord record_of(const RunResult& result, const SimulationParams& params) {
+// The record of a run that ended (the result file, if any, is added by the caller): the
+// metrics with the values the job took and the warnings it was given.
+RunRecord record_of(const RunResult& result, const JobSpec& job) {
+  const SimulationParams& params = job.params;
   RunRecord record;
   if (result.cancelled) {
     record.status = JobStatus::cancelled;
@@ -37,6 +39,8 @@ RunRecord record_of(const RunResult& result, const SimulationParams& params) {
     record.error = diverged_error(result.metrics.message);
   }
   record.metrics = metrics_json(result, params);
+  record.metrics["provenance"] = provenance_json(job.provenance);
+  record.metrics["job_warnings"] = warnings_json(job.warnings);
   record.front = front_json(result);
   return record;
 }
@@ -47,7 +51,7 @@ JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunH
   JobOutput output;
   if (output_path.empty()) {
     output.result = run_simulation(job.params, hooks);
-    output.record = record_of(output.result, job.params);
+    output.record = record_of(output.result, job);
     return output;
   }
 
@@ -62,7 +66,7 @@ JobOutput run_job(const JobSpec& job, const std::string& output_path, const RunH
   }
 
   output.result = run_simulation(job.params, run_hooks);
-  output.record = record_of(output.result, job.params);
+  output.record = record_of(output.result, job);
   if (output.record.status != JobStatus::succeeded) {
     writer.abandon();
     return output;

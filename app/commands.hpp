@@ -32,5 +32,6 @@ Command add_stations_command(CLI::App& slipfront);   // stations_command.cpp
 Command add_fit_length_command(CLI::App& slipfront); // fit_length_command.cpp
 Command add_serve_command(CLI::App& slipfront);      // serve_command.cpp
 Command add_check_command(CLI::App& slipfront);      // check_command.cpp
+Command add_calibrate_command(CLI::App& slipfront);  // calibrate_command.cpp
 
 } // namespace slipfront::app

@@ -1,7 +1,8 @@
 // `slipfront fit-length RECORD [--json] [--fit-v-star] [--v-star V] [--mu MU] [--station X1]
 // [--slip-threshold V]`: the experimentalist's procedure of paper Sec. 6 on one record
 // (docs/length-fit.md): the fitted L_m with its 95 % interval, f_m, the contact pressure's
-// power above f_m, and whether L_m is the interface's physical length or only an upper bound.
+// power above f_m, and whether L_m is the interface's physical length or the event only bounds
+// it (by its own critical length, at least L_m).
 #include "app/commands.hpp"
 #include "app/options.hpp"
 
@@ -159,7 +160,7 @@ Command add_fit_length_command(CLI::App& slipfront) {
       "point: fit the simplified Prakash-Clifton law (eq. 1) to its frictional stress where it "
       "slips (the measured length L_m, 95 % interval), the measured critical frequency f_m "
       "(L_c(f_m) = L_m by A/A0 = 0.98), the contact pressure's power above f_m, and the "
-      "verdict: L_m is the interface's physical length, or only an upper bound. "
+      "verdict: L_m is the interface's physical length, or the event only bounds it. "
       "docs/length-fit.md.",
       "exit codes: 0 success, 1 the file cannot be read, 2 a bad record or command line (each "
       "error with its line, row and column).");

@@ -39,6 +39,11 @@ void print_errors(std::ostream& out, const std::vector<api::FieldError>& errors)
   }
 }
 
+void print_warnings(std::ostream& out, const std::vector<api::FieldWarning>& warnings) {
+  for (const auto& warning : warnings)
+    out << "warning: " << warning.pointer << ": " << warning.message << '\n';
+}
+
 std::optional<api::JobSpec> load_job(const std::string& command, const std::string& path,
                                      std::optional<int> threads,
                                      const api::ValidationLimits& limits) {
@@ -63,6 +68,7 @@ std::optional<api::JobSpec> load_job(const std::string& command, const std::stri
     print_errors(std::cerr, parsed.errors);
     return std::nullopt;
   }
+  print_warnings(std::cerr, parsed.spec->warnings);
   return std::move(parsed.spec);
 }
 

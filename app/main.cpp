@@ -38,9 +38,9 @@ struct Slipfront {
     top.set_help_flag("-h,--help", "this help");
     top.allow_extras();
     top.add_flag("--version", version, "the code version (as results record it)");
-    for (auto add :
-         {add_run_command, add_validate_command, add_schema_command, add_presets_command,
-          add_stations_command, add_fit_length_command, add_serve_command, add_check_command}) {
+    for (auto add : {add_run_command, add_validate_command, add_schema_command, add_presets_command,
+                     add_stations_command, add_fit_length_command, add_serve_command,
+                     add_check_command, add_calibrate_command}) {
       Command command = add(top);
       commands[command.cli] = std::move(command.run);
     }

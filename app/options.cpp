@@ -53,6 +53,15 @@ void add_max_memory(CLI::App& command, double& bytes, const std::string& default
       ->type_name("SIZE");
 }
 
+void add_cost_model(CLI::App& command, std::string& path, const std::string& default_text) {
+  command
+      .add_option("--cost-model", path,
+                  "the cost model of the wall-time estimate, as slipfront calibrate writes it "
+                  "(docs/performance.md \"Cost estimate\"); without it: " +
+                      default_text)
+      ->type_name("F");
+}
+
 void add_quiet(CLI::App& command, bool& quiet) {
   command.add_flag("--quiet", quiet, "no progress on stderr");
 }

@@ -24,6 +24,10 @@ void add_threads(CLI::App& command, std::optional<int>& threads);
 void add_max_memory(CLI::App& command, double& bytes, const std::string& default_text,
                     const std::string& old_name = "");
 
+// --cost-model F (validate, serve): the cost model of the estimates (api/cost_estimate.hpp), a
+// file `slipfront calibrate` wrote; `default_text` says what holds without it.
+void add_cost_model(CLI::App& command, std::string& path, const std::string& default_text);
+
 // --quiet (run): no progress on stderr.
 void add_quiet(CLI::App& command, bool& quiet);
 

@@ -1,6 +1,7 @@
 // `slipfront serve [--config F] [--host 127.0.0.1] [--port 8080] [--data-dir DIR] ...`: the
 // HTTP job server (server/serve.hpp, docs/server.md). Its flags are the server's settings
-// (server/server_config.hpp), one per setting; --max-memory is the flag run and validate take.
+// (server/server_config.hpp), one per setting; --max-memory and --cost-model are the flags run
+// and validate take.
 #include "app/commands.hpp"
 #include "app/options.hpp"
 
@@ -49,6 +50,11 @@ Command add_serve_command(CLI::App& slipfront) {
     if (setting.name == "max-memory") {
       add_max_memory(*command, config->max_memory_bytes,
                      "3/4 of the physical memory shared by the workers", setting.old_name);
+      continue;
+    }
+    if (setting.name == "cost-model") {
+      add_cost_model(*command, config->cost_model_file,
+                     "DATA_DIR/cost_model.json if it is there, else the built-in one");
       continue;
     }
     command

@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 namespace slipfront::server {
@@ -37,6 +38,22 @@ int connection_cap(int wanted) {
   log_info("--max-connections " + std::to_string(wanted) + " lowered to " + std::to_string(room) +
            ": the process may open " + std::to_string(lim.rlim_cur) + " file descriptors");
   return static_cast<int>(room);
+}
+
+// The cost model of the estimates: the file given, else DATA_DIR/cost_model.json if it is
+// there, else the built-in one (docs/performance.md "Cost estimate"). A file that is given or
+// there but cannot be read stops the start.
+api::CostModel load_cost_model(const std::string& given, const std::string& data_dir) {
+  const std::string path = given.empty() ? data_dir + "/cost_model.json" : given;
+  if (given.empty() && !std::filesystem::exists(path)) {
+    log_info("cost model: built-in (no " + path + "; `slipfront calibrate --data-dir " + data_dir +
+             "` measures this machine)");
+    return api::CostModel::built_in();
+  }
+  const api::CostModel model = api::CostModel::read_file(path); // throws: the start stops
+  log_info("cost model: " + path + " (" + model.machine + ", calibrated " + model.calibrated_at +
+           ")");
+  return model;
 }
 } // namespace
 
@@ -133,6 +150,9 @@ void ServerApp::start() {
   ServiceOptions so;
   so.max_memory_bytes = config_.max_memory_bytes;
   so.max_result_bytes = config_.max_result_bytes;
+  so.cost_model = load_cost_model(config_.cost_model_file, config_.data_dir);
+  so.max_run_seconds = config_.max_run_seconds > 0 ? config_.max_run_seconds
+                                                   : std::numeric_limits<double>::infinity();
   so.code_version = code_version_;
   so.auth_enabled = tokens_.has_value();
   so.data_dir = config_.data_dir;

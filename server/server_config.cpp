@@ -119,6 +119,14 @@ const std::vector<ServerSetting>& server_settings() {
       {"max-result-bytes", "X",
        "refuse a job whose result file is estimated above X bytes (default 20e9)",
        set_max_result_bytes},
+      {"max-run-seconds", "S",
+       "refuse a job whose estimated wall time on this server is above S seconds (default "
+       "604800, a week; 0: no limit)",
+       number<double>(&ServerConfig::max_run_seconds, 0.0)},
+      {"cost-model", "F",
+       "the cost model of the estimates (default DATA_DIR/cost_model.json, written by "
+       "slipfront calibrate; without it the built-in one)",
+       text(&ServerConfig::cost_model_file)},
       {"max-body-bytes", "N", "larger request bodies get 413 (default 1 MiB)",
        number<std::uint64_t>(&ServerConfig::max_body_bytes)},
       {"max-import-bytes", "N",

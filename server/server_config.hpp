@@ -20,6 +20,11 @@ struct ServerConfig {
   std::size_t queue_limit = 1000;   // queued jobs above which POST /jobs answers 503
   double max_memory_bytes = 0.0;    // 0 = 3/4 of physical memory shared by the workers
   double max_result_bytes = 20.0e9; // a job whose result-file estimate is above is refused
+  // A job whose estimated wall time on this server is above is refused (0 = no limit); the
+  // cost model (docs/performance.md "Cost estimate") is read from cost_model_file, by default
+  // DATA_DIR/cost_model.json (`slipfront calibrate` writes it), else the built-in one.
+  double max_run_seconds = 7 * 86400.0;
+  std::string cost_model_file;
   std::uint64_t max_body_bytes = 1 << 20;
   // The body of POST /imports (a tar of runs, held in memory while it is checked).
   std::uint64_t max_import_bytes = std::uint64_t{1} << 30;

@@ -29,6 +29,10 @@ struct Material {
     return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) / density);
   }
   double s_wave_speed() const { return std::sqrt(shear_modulus() / density); }
+  // The particle velocity a shear stress drives in a plane S wave, stress / (rho c_s): the
+  // slip-speed scale of a load (the divergence check's, and the derived thresholds' of
+  // api/scene_defaults.hpp).
+  double particle_velocity(double stress) const { return stress / (density * s_wave_speed()); }
 };
 
 // Domain [x_min, x_min + width) x [0, height], periodic in x1, on a rigid plane at x2 = 0.
@@ -140,8 +144,10 @@ struct Probes {
 // On-fault stations (docs/hdf5-layout.md "/stations"): the interface recorded every step at
 // each x1, linearly between the two nodes around it, and its rupture time.
 struct Stations {
-  std::vector<double> x1;          // inside [x_min, x_min + width); empty: no stations
-  double rupture_threshold = 1e-3; // |V| [m/s] whose first crossing is the rupture time
+  std::vector<double> x1; // inside [x_min, x_min + width); empty: no stations
+  // |V| [m/s] whose first crossing is the rupture time; a job that gives none takes its
+  // probe.front_threshold (api/scene_defaults.hpp), the paper's 1e-6 m/s here.
+  double rupture_threshold = 1e-6;
 };
 
 // An extra traction applied at the interface (for verification scenes, e.g. a uniform

@@ -31,6 +31,13 @@ double step_count_bound(const SimulationParams& params) {
   return method_entry(params.method).step_count_bound(params);
 }
 
+RunWork estimated_work(const SimulationParams& params, double until) {
+  if (until < 0) until = params.time.duration;
+  if (params.method == Method::spectral_bi)
+    return spectral::SpectralMethod::estimated_work(params, until);
+  return fe::FiniteElementMethod::estimated_work(params, until);
+}
+
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {
   // The wall time counts the set-up (the stable step's power iteration) too; the method is
   // built with denormals flushed, as it is stepped.

@@ -13,6 +13,7 @@
 #include "solver/params.hpp"
 #include "solver/run/run_hooks.hpp"
 #include "solver/run/run_result.hpp"
+#include "solver/run_work.hpp"
 #include "solver/step_count.hpp"
 
 namespace slipfront {
@@ -40,6 +41,10 @@ TimeStepBounds time_step_bounds(const SimulationParams& params);
 // An upper bound of the steps of a run that goes to `duration` (duration / the shortest
 // step; BI: its exact count), in double: beyond every integer type for an impossible job.
 double step_count_bound(const SimulationParams& params);
+
+// The work of a run up to simulated time `until` (the duration when negative): the counts
+// the cost model of api/cost_estimate.hpp times (solver/run_work.hpp).
+RunWork estimated_work(const SimulationParams& params, double until = -1.0);
 
 // The version string compiled into this build (project version + git describe).
 const char* code_version();

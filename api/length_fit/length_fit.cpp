@@ -31,13 +31,23 @@ LengthFitVerdict decide(const LengthFit& r) {
       number_text(100 * spectral_power_fraction, 3) + " % power frequency " +
       number_text(r.spectrum.frequency_99, 3) + " Hz, is " +
       number_text(v.event_critical_length, 3) + " m, against L_m = " + number_text(L_m, 3) + " m";
+  // Worded so that no number reads against another: when the event is not rich enough the
+  // one bound is the largest length it names, and L_m is said to lie below it.
   if (v.rich_enough) {
-    v.text = "the event is rich enough: L_m is the interface's physical length";
+    v.text = "the event is rich enough: the interface's physical length is L_m = " +
+             number_text(L_m, 3) + " m";
     v.upper_bound = std::numeric_limits<double>::quiet_NaN();
   } else {
     v.upper_bound = std::max(L_m, v.event_critical_length);
-    v.text = "it is not: L_m is only an upper bound (the critical length of this event) — a "
-             "sharper event is needed";
+    v.text = "the event is not rich enough to measure the length: the physical length is at "
+             "most " +
+             number_text(v.upper_bound, 3) +
+             " m (this event's critical length: any shorter length "
+             "changes its stresses by less than 2 %), and the "
+             "fitted L_m = " +
+             number_text(L_m, 3) +
+             " m, below that bound, is not a measurement of it — a sharper "
+             "event is needed";
   }
   v.reason = numbers;
   const std::vector<double>& f = r.spectrum.spectrum.frequency;

@@ -173,6 +173,13 @@ class Api:
         `properties.method`: slipfront_client.methods)."""
         return self.get_json(f"{API}/schema/job.json")
 
+    def validate(self, spec):
+        """POST /jobs/validate: the job checked as submit() would check it, nothing stored:
+        {valid, spec, spec_sha256, warnings, provenance, estimate, memory_estimate_bytes}, or
+        {valid: false, errors: [{pointer, reason}]} for an invalid job."""
+        return self.request("POST", f"{API}/jobs/validate", json_body=spec,
+                            idempotent=True).json()
+
     def presets(self):
         """GET /presets: [{name, origin, title, description, reference, spec}]."""
         return self.get_json(f"{API}/presets")["presets"]

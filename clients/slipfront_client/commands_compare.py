@@ -1,6 +1,6 @@
 """`compare ID ID ... [--study SID] [--where COND] [--out DIR]`: runs side by side — the table
 of their fields with the differences marked (compare.py), and their figures overlaid as PNG
-(or --format): |V|(t) at the paper's x1 = 6 and 10 m (--x1), V_r(x1), the slip fronts and one
+(or --format): |V|(t) at the first run's stations, else its probes (--x1), V_r(x1), the slip fronts and one
 parameter against one metric (--x, --y). Drawn from the server's JSON (/front, /fields): no
 result file is downloaded."""
 
@@ -43,7 +43,8 @@ def add_parsers(sub, common):
     p.add_argument("--format", default="png", help="comma-separated: png,pdf,svg (default png)")
     p.add_argument("--force", action="store_true", help="replace figures that exist")
     p.add_argument("--no-figures", action="store_true", help="print the table only")
-    p.add_argument("--x1", default="6,10", help="positions of the |V|(t) panels [m] (default 6,10)")
+    p.add_argument("--x1", help="positions of the |V|(t) panels [m] (default: the first run's "
+                                "stations, else its probes)")
     p.add_argument("--x", dest="scatter_x", metavar="PARAM",
                    help="the scatter's parameter, a spec field (default: the one that differs)")
     p.add_argument("--y", dest="scatter_y", metavar="METRIC",
@@ -105,9 +106,11 @@ def draw_figures(api, jobs, labels, axes, args, paths, quiet):
     speed = importlib.import_module(".plots.speed", __package__)
     compared = importlib.import_module(".plots.compare", __package__)
     results = importlib.import_module(".results", __package__)
-    positions = _floats(args.x1, "--x1")
     x_row, y_row = axes
     done = [i for i, j in enumerate(jobs) if j.get("status") == "succeeded" and j.get("result")]
+    positions = (_floats(args.x1, "--x1") if args.x1 else
+                 [x for x, _ in results.job_positions(jobs[done[0]].get("spec") or {})] if done
+                 else [])
     if len(done) < len(jobs) and not quiet:
         left = [j["id"][:8] for i, j in enumerate(jobs) if i not in done]
         log(f"no result, so no curves, for: {', '.join(left)}")

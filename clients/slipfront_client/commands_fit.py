@@ -12,7 +12,7 @@ def add_parsers(sub, common):
                     "point (CSV with time, slip_rate, contact_pressure, frictional_stress; a "
                     "stations CSV as it is; or JSON columns): the measured length L_m with its "
                     "95 % interval, f_m, the contact pressure's power above f_m, and whether "
-                    "L_m is the interface's physical length or only an upper bound.")
+                    "L_m is the interface's physical length or the event only bounds it.")
     p.add_argument("record", help="CSV or JSON file ('-': standard input)")
     p.add_argument("--fit-v-star", action="store_true", help="fit V* too")
     p.add_argument("--v-star", type=float, help="V* [m/s] (default 1e-4, the paper's)")

@@ -1,4 +1,4 @@
-"""The job subcommands: submit, status, list, cancel, download, presets, stations."""
+"""The job subcommands: submit, validate, status, list, cancel, download, presets, stations."""
 
 import argparse
 import os
@@ -7,7 +7,7 @@ import sys
 from . import jobspec
 from .result_download import download_result, write_xdmf
 from .errors import ServerError, UsageError
-from .output import job_summary, log, print_json, table
+from .output import job_summary, log, print_json, provenance_lines, table, warning_lines
 from .waiting import FINAL, ProgressBar, check_outcome, wait_for_job
 
 
@@ -32,6 +32,18 @@ def add_parsers(sub, common):
                         "it, as FILE.xdmf")
     p.add_argument("--dry-run", action="store_true", help="print the job JSON and do not submit")
     p.set_defaults(func=cmd_submit)
+
+    p = sub.add_parser("validate", parents=[common], help="check a job without submitting it",
+                       description="Check a job as submit would (the same file, --preset and "
+                                   "--set): prints ok, its spec hash, the cost estimate, the "
+                                   "values it takes that it did not give (derived or default, "
+                                   "with where they come from) and its warnings; exit 2 with "
+                                   "the errors of an invalid job.")
+    p.add_argument("job", nargs="?", help="job JSON file, or - for stdin")
+    p.add_argument("--preset", metavar="NAME", help="start from a preset")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE",
+                   help="override a field, e.g. --set friction.L=1e-5")
+    p.set_defaults(func=cmd_validate)
 
     p = sub.add_parser("presets", parents=[common], help="list the presets, or show one",
                        description="The presets a job may start from: the field's standard "
@@ -122,6 +134,8 @@ def cmd_submit(args, ctx):
         cache = job.get("cache")
         log(f"submitted job {job['id']} ({job['status']}"
             + (f", cache {cache}" if cache and cache != "miss" else "") + ")")
+        for line in warning_lines(job.get("warnings"), indent="warning: "):
+            log(line)
     if not args.wait:
         print_json(job) if args.json else print(job["id"])
         return 0
@@ -145,6 +159,37 @@ def cmd_submit(args, ctx):
                 log(f"XDMF sidecar written to {xdmf}")
     return 0
 
+
+
+def cmd_validate(args, ctx):
+    spec = jobspec.build_job(args.job, args.overrides, None, [], preset=args.preset)
+    answer = ctx.api().validate(spec)
+    if args.json:
+        print_json(answer)
+        return 0 if answer.get("valid", True) else 2
+    if answer.get("valid") is False:
+        for e in answer.get("errors") or []:
+            print(f"{e.get('pointer') or '(body)'}: {e.get('reason')}", file=sys.stderr)
+        return 2
+    print("ok")
+    print(f"spec_sha256: {answer.get('spec_sha256')}")
+    for line in estimate_lines(answer.get("estimate")):
+        print(line)
+    taken = provenance_lines(answer.get("provenance"), indent="  ")
+    if taken:
+        print("values not given:")
+        for line in taken:
+            print(line)
+    for line in warning_lines(answer.get("warnings"), indent="warning: "):
+        print(line)
+    return 0
+
+
+def estimate_lines(estimate):
+    """The cost estimate before a run (docs/performance.md "Cost estimate"), a line each."""
+    if not estimate:
+        return []
+    return [f"{key}: {value}" for key, value in estimate.items() if not isinstance(value, dict)]
 
 
 def cmd_presets(args, ctx):

@@ -52,7 +52,10 @@ def add_parsers(sub, common_parent):
 
     m = psub.add_parser("map", parents=parents, help="(a) |V| in the x1-t plane with the front")
     m.add_argument("sources", nargs="+", help="HDF5 files or job ids (one figure each)")
-    m.add_argument("--probes", default="6,10", help="x1 of the vertical lines (default 6,10)")
+    m.add_argument("--probes", help="x1 of the vertical lines (default: each run's stations, "
+                                    "else its probes)")
+    m.add_argument("--whole", action="store_true",
+                   help="the whole domain and run (default: zoom to the event)")
     m.add_argument("--vmax", type=float, help="upper end of the grey scale [m/s]")
     m.add_argument("--scale", choices=["log", "linear"], default="log",
                    help="colour scale: log over four decades below the peak (default), or "
@@ -61,7 +64,8 @@ def add_parsers(sub, common_parent):
 
     v = psub.add_parser("velocity", parents=parents, help="(b) |V| against time at given x1")
     v.add_argument("sources", nargs="+")
-    v.add_argument("--x1", default="6,10", help="positions [m] (default 6,10)")
+    v.add_argument("--x1", help="positions [m] (default: the first run's stations, else its "
+                                "probes)")
     v.add_argument("--no-zoom", action="store_true",
                    help="show the whole run (default: zoom each panel to the signal)")
     v.set_defaults(func=cmd_velocity)
@@ -164,11 +168,12 @@ def map_stems(args):
 def cmd_map(args, ctx):
     common = plots("common")
     formats = common.parse_formats(args.format)
-    probes = floats(args.probes, "--probes")
+    probes = floats(args.probes, "--probes") if args.probes else None
     stems = map_stems(args)
     output_paths(args, stems)
     for stem, result in zip(stems, _results(args, ctx)):
-        fig, _ = plots("slip_map").plot_map(result, probes, args.vmax, args.title, args.scale)
+        fig, _ = plots("slip_map").plot_map(result, probes, args.vmax, args.title, args.scale,
+                                            whole=args.whole)
         for path in common.save_figure(fig, args.output_dir, stem, formats):
             print(path)
     return 0
@@ -176,7 +181,7 @@ def cmd_map(args, ctx):
 
 def cmd_velocity(args, ctx):
     output_paths(args, [args.stem or "velocity"])
-    positions = floats(args.x1, "--x1")
+    positions = floats(args.x1, "--x1") if args.x1 else None
     fig, _ = plots("velocity").plot_velocity(_results(args, ctx), positions, args.title,
                                              zoom=not args.no_zoom)
     _save(fig, args, "velocity")

@@ -93,6 +93,4 @@ def report_lines(answer):
         f"verdict: {verdict['text']}",
         f"  ({verdict['reason']})",
     ]
-    if not verdict["rich_enough"]:
-        lines.append(f"  the physical length is at most {verdict['upper_bound']:.3g} m")
     return lines

@@ -22,6 +22,18 @@ def fmt(value):
     return str(value)
 
 
+def warning_lines(warnings, indent="  warning     "):
+    """The validation's warnings ({pointer, message}) one a line: `pointer: message`."""
+    return [f"{indent}{w.get('pointer')}: {w.get('message')}" for w in warnings or []]
+
+
+def provenance_lines(provenance, indent="  "):
+    """The numbers with a unit a job takes that it did not give: `pointer = value unit (source)`."""
+    return [f"{indent}{v.get('pointer')} = {fmt(v.get('value'))} {v.get('unit')}  ({v.get('source')})"
+            for v in provenance or [] if v.get("source") != "given"
+            and not str(v.get("source")).startswith("preset")]
+
+
 def job_summary(job):
     """Lines describing a job: identity, status, progress, key metrics, cost, result."""
     spec = job.get("spec") or {}
@@ -32,6 +44,7 @@ def job_summary(job):
              + (f"  (cache hit of {job['cached_from']})" if job.get("cached_from") else "")]
     if spec:
         lines.append(f"  L = {fmt(L)} m, n_d = {fmt(n_d)}, tags {fmt(job.get('tags'))}")
+    lines += warning_lines(job.get("warnings"))
     p = job.get("progress") or {}
     if job.get("status") in ("queued", "running"):
         lines.append(f"  progress    {100 * float(p.get('fraction') or 0):.1f}%  "

@@ -64,6 +64,29 @@ def _lookup(mapping, L):
     return None
 
 
+def answer_lines(study, extra=(), markdown=True):
+    """The headline answer block of a study (docs/studies.md "The answer"; the server's
+    `answer`): the verdict, what it means, how sure it is, then the other numbers, each with
+    what it is. `extra`: more (label, value, unit) to list among the others. Without the
+    server's block (an older server), the verdict alone."""
+    answer = study.get("answer") or {}
+    verdict = answer.get("verdict") or verdict_text(study)
+    bold = (lambda t: f"**{t}**") if markdown else (lambda t: t)
+    gap = [""] if markdown else []  # Markdown: one paragraph each
+    lines = [bold(verdict) + "."]
+    if answer.get("meaning"):
+        lines += gap + [f"What it means: {answer['meaning']}."]
+    if answer.get("certainty"):
+        lines += gap + [f"How sure: {answer['certainty']}."]
+    others = [(o.get("label"), o.get("value"), o.get("unit")) for o in answer.get("others") or []]
+    others += list(extra)
+    if others:
+        lines += gap + ["Other numbers, each for what it is:"] + gap
+        lines += [f"- {fmt(value, unit=unit or '') if isinstance(value, (int, float)) else value}: "
+                  f"{label}" for label, value, unit in others]
+    return lines
+
+
 def verdict_text(study):
     """One line: "L_c = 1e-05 m" / "no L meets the rule" / "L_c undetermined"."""
     cl = study.get("critical_length") or {}

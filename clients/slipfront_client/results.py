@@ -52,10 +52,61 @@ class Result:
         label = run_label(self.spec, self.metrics)
         return f"{label} ({self.note})" if self.note else label
 
+    def positions(self, most=4):
+        """The run's own places to watch (job_positions of its spec)."""
+        return job_positions(self.spec, most)
+
+    def thresholds(self):
+        """(front, stations): the slip speeds [m/s] that define the front and the stations'
+        rupture times (the same unless the job gives two); stations None without stations."""
+        front = self.metrics.get("front_threshold",
+                                 (self.spec.get("probe") or {}).get("front_threshold"))
+        stations = self.spec.get("stations") or {}
+        return front, (stations.get("rupture_threshold") if stations.get("x1") else None)
+
+    def event_window(self, fraction=0.01):
+        """((x0, x1), (t0, t1)): the nodes where |V| ever exceeded `fraction` of its peak and
+        those the front reached, padded by 10 % (at least two nodes), and the times from the
+        first sample to the last such |V|, padded by 15 %; None if nothing slipped."""
+        v = np.abs(self.slip_velocity)
+        finite = v[np.isfinite(v)]
+        peak = float(finite.max()) if finite.size else 0.0
+        if not peak > 0:
+            return None
+        above = np.nan_to_num(v) > fraction * peak
+        xs = list(self.x1[above.any(axis=0)])
+        xs += list(self.front_x1[np.isfinite(self.arrival_time)])
+        last = float(self.time[above.any(axis=1)].max())
+        dx = float(self.x1[1] - self.x1[0]) if self.x1.size > 1 else 1.0
+        pad = max(0.1 * (max(xs) - min(xs)), 2 * dx)
+        x_box = (float(self.x1.min()) - dx / 2, float(self.x1.max()) + dx / 2)
+        t_box = (float(self.time[0]), float(self.time[-1]))
+        return ((max(x_box[0], min(xs) - pad), min(x_box[1], max(xs) + pad)),
+                (t_box[0], min(t_box[1], last + 0.15 * max(last - t_box[0], 1e-12))))
+
     def wave_speeds(self):
         """(c_s, c_p) of the run's material (plane strain), in either form of the job's
         `material` (moduli, or wave speeds as given: docs/api-job-spec.md)."""
         return solid_wave_speeds(self.spec.get("material") or {})
+
+
+def job_positions(spec, most=4):
+    """A job's own places to watch: its stations (at most `most`, spread along them), else its
+    probes (spectrum_x1, arrival_x1), each once: [(x1, what)] (the web view's jobPositions)."""
+    stations = sorted((spec.get("stations") or {}).get("x1") or [])
+    if stations:
+        if len(stations) > most:
+            stations = [stations[round(i * (len(stations) - 1) / (most - 1))]
+                        for i in range(most)]
+        return [(float(x), "station") for x in stations]
+    probe = spec.get("probe") or {}
+    found = []
+    for key in ("spectrum_x1", "arrival_x1"):
+        x = probe.get(key)
+        if x is not None and all(abs(x - y) > 1e-12 for y, _ in found):
+            found.append((float(x), f"probe.{key}"))
+    return sorted(found)
+
 
 
 def _number(value, unit=""):

@@ -139,6 +139,11 @@ def summary_lines(study):
         lines[0] += f"  ({progress.get('done')}/{progress.get('total')} runs final)"
     if study.get("method"):
         lines[0] += f"  method {study['method']}"
+    # The headline answer first (docs/studies.md "The answer"), then the runs and the rest.
+    if study.get("answer"):
+        lines += ["", "the answer: " + report.answer_lines(study, markdown=False)[0]]
+        lines += ["  " + line for line in report.answer_lines(study, markdown=False)[1:]]
+        lines.append("")
     lines.append(f"{'L [m]':>10} {'n_d':>6} {'status':>10} {'outcome':>15} {'d_dist':>10} "
                  f"{'d_t_probe':>10} {'convergence':>14}  id")
     for r in runs_of(study):
@@ -161,9 +166,12 @@ def summary_lines(study):
     converged = (study.get("convergence_map") or {}).get("converged_n_d") or {}
     for L, n_d in converged.items():
         lines.append(f"L = {L}: converged from n_d = {_fmt(n_d)}")
-    for key in ("L_c", "spectral_critical_length"):
+    labels = {"L_c": "L_c by the rule over every L run",
+              "spectral_critical_length": "spectral estimate (an order of magnitude from the "
+                                          "filter law, not the rule's answer)"}
+    for key, label in labels.items():
         if key in study:
-            lines.append(f"{key}: {_fmt(study[key])}")
+            lines.append(f"{label}: {_fmt(study[key])}")
     reason = (study.get("critical_length") or {}).get("reason") if isinstance(
         study.get("critical_length"), dict) else None
     if reason:

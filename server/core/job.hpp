@@ -76,6 +76,9 @@ struct Job {
   // Who imported its result file ("": this server computed it): an imported run's importer,
   // kept by its cache hits; such a result is a cache source for that user only.
   std::string result_imported_by;
+  // What the validation said when the job was accepted: {"warnings", "provenance", "estimate"}
+  // (api/scene_checks.hpp, api/scene_defaults.hpp); null for a job accepted before.
+  nlohmann::json validation;
 };
 
 } // namespace slipfront::server

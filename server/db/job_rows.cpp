@@ -51,7 +51,8 @@ const std::vector<std::string>& job_columns() {
                                                    "note",
                                                    "archived_at",
                                                    "imported_from",
-                                                   "result_imported_by"};
+                                                   "result_imported_by",
+                                                   "validation"};
   return columns;
 }
 
@@ -118,6 +119,11 @@ const std::vector<std::pair<std::string, Binder>>& new_job_columns() {
        [](Statement& s, int i, const Job& j) {
          s.bind(i, j.imported_from.is_null() ? std::nullopt
                                              : std::optional<std::string>(j.imported_from.dump()));
+       }},
+      {"validation",
+       [](Statement& s, int i, const Job& j) {
+         s.bind(i, j.validation.is_null() ? std::nullopt
+                                          : std::optional<std::string>(j.validation.dump()));
        }},
   };
   return columns;
@@ -189,6 +195,7 @@ Job read_job(const Statement& s) {
   job.archived_at = s.text("archived_at");
   job.imported_from = parse_stored_json(s.text("imported_from"), "provenance of job " + job.id);
   job.result_imported_by = s.text("result_imported_by");
+  job.validation = parse_stored_json(s.text("validation"), "validation of job " + job.id);
   return job;
 }
 

@@ -36,7 +36,7 @@ struct CacheRequester {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 11;
+  static constexpr int schema_version = 12;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).

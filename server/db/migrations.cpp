@@ -19,6 +19,7 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m9_run_annotations()},
       {migrations::m10_file_intents()},
       {migrations::m11_imported_results()},
+      {migrations::m12_job_validation()},
   };
   return list;
 }

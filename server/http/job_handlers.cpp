@@ -191,6 +191,34 @@ Response cancel_job(ServerContext& ctx, RequestContext& rc) {
   return problem_response(rc.request, http::status::internal_server_error, "unreachable");
 }
 
+// POST /jobs/validate: the job checked as POST /jobs would check it, nothing stored: its
+// canonical spec, warnings, the source of each number with a unit and the cost estimate. An
+// invalid job is a validation that succeeded with its answer, 200 {"valid": false, "errors"}
+// (what POST /jobs refuses with 422; the web form asks while one types, and a browser logs
+// every 4xx as an error); a body that is not JSON is 400.
+Response validate_job(ServerContext& ctx, RequestContext& rc) {
+  CheckResult r = ctx.service.check(rc.request.body());
+  switch (r.kind) {
+  case CheckResult::Kind::bad_json:
+    return problem_response(rc.request, http::status::bad_request, "the body is not valid JSON",
+                            r.errors);
+  case CheckResult::Kind::invalid: {
+    nlohmann::json errors = nlohmann::json::array();
+    for (const auto& e : r.errors)
+      errors.push_back({{"pointer", e.pointer}, {"reason", e.reason}});
+    return json_response(rc.request, http::status::ok, {{"valid", false}, {"errors", errors}});
+  }
+  case CheckResult::Kind::valid:
+    break;
+  }
+  nlohmann::json body = r.validation;
+  body["valid"] = true;
+  body["spec"] = r.spec->canonical;
+  body["spec_sha256"] = r.spec->sha256;
+  body["memory_estimate_bytes"] = api::json_bytes(r.spec->memory_estimate_bytes);
+  return json_response(rc.request, http::status::ok, std::move(body));
+}
+
 // GET /job-defaults?method=NAME (fe, spectral_bi: solver/methods.hpp): the canonical spec of
 // an empty job of that method (every field with its default), what the web view's submit form
 // starts from.
@@ -221,6 +249,8 @@ Response job_defaults(RequestContext& rc) {
 void add_job_routes(Router& router, ServerContext& ctx) {
   router.add_json_body(http::verb::post, api_prefix + "/jobs",
                        [&ctx](RequestContext& rc) { return submit(ctx, rc); });
+  router.add_json_body(http::verb::post, api_prefix + "/jobs/validate",
+                       [&ctx](RequestContext& rc) { return validate_job(ctx, rc); });
   // An export runs on a thread of its own, at most --max-exports at once; a page of jobs
   // (at most 1000) with the other reads.
   router.add(

@@ -55,6 +55,14 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["note"] = job.note;
   j["archived_at"] = text_or_null(job.archived_at);
   j["imported_from"] = job.imported_from;
+  // What the validation said when the job was accepted (null parts for older jobs).
+  const auto validation = [&](const char* key, nlohmann::json absent) {
+    return job.validation.is_object() && job.validation.contains(key) ? job.validation[key]
+                                                                      : absent;
+  };
+  j["warnings"] = validation("warnings", nlohmann::json::array());
+  j["provenance"] = validation("provenance", nullptr);
+  j["estimate"] = validation("estimate", nullptr);
   j["links"] = {{"self", api_prefix + "/jobs/" + job.id},
                 {"metrics", api_prefix + "/jobs/" + job.id + "/metrics"},
                 {"front", api_prefix + "/jobs/" + job.id + "/front"},

@@ -99,6 +99,7 @@ const char* document = R"json({
         "progress": {"type": "object", "properties": {"done": {"type": "integer"}, "total": {"type": "integer"}, "fraction": {"type": "number"}}},
         "scene_hash": {"type": "string"}, "L_c": {"type": "number", "nullable": true},
         "spectral_critical_length": {"type": "number", "nullable": true},
+        "answer": {"type": "object", "description": "the headline answer (docs/studies.md \"The answer\"): {state, verdict, meaning, certainty, others: [{label, value, unit}]}"},
         "runs": {"type": "array", "items": {"$ref": "#/components/schemas/StudyRun"}},
         "critical_length": {"type": "object"}, "convergence_map": {"type": "object"},
         "refinement": {"type": "object", "description": "convergence studies: the plan per L"},
@@ -126,7 +127,19 @@ const char* document = R"json({
         "executor": {"type": "string", "nullable": true, "enum": ["local", "slurm", null], "description": "where it ran (null until it started)"},
         "slurm_job_id": {"type": "string", "nullable": true, "description": "its SLURM job (executor slurm)"},
         "slurm_state": {"type": "string", "nullable": true, "description": "last SLURM state seen, with the reason: PENDING (Resources), RUNNING on node7, TIMEOUT (TimeLimit)"},
-        "links": {"type": "object"}}}
+        "warnings": {"type": "array", "items": {"$ref": "#/components/schemas/Warning"}, "description": "what the validation warned about when the job was accepted (docs/api-job-spec.md \"Warnings\")"},
+        "provenance": {"type": "array", "nullable": true, "items": {"$ref": "#/components/schemas/ValueSource"}, "description": "every number with a unit the run takes and where it came from; null for jobs accepted before it was kept"},
+        "estimate": {"type": "object", "nullable": true, "description": "the cost estimate before the run (docs/performance.md \"Cost estimate\")"},
+        "links": {"type": "object"}}},
+      "Warning": {"type": "object", "properties": {"pointer": {"type": "string"}, "message": {"type": "string"}}},
+      "ValueSource": {"type": "object", "properties": {"pointer": {"type": "string"}, "value": {"type": "number"},
+        "unit": {"type": "string"}, "source": {"type": "string", "description": "given, preset NAME, default (the paper's scene) or derived: how"}}},
+      "Validation": {"type": "object", "properties": {"valid": {"type": "boolean"}, "spec": {"type": "object"},
+        "errors": {"type": "array", "description": "an invalid job: every error, as POST /jobs would give them", "items": {"type": "object", "properties": {"pointer": {"type": "string"}, "reason": {"type": "string"}}}},
+        "spec_sha256": {"type": "string"}, "memory_estimate_bytes": {"type": "number"},
+        "warnings": {"type": "array", "items": {"$ref": "#/components/schemas/Warning"}},
+        "provenance": {"type": "array", "items": {"$ref": "#/components/schemas/ValueSource"}},
+        "estimate": {"type": "object", "nullable": true}}}
     },
     "responses": {
       "Problem": {"description": "Error", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
@@ -252,6 +265,12 @@ const char* document = R"json({
           "404": {"$ref": "#/components/responses/Problem"}, "409": {"$ref": "#/components/responses/Problem"},
           "410": {"$ref": "#/components/responses/Problem"}}}
     },
+    "/api/v1/jobs/validate": {
+      "post": {"summary": "Check a job as POST /jobs would, without submitting it: its canonical spec, warnings, the source of each number with a unit, and the cost estimate (the web form asks it while one types); no token is needed",
+        "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/JobSpec"}}}},
+        "responses": {"200": {"description": "The answer: a valid job with its spec, warnings, provenance and estimate; an invalid one as {valid: false, errors: [{pointer, reason}]} (what POST /jobs refuses with 422)", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Validation"}}}},
+          "400": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"}}}
+    },
     "/api/v1/job-defaults": {
       "get": {"summary": "The canonical spec of an empty job of a method: every field with its default (the web view's submit form starts from it)",
         "parameters": [{"name": "method", "in": "query", "schema": "the methods: added by openapi_document()"}],
@@ -268,7 +287,7 @@ const char* document = R"json({
         "responses": {"200": {"description": "the preset", "content": {"application/json": {}}}, "404": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/length-fits": {
-      "post": {"summary": "The experimentalist's procedure of the paper (Sec. 6) on the record of one interface point: the fitted length L_m of the simplified Prakash-Clifton law with its 95 % interval, the measured critical frequency f_m, the contact pressure's spectrum and the verdict (L_m is the physical length, or only an upper bound); nothing is stored, no token is needed (docs/length-fit.md)",
+      "post": {"summary": "The experimentalist's procedure of the paper (Sec. 6) on the record of one interface point: the fitted length L_m of the simplified Prakash-Clifton law with its 95 % interval, the measured critical frequency f_m, the contact pressure's spectrum and the verdict (L_m is the physical length, or the event only bounds it, by its own critical length); nothing is stored, no token is needed (docs/length-fit.md)",
         "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/LengthFitRequest"}}}},
         "responses": {"200": {"description": "{law, record, fit, critical_frequency, spectrum, verdict, series} (docs/length-fit.md \"The answer\")", "content": {"application/json": {}}},
           "400": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},
@@ -338,6 +357,7 @@ const std::map<std::string, std::string>& path_tags() {
       {"/api/v1/exports", "jobs"},
       {"/api/v1/imports", "jobs"},
       {"/api/v1/job-defaults", "jobs"},
+      {"/api/v1/jobs/validate", "jobs"},
       {"/api/v1/schema/job.json", "jobs"},
       {"/api/v1/jobs/{id}/result.h5", "results"},
       {"/api/v1/jobs/{id}/result.xdmf", "results"},

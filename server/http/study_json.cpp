@@ -1,12 +1,26 @@
 #include "server/http/study_json.hpp"
 
 #include "api/job_methods.hpp"
+#include "api/job_spec.hpp"
 #include "api/json_number.hpp"
+#include "api/study/study_answer.hpp"
 #include "server/http/api_prefix.hpp"
 
 namespace slipfront::server {
 
 using nlohmann::json;
+
+namespace {
+
+// Whether a study's scene is the paper's: the scene hash of an empty job of its method.
+bool paper_scene(const std::string& method, const std::string& scene_hash) {
+  static const std::string fe = api::scene_hash(api::parse_job(json::object()).spec->canonical);
+  static const std::string bi =
+      api::scene_hash(api::parse_job({{"method", "spectral_bi"}}).spec->canonical);
+  return scene_hash == (method == "spectral_bi" ? bi : fe);
+}
+
+} // namespace
 
 json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, bool summary) {
   const std::string self = api_prefix + "/studies/" + s.id;
@@ -64,6 +78,8 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   if (result.contains("search")) j["search"] = result["search"];
   if (result.contains("accuracy")) j["accuracy"] = result["accuracy"];
   if (result.contains("regimes")) j["regimes"] = result["regimes"];
+  // The headline answer first on every page that shows a study (docs/studies.md "The answer").
+  j["answer"] = api::study_answer(j, paper_scene(j["method"].get<std::string>(), s.scene_hash));
   return j;
 }
 

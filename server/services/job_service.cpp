@@ -7,6 +7,7 @@
 
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
+#include "api/number_text.hpp"
 
 #include <filesystem>
 
@@ -62,7 +63,57 @@ api::ParseResult JobService::validate(nlohmann::json doc) const {
   api::ValidationLimits limits;
   limits.max_memory_bytes = options_.max_memory_bytes;
   limits.max_result_bytes = options_.max_result_bytes;
-  return api::parse_job(doc, limits);
+  api::ParseResult parsed = api::parse_job(doc, limits);
+  if (!parsed.ok()) return parsed;
+  // A run longer than the server allows is refused with its estimate (docs/server.md).
+  const api::CostEstimate estimate = api::estimate_cost(
+      parsed.spec->params, parsed.spec->memory_estimate_bytes, options_.cost_model);
+  if (estimate.wall_time_s > options_.max_run_seconds) {
+    parsed.errors.push_back(
+        {"/geometry/nodes_per_meter",
+         "the run would take about " + api::wall_time_text(estimate.wall_time_s) +
+             " on this server (estimate: " + api::number_text(estimate.steps, 3) +
+             " steps of dt = " + api::number_text(estimate.dt, 3) + " s, " +
+             std::to_string(estimate.threads) + " thread" + (estimate.threads == 1 ? "" : "s") +
+             "), above its limit --max-run-seconds " + api::number_text(options_.max_run_seconds) +
+             " s: use fewer nodes per meter, a smaller domain or a shorter duration"});
+    parsed.spec.reset();
+  }
+  return parsed;
+}
+
+nlohmann::json JobService::validation_json(const api::JobSpec& spec) const {
+  return {{"warnings", api::warnings_json(spec.warnings)},
+          {"provenance", api::provenance_json(spec.provenance)},
+          {"estimate", api::estimate_json(api::estimate_cost(
+                           spec.params, spec.memory_estimate_bytes, options_.cost_model))}};
+}
+
+CheckResult JobService::check(const std::string& body) const {
+  CheckResult r;
+  auto parsed = api::parse_bounded_json(body);
+  if (!parsed.ok()) {
+    r.kind = parsed.status == api::JsonParse::Status::syntax ? CheckResult::Kind::bad_json
+                                                             : CheckResult::Kind::invalid;
+    r.errors = {parsed.error};
+    return r;
+  }
+  if (!parsed.value.is_object()) {
+    r.kind = CheckResult::Kind::invalid;
+    r.errors = {{"", "the job must be a JSON object"}};
+    return r;
+  }
+  SubmitOptions ignored;
+  r.errors = take_server_fields(parsed.value, ignored);
+  auto job = validate(std::move(parsed.value));
+  r.errors.insert(r.errors.end(), job.errors.begin(), job.errors.end());
+  if (!r.errors.empty()) {
+    r.kind = CheckResult::Kind::invalid;
+    return r;
+  }
+  r.validation = validation_json(*job.spec);
+  r.spec = std::move(job.spec);
+  return r;
 }
 
 SubmitResult JobService::submit(const std::string& body, const SubmitOptions& options) {
@@ -116,6 +167,7 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
   job.progress.duration = spec.params.time.duration;
   job.scene_hash = api::scene_hash(spec.canonical);
   job.study_id = options.study_id;
+  job.validation = validation_json(spec);
 
   if (!job.fresh) {
     // A hit needs the same physics, code version and output settings: the file holds the

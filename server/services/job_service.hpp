@@ -2,6 +2,7 @@
 // Nothing here waits for a simulation: every call is a few short database operations.
 #pragma once
 
+#include "api/cost_estimate.hpp"
 #include "api/job_spec.hpp"
 #include "server/db/job_store.hpp"
 #include "server/run/job_queue.hpp"
@@ -10,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -41,6 +43,18 @@ struct SubmitResult {
   } kind = Kind::created;
   std::vector<api::FieldError> errors;
   std::optional<Job> job;
+};
+
+// A job checked without submitting it (POST /jobs/validate).
+struct CheckResult {
+  enum class Kind {
+    valid,    // 200
+    bad_json, // 400
+    invalid,  // 422 (errors)
+  } kind = Kind::valid;
+  std::vector<api::FieldError> errors;
+  std::optional<api::JobSpec> spec;
+  nlohmann::json validation; // validation_json() of the spec
 };
 
 struct CancelResult {
@@ -99,6 +113,10 @@ struct StrayResults {
 
 struct ServiceOptions {
   double max_memory_bytes = 8.0e9;
+  // The estimate of a job's wall time (api/cost_estimate.hpp) and the most it may be
+  // (infinite: no limit).
+  api::CostModel cost_model = api::CostModel::built_in();
+  double max_run_seconds = std::numeric_limits<double>::infinity();
   double max_result_bytes = 20.0e9; // result-file estimate above which a job is refused
   std::string code_version;
   bool auth_enabled = false;
@@ -132,6 +150,11 @@ public:
   bool submit_together(const std::function<bool()>& f);
   // Validates a job document as submit() would, without submitting it.
   api::ParseResult validate(nlohmann::json doc) const;
+  // The same for a request body (with submit()'s server fields), and what the job record
+  // would keep of the validation.
+  CheckResult check(const std::string& body) const;
+  // What a job record keeps of its validation: {"warnings", "provenance", "estimate"}.
+  nlohmann::json validation_json(const api::JobSpec& spec) const;
   std::optional<Job> get(const std::string& id); // with live progress if running
   JobPage list(const JobFilter& filter);
   // The jobs of list(filter) one at a time, none kept (JobStore::scan): for exports.

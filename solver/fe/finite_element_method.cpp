@@ -2,9 +2,11 @@
 
 #include "solver/fe/stable_time_step.hpp"
 #include "solver/interface/ill_posedness.hpp"
+#include "solver/interface/nucleation.hpp"
 #include "solver/mesh_size.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <thread>
 
@@ -64,6 +66,74 @@ double FiniteElementMethod::estimated_memory_bytes(const SimulationParams& param
   const double sample_buffer = 64.0 * 6.0 * 8.0 * m.nx; // a chunk of samples in the writer
   const double baseline = 16.0e6;                       // code, libraries, HDF5 caches
   return fields + interface + records + sample_buffer + baseline;
+}
+
+namespace {
+
+// The rows and nodes of one block (nx x ny, element dx) within `reach` of the source interval
+// of length `source` on the interface: row j at height j dx holds the interval grown by
+// sqrt(reach^2 - (j dx)^2) each side, at most the whole row.
+struct Swept {
+  double rows = 0, nodes = 0;
+};
+Swept swept_within(double reach, double source, int nx, int ny, double dx) {
+  Swept s;
+  const int rows = std::min(ny, int(reach / dx) + 1);
+  s.rows = rows;
+  for (int j = 0; j < rows; ++j) {
+    const double y = j * dx;
+    const double half = std::sqrt(std::max(reach * reach - y * y, 0.0));
+    s.nodes += std::min(double(nx), std::floor((source + 2 * half) / dx) + 1);
+  }
+  return s;
+}
+
+} // namespace
+
+RunWork FiniteElementMethod::estimated_work(const SimulationParams& params, double until) {
+  // The waves' reach runs a few elements ahead of c_p t (the discrete precursor, until it
+  // underflows to exact zeros: docs/physics.md "Far field that the step skips").
+  constexpr double precursor_elements = 3.0;
+  constexpr int time_samples = 200; // the sum over steps, by the midpoint rule
+  const MeshSize m = mesh_size(params);
+  const double dx = m.dx;
+  double dt = 0;
+  for (const Material* block : {&params.material, &params.lower.material}) {
+    if (block == &params.lower.material && !params.lower.elastic()) break;
+    const double undamped = dx / block->p_wave_speed();
+    const double damped =
+        damped_stable_time_step(undamped, params.fe.mesh_damping * dx / block->s_wave_speed());
+    dt = dt == 0 ? damped : std::min(dt, damped);
+  }
+  RunWork work;
+  work.dt = params.time.safety_factor * dt;
+  work.steps = steps_to_reach(until, work.dt);
+  work.interface_steps = work.steps * m.nx;
+  const Interval patch = nucleation_patch(params.nucleation);
+  if (!(patch.lo <= patch.hi) || !(work.steps > 0)) return work; // nothing ever moves
+  const double source = patch.hi - patch.lo;
+  double nodes = 0, rows = 0;
+  for (int i = 0; i < time_samples; ++i) {
+    const double t = (i + 0.5) / time_samples * until;
+    Swept s = swept_within(params.material.p_wave_speed() * t + precursor_elements * dx, source,
+                           m.nx, m.ny, dx);
+    if (params.lower.elastic()) {
+      const Swept lower =
+          swept_within(params.lower.material.p_wave_speed() * t + precursor_elements * dx, source,
+                       m.nx, lower_mesh_size(params).ny, dx);
+      s.rows += lower.rows;
+      s.nodes += lower.nodes;
+    }
+    nodes += s.nodes;
+    rows += s.rows;
+  }
+  // The mesh damping adds the pass of w = u + a v to every node (docs/physics.md) and keeps
+  // the steps from sharing a trip over the mesh: 2.7 times the time per node and step
+  // (measured, the paper's scene at n_d = 20; docs/performance.md "Cost estimate").
+  const double damping = params.fe.mesh_damping > 0 ? 2.7 : 1.0;
+  work.node_steps = damping * work.steps * nodes / time_samples;
+  work.row_steps = work.steps * rows / time_samples;
+  return work;
 }
 
 MeshInfo FiniteElementMethod::mesh_info() const {

@@ -6,6 +6,7 @@
 #include "solver/fe/mesh_stepper.hpp"
 #include "solver/method_entry.hpp"
 #include "solver/params.hpp"
+#include "solver/run_work.hpp"
 #include "solver/rupture_method.hpp"
 #include "solver/step_count.hpp"
 #include "solver/thread_team.hpp"
@@ -40,6 +41,9 @@ public:
   static TimeStepBounds time_step_bounds(const SimulationParams& params);
   static double step_count_bound(const SimulationParams& params);
   static double estimated_memory_bytes(const SimulationParams& params);
+  // The work of a run up to simulated time `until` (solver/run_work.hpp): the nodes within
+  // c_p t of the nucleation patch in each block, row by row, swept every step.
+  static RunWork estimated_work(const SimulationParams& params, double until);
 
 private:
   int threads_;

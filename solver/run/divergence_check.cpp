@@ -19,8 +19,7 @@ DivergenceCheck::DivergenceCheck(const SimulationParams& params, const std::vect
         std::max(max_coulomb_strength_, mu_0_.back() * std::abs(node.normal_stress));
     load_scale = std::max(load_scale, std::abs(node.normal_stress) + std::abs(node.shear_stress));
   }
-  const Material& mat = params.material;
-  speed_limit_ = 1000.0 * load_scale / (mat.density * mat.s_wave_speed());
+  speed_limit_ = 1000.0 * params.material.particle_velocity(load_scale);
 }
 
 void DivergenceCheck::check(const InterfaceFields& f) {

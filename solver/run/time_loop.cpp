@@ -7,6 +7,7 @@
 //   5. derive the metrics from the records (docs/metrics.md).
 #include "solver/run/time_loop.hpp"
 
+#include "solver/interface/nucleation.hpp"
 #include "solver/run/arrest_rule.hpp"
 #include "solver/run/critical_length_estimate.hpp"
 #include "solver/run/divergence_check.hpp"
@@ -41,6 +42,17 @@ struct Observers {
   ProgressReporter progress;
 };
 
+// The nodes of the overstressed patch (none for the ellipse, whose end the arrest rule takes
+// from its time).
+std::vector<bool> patch_nodes(const Nucleation& nucleation, const std::vector<double>& x1) {
+  std::vector<bool> inside(x1.size(), false);
+  if (!nucleation.patch()) return inside;
+  const Interval patch = nucleation_patch(nucleation);
+  for (std::size_t i = 0; i < x1.size(); ++i)
+    inside[i] = x1[i] >= patch.lo && x1[i] <= patch.hi;
+  return inside;
+}
+
 Observers set_up_observers(const SimulationParams& params, const RunHooks& hooks,
                            const MeshInfo& mesh, const std::vector<double>& x1, double dt,
                            long total_steps, std::chrono::steady_clock::time_point started) {
@@ -50,7 +62,7 @@ Observers set_up_observers(const SimulationParams& params, const RunHooks& hooks
       InterfaceSampler(hooks.sink, params.output, dt, total_steps, x1),
       EnergyRecorder(dt),
       DivergenceCheck(params, x1),
-      FrontTracker(mesh.nx, params.probes.front_threshold),
+      FrontTracker(mesh.nx, params.probes.front_threshold, patch_nodes(params.nucleation, x1)),
       ArrestRule(params),
       ProgressReporter(hooks, params.time.duration, dt, total_steps, started)};
 }
@@ -100,7 +112,7 @@ bool stop_after_step(Observers& o, long n, double dt, Metrics& m) {
     m.message = o.divergence.message(t_n, n);
     return true;
   }
-  return o.arrest.update(t_n, o.front.last_new_arrival());
+  return o.arrest.update(t_n, o.front.last_new_arrival(), o.front.first_arrival_outside());
 }
 
 // 5. The metrics of a run that ended after `steps` steps, from the observers' records.

@@ -64,6 +64,27 @@ double SpectralMethod::estimated_memory_bytes(const SimulationParams& p) {
   return memory + fields + table + records + sample_buffer + baseline;
 }
 
+RunWork SpectralMethod::estimated_work(const SimulationParams& p, double until) {
+  const int nx = mesh_size(p).nx, modes = nx / 2 + 1;
+  RunWork work;
+  work.dt = time_step(p);
+  work.steps = steps_to_reach(until, work.dt);
+  work.interface_steps = work.steps * nx;
+  const double n = work.steps;
+  const long steps = max_steps(p);
+  for (const Material* side : solids(p)) {
+    // sum over the steps of min(step, L): the history fills, then stays L lags long.
+    double& lag_steps = side == &p.material ? work.lag_steps : work.lower_lag_steps;
+    for (int k = 1; k < modes; ++k) {
+      const double lags = double(ModeMemory::memory_length(
+          k, p.geometry.width, work.dt, side->s_wave_speed(), p.spectral.memory_periods, steps));
+      lag_steps += lags >= n ? n * (n + 1) / 2 : lags * (lags + 1) / 2 + (n - lags) * lags;
+    }
+    work.transform_steps += n * nx * std::log2(double(std::max(nx, 2)));
+  }
+  return work;
+}
+
 std::vector<const Material*> SpectralMethod::solids(const SimulationParams& p) {
   if (p.lower.elastic()) return {&p.material, &p.lower.material};
   return {&p.material};

@@ -25,6 +25,7 @@
 #include "solver/interface/split_node.hpp"
 #include "solver/method_entry.hpp"
 #include "solver/params.hpp"
+#include "solver/run_work.hpp"
 #include "solver/rupture_method.hpp"
 #include "solver/spectral/half_space.hpp"
 #include "solver/thread_team.hpp"
@@ -72,6 +73,9 @@ public:
   static long max_steps(const SimulationParams& params);
   // Bytes the run will hold (memory of the modes, interface fields, probe records).
   static double estimated_memory_bytes(const SimulationParams& params);
+  // The work of a run up to simulated time `until` (solver/run_work.hpp): each mode's history
+  // convolved every step, min(n, its memory length) lags at step n, and the transforms.
+  static RunWork estimated_work(const SimulationParams& params, double until);
 
 private:
   void solve_nodes(const std::vector<double>& slip_speed);

@@ -11,7 +11,8 @@ import re
 import subprocess
 import sys
 
-COMMANDS = ["run", "validate", "schema", "presets", "stations", "fit-length", "serve", "check"]
+COMMANDS = ["run", "validate", "schema", "presets", "stations", "fit-length", "serve", "check",
+            "calibrate"]
 
 
 def run(*args):

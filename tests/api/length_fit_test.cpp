@@ -2,12 +2,14 @@
 // the law integrated independently (length_fit_records.hpp), with and without noise; the
 // verdict of paper Sec. 6 on a sharp and on a smooth event.
 #include "api/length_fit/length_fit.hpp"
+#include "api/number_text.hpp"
 #include "length_fit_records.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <string>
 
@@ -121,12 +123,49 @@ TEST(LengthFit, VerdictFollowsThePowerAboveTheMeasuredCriticalFrequency) {
   EXPECT_FALSE(b.verdict.rich_enough);
   EXPECT_LE(b.verdict.power_above_f_m, 0.01);
   EXPECT_GE(b.verdict.upper_bound, smooth.L); // the bound holds
-  EXPECT_NE(b.verdict.text.find("upper bound"), std::string::npos);
+  EXPECT_NE(b.verdict.text.find("not rich enough"), std::string::npos);
   std::printf("[measured] L = 1e-2 m: f_m = %.3g Hz, %.1f %% of the power above, event L_c %.3g m "
               "-> rich; L = 1e-5 m: L_m = %.3g m, f_m = %.3g Hz, %.2g %% above, bound %.3g m\n",
               a.critical_frequency, 100 * a.verdict.power_above_f_m,
               a.verdict.event_critical_length, b.fit.law.L, b.critical_frequency,
               100 * b.verdict.power_above_f_m, b.verdict.upper_bound);
+}
+
+// The verdict's words cannot be read as contradicting its numbers: rich, it names L_m as the
+// length; not rich, it names one bound, at least every length it mentions, says that L_m lies
+// below it, and never calls L_m itself the bound.
+TEST(LengthFit, VerdictWordsAgreeWithTheirNumbers) {
+  SyntheticEvent rich;
+  rich.L = 1e-2;
+  const LengthFit a = fit_or_fail(synthetic_record(rich));
+  EXPECT_EQ(a.verdict.text, "the event is rich enough: the interface's physical length is L_m = " +
+                                slipfront::api::number_text(a.fit.law.L, 3) + " m");
+  SyntheticEvent smooth;
+  smooth.L = 1e-5;
+  const LengthFit b = fit_or_fail(synthetic_record(smooth));
+  const std::string& text = b.verdict.text;
+  const std::string bound =
+      "at most " + slipfront::api::number_text(b.verdict.upper_bound, 3) + " m";
+  EXPECT_NE(text.find(bound), std::string::npos) << text;
+  EXPECT_NE(
+      text.find("L_m = " + slipfront::api::number_text(b.fit.law.L, 3) + " m, below that bound"),
+      std::string::npos)
+      << text;
+  EXPECT_LE(b.fit.law.L, b.verdict.upper_bound);
+  EXPECT_GE(b.verdict.upper_bound, b.verdict.event_critical_length);
+  EXPECT_EQ(text.find("L_m is only an upper bound"), std::string::npos) << text;
+  // Every length in metres the text names is at most the bound.
+  std::size_t at = 0;
+  while ((at = text.find(" m", at)) != std::string::npos) {
+    std::size_t start = text.rfind(' ', at - 1) + 1;
+    const std::string number = text.substr(start, at - start);
+    char* end = nullptr;
+    const double value = std::strtod(number.c_str(), &end);
+    if (end != number.c_str() && *end == '\0') {
+      EXPECT_LE(value, b.verdict.upper_bound * (1 + 1e-3)) << number << " in: " << text;
+    }
+    at += 2;
+  }
 }
 
 // Unevenly sampled records are resampled for the spectrum and fitted as they are.

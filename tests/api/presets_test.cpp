@@ -98,6 +98,20 @@ TEST(Presets, ExamplesAreInTheCatalogue) {
   EXPECT_EQ(find_preset("no_such_preset"), nullptr);
 }
 
+TEST(Presets, AnFeExamplesOwnMembersAreLeftOutByBi) {
+  // examples/rock_patch_nd2.json gives both blocks "height": "auto": by FE the file itself, by
+  // BI the half-spaces without them.
+  const Preset* rock = find_preset("rock_patch_nd2");
+  ASSERT_NE(rock, nullptr);
+  const nlohmann::json fe = preset_job(*rock, "fe"), bi = preset_job(*rock, "spectral_bi");
+  EXPECT_EQ(fe["geometry"]["height"], "auto");
+  EXPECT_EQ(fe["lower"]["height"], "auto");
+  EXPECT_FALSE(bi["geometry"].contains("height"));
+  EXPECT_FALSE(bi["lower"].contains("height"));
+  EXPECT_EQ(bi["geometry"]["nodes_per_meter"], fe["geometry"]["nodes_per_meter"]);
+  EXPECT_TRUE(parse_job(fe).ok() && parse_job(bi).ok());
+}
+
 TEST(Presets, AJobNamingAPresetIsThePresetWithItsMembersMergedOver) {
   const Preset* quick = find_preset("quick_nd10");
   ASSERT_NE(quick, nullptr);

@@ -50,7 +50,8 @@ TEST(StationsSpec, PositionsAndThresholdReachTheParameters) {
   EXPECT_EQ(spec.canonical["stations"], json::parse(R"({"x1": [0, 4.5, -10],
                                                         "rupture_threshold": 0.002})"));
   const auto defaults = parsed({{"stations", {{"x1", {1}}}}});
-  EXPECT_EQ(defaults.params.stations.rupture_threshold, 1e-3);
+  // One threshold: the front's, unless the job gives the stations their own.
+  EXPECT_EQ(defaults.params.stations.rupture_threshold, defaults.params.probes.front_threshold);
   EXPECT_TRUE(parsed(json::object()).params.stations.x1.empty());
 }
 
@@ -169,7 +170,7 @@ TEST(StationsSpec, SchemaOffersAnArrayOfNumbers) {
   EXPECT_EQ(x1["default"], json::array());
   EXPECT_EQ(x1["x-unit"], "m");
   EXPECT_EQ(x1["x-methods"], json({"fe", "spectral_bi"}));
-  EXPECT_EQ(stations["properties"]["rupture_threshold"]["default"], 1e-3);
+  EXPECT_EQ(stations["properties"]["rupture_threshold"]["default"], 1e-6);
   EXPECT_EQ(stations["properties"]["rupture_threshold"]["exclusiveMinimum"], 0);
   const std::string markdown = slipfront::api::job_fields_markdown();
   EXPECT_NE(markdown.find("| `x1` | array of numbers | `[]` | at most 64 numbers |"),

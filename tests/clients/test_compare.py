@@ -6,7 +6,7 @@ about a second each) and a two-mesh BI study:
   fields only one method has with '*', leaves L and n_d unmarked, gives the spread of the
   numbers that differ, hides identical fields unless --all; --json gives every field with its
   values and whether it differs;
-- four PNGs (velocity at x1 = 6 and 10 m, rupture speed, fronts, scatter) that are real
+- four PNGs (velocity at the first run's probes, x1 = 6 and 11 m, rupture speed, fronts, scatter) that are real
   pictures, not blank; a second run refuses to replace them, naming them, unless --force;
 - the |V| histories drawn are the server's /fields values at the nodes (result_from_json);
 - --study compares the study's runs, told apart by n_d; a bad --x is a usage error naming it.

@@ -46,7 +46,7 @@ class ClientLengthFit(unittest.TestCase):
     def test_report_and_json_of_one_station(self):
         r = self.client(self.csv, "--station", "6")
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertIn("verdict: the event is rich enough: L_m is the interface's physical length",
+        self.assertIn("verdict: the event is rich enough: the interface's physical length is L_m = ",
                       r.stdout)
         self.assertIn("(station x1 = 6 m)", r.stdout)
         j = self.client(self.csv, "--station", "6", "--json")

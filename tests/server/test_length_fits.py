@@ -120,8 +120,8 @@ class LengthFits(unittest.TestCase):
             # The human report says the same.
             cli = self.cli(path)
             self.assertEqual(cli.returncode, 0, cli.stderr)
-            self.assertIn("verdict: the event is rich enough: L_m is the interface's physical "
-                          "length", cli.stdout)
+            self.assertIn("verdict: the event is rich enough: the interface's physical length "
+                          "is L_m = ", cli.stdout)
 
     def test_noise_on_the_stress_stays_inside_the_interval(self):
         for method in ("fe", "spectral_bi"):
@@ -157,11 +157,12 @@ class LengthFits(unittest.TestCase):
                   f"{verdict['upper_bound']:.3g} m", flush=True)
             self.assertFalse(verdict["rich_enough"], verdict)
             self.assertEqual(verdict["L_m_is"], "upper_bound")
-            self.assertIn("it is not: L_m is only an upper bound", verdict["text"])
+            self.assertIn("the event is not rich enough to measure the length: the physical "
+                          f"length is at most {verdict['upper_bound']:.3g} m", verdict["text"])
             self.assertGreaterEqual(verdict["upper_bound"], BOUNDED)
             cli = self.cli(path)
             self.assertEqual(cli.returncode, 0, cli.stderr)
-            self.assertIn("L_m is only an upper bound", cli.stdout)
+            self.assertIn("is not a measurement of it", cli.stdout)
 
     def test_a_stations_csv_of_several_stations_needs_one_chosen(self):
         path, text = run_record(BINARY, self.dir.name, "spectral_bi", RICH, stations=(4, 6))

@@ -7,7 +7,7 @@ loopback (docs/web.md "Compare runs"), as a researcher meets it:
   first, and leaves L and n_d unmarked; the spread of the numbers that differ; a check box
   shows the identical fields too;
 - the legends of the overlaid curves say the method ("FE, …", "BI, …"), FE solid lines and
-  circles, BI dashed lines and squares; |V|(t) at the paper's x1 = 6 and 10 m holds each run's
+  circles, BI dashed lines and squares; |V|(t) at the first run's own probes (x1 = 6 and 11 m) holds each run's
   /fields values in mm/s, V_r and the front each run's /front;
 - the scatter puts the parameter that differs (the method) against a metric chosen in a menu,
   one point per run at the server's values;
@@ -108,11 +108,12 @@ class WebCompare(BrowserCase):
         self.assertEqual(self.legend("#cmp-vt"), [(fe_label, "solid", None), (bi_label, "dash", None)])
         self.assertEqual(self.legend("#cmp-vr"), [(fe_label, "solid", "circle"), (bi_label, "dash", "square")])
         self.assertEqual(self.legend("#cmp-front"), [(fe_label, "solid", None), (bi_label, "dash", None)])
-        # |V|(t) at the paper's positions, each run's history at the node in mm/s.
-        self.assertEqual(self.css("#cmp-x1")[0].get_attribute("value"), "6, 10")
+        # |V|(t) at the first run's own probes (the paper's spectrum and arrival probes), each
+        # run's history at the node in mm/s.
+        self.assertEqual(self.css("#cmp-x1")[0].get_attribute("value"), "6, 11")
         traces = self.js("return document.getElementById('cmp-vt').data.map(t => ({name: t.name, y: t.y, yaxis: t.yaxis}))")
         self.assertEqual(len(traces), 4)
-        for k, x in enumerate((6, 10)):
+        for k, x in enumerate((6, 11)):
             panel = [t for t in traces if t["yaxis"] == ("y" if k == 0 else "y2")]
             self.assertEqual([t["name"] for t in panel], [fe_label, bi_label])
             for t, job_id in zip(panel, (fe, bi)):

@@ -177,7 +177,7 @@ class SubmitForm(BrowserCase):
             box.clear()
             box.send_keys(value)
         self.js("window.__sent = []; const f = window.fetch; window.fetch = (u, o) => {"
-                " if (o && o.method === 'POST') window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
+                " if (o && o.method === 'POST' && String(u).endsWith('/api/v1/jobs')) window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
         self.css("#job-submit")[0].click()
         self.wait(lambda d: "#/jobs/" in d.current_url, message="the job page opens")
         sent = self.js("return window.__sent")[0]
@@ -201,7 +201,7 @@ class SubmitForm(BrowserCase):
         self.assertEqual(names[1:], [p["title"] for p in served])
         # Record what the form sends.
         self.js("window.__sent = []; const f = window.fetch; window.fetch = (u, o) => {"
-                " if (o && o.method === 'POST') window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
+                " if (o && o.method === 'POST' && String(u).endsWith('/api/v1/jobs')) window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
         quick = examples.index("quick_nd10.json")
         Select(self.css("#job-preset")[0]).select_by_index(1 + quick)
         self.wait(lambda d: self.css("#f_geometry_nodes_per_meter")[0].get_attribute("value") == "10")
@@ -222,6 +222,54 @@ class SubmitForm(BrowserCase):
         job = self.server.get(f"/api/v1/jobs/{self.driver.current_url.rsplit('/', 1)[1]}").json()
         self.assertEqual(job["spec"]["geometry"]["nodes_per_meter"], 10)
         self.assertEqual(job["name"], specs[quick]["name"])
+
+    def test_the_server_checks_the_job_while_one_types(self):
+        """POST /jobs/validate while typing: a rock-scale preset's watching values derived from
+        its scene are written into their fields, with where they come from, and not sent; a
+        stress out of scale with the material is warned about beside its field; the cost
+        estimate beside the submit button follows the job."""
+        served = self.server.get("/api/v1/presets").json()["presets"]
+        rock = [p["name"] for p in served].index("rock_patch_nd2")
+        self.open_form()
+        self.wait(lambda d: len(Select(self.css("#job-preset")[0]).options) == 1 + len(served))
+        self.js("window.__sent = []; const f = window.fetch; window.fetch = (u, o) => {"
+                " if (o && o.method === 'POST' && String(u).endsWith('/api/v1/jobs')) window.__sent.push(JSON.parse(o.body)); return f(u, o); };")
+        Select(self.css("#job-preset")[0]).select_by_index(1 + rock)
+        window = "[data-field='/time/arrest_window']"
+        self.wait(lambda d: self.css("#f_time_arrest_window")[0].get_attribute("value") == "0.005",
+                  message="the derived arrest window in its field")
+        self.assertIn("derived: a tenth of the duration 0.05 s", " ".join(self.texts(f"{window} > .fwarn")))
+        self.wait(lambda d: "steps of dt" in self.css("#memory-estimate")[0].text,
+                  message="the cost estimate")
+        self.assertIn("on this server", self.css("#memory-estimate")[0].text)
+        self.shot("form-rock-derived")
+        duration = self.css("#f_time_duration")[0]
+        duration.clear()
+        duration.send_keys("0.08")
+        self.wait(lambda d: self.css("#f_time_arrest_window")[0].get_attribute("value") == "0.008",
+                  message="the arrest window follows the duration")
+        # A stress in MPa on the paper's material: warned beside the field, the job still valid.
+        Select(self.css("#job-preset")[0]).select_by_index(1 + [p["name"] for p in served].index("quick_nd10"))
+        self.wait(lambda d: self.css("#f_geometry_nodes_per_meter")[0].get_attribute("value") == "10")
+        for pointer, value in (("normal_stress", "-120e6"), ("shear_stress", "70e6")):
+            box = self.css(f"#f_loading_{pointer}")[0]
+            box.clear()
+            box.send_keys(value)
+        normal = "[data-field='/loading/normal_stress'] > .fwarn"
+        self.wait(lambda d: "times the shear modulus" in " ".join(self.texts(normal)),
+                  message="the stress warned about beside its field")
+        self.shot("form-stress-warning")
+        # The rock preset submitted: its derived values are not sent (the server derives them).
+        Select(self.css("#job-preset")[0]).select_by_index(1 + rock)
+        self.wait(lambda d: self.css("#f_time_arrest_window")[0].get_attribute("value") == "0.005")
+        self.css("#job-submit")[0].click()
+        self.wait(lambda d: "#/jobs/" in d.current_url, message="the job page opens")
+        sent = self.js("return window.__sent")[0]
+        self.assertNotIn("arrest_window", sent.get("time", {}))
+        self.assertNotIn("probe", sent)
+        job = self.server.get(f"/api/v1/jobs/{self.driver.current_url.rsplit('/', 1)[1]}").json()
+        self.assertEqual(job["spec"]["time"]["arrest_window"], 0.005)
+        self.assert_no_console_errors("validation while typing")
 
     def test_server_served_presets_plug_in(self):
         listing = {"presets": [{"name": "srv-bi", "title": "BI at L = 1e-4 m (served)",

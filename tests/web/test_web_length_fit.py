@@ -96,7 +96,7 @@ class LengthFitPage(BrowserCase):
         self.assertFalse(self.css("#fit-station")[0].is_displayed())  # one station: no choice
         self.fit_and_wait()
         verdict = self.css("#fit-verdict")[0]
-        self.assertIn("it is not: L_m is only an upper bound", verdict.text)
+        self.assertIn("the event is not rich enough to measure the length", verdict.text)
         self.assertIn("bound", verdict.get_attribute("class"))
         self.assertIn("the physical length is at most", self.css("#fit-result")[0].text)
         self.shot("length-fit-upper-bound")

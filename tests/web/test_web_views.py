@@ -75,17 +75,19 @@ class WebViews(BrowserCase):
                   and self.chart_ready("#fig-vt"), timeout=60, message="the three figures")
 
     # -- the run page --------------------------------------------------------------------
-    def test_run_probes_default_to_the_paper_in_mm_per_s(self):
+    def test_run_positions_default_to_the_jobs_probes_in_mm_per_s(self):
         job_id = self.bi_run["id"]
         self.open_run(job_id)
-        self.assertEqual(self.css("#vt-x1")[0].get_attribute("value"), "6, 10")
+        # The job's own probes: probe.spectrum_x1 = 6 m and probe.arrival_x1 = 11 m.
+        self.assertEqual(self.css("#vt-x1")[0].get_attribute("value"), "6, 11")
         traces = self.chart_data("#fig-vt")
-        self.assertEqual([t["name"] for t in traces], ["x1 = 6 m", "x1 = 10 m"])
+        self.assertEqual([t["name"] for t in traces],
+                         ["x1 = 6 m (probe.spectrum_x1)", "x1 = 11 m (probe.arrival_x1)"])
         # The map marks them, in the curves' colours.
         marks = [t for t in self.chart_data("#fig-map") if t.get("name", "").startswith("x1 =")]
-        np.testing.assert_allclose([t["x"][0] for t in marks], [6, 10], rtol=1e-9)  # the nodes
+        np.testing.assert_allclose([t["x"][0] for t in marks], [6, 11], rtol=1e-9)  # the nodes
         # |V| in mm/s: the field endpoint's history at the node, times 1000.
-        for trace, x in zip(traces, (6, 10)):
+        for trace, x in zip(traces, (6, 11)):
             field = self.server.get(f"/api/v1/jobs/{job_id}/fields/slip_velocity",
                                     params={"x1_min": x, "x1_max": x, "max_points": 4000}).json()
             expected = [abs(row[0]) * 1e3 for row in field["values"]]
@@ -93,6 +95,48 @@ class WebViews(BrowserCase):
         self.assertEqual(self.js("return document.getElementById('fig-vt').layout.yaxis.title.text"),
                          "|V| [mm/s]")
         self.assert_no_console_errors("run page")
+
+    def test_the_map_opens_on_the_event_the_whole_box_one_click_away(self):
+        """The map zooms to the event (where |V| exceeded 1 % of its peak, and the front) and a
+        button shows the whole domain and run; the front is named with its threshold. For the
+        paper's run, a bimaterial preset and the rock-scale example (screenshots)."""
+        runs = {"paper": self.bi_run}
+        for name, spec in (("bimaterial", {"preset": "bimaterial_prakash_clifton",
+                                           "method": "spectral_bi", "geometry": {"nodes_per_meter": 2}}),
+                           ("rock", {"preset": "rock_patch_nd2"})):
+            r = self.server.submit(spec)
+            self.assertEqual(r.status_code, 201, r.text)
+            runs[name] = self.server.wait_status(r.json()["id"], {"succeeded", "failed"}, 300)
+            self.assertEqual(runs[name]["status"], "succeeded", runs[name])
+        for name, job in runs.items():
+            with self.subTest(run=name):
+                self.open_run(job["id"])
+                spec = job["spec"]
+                domain = [spec["geometry"]["x_min"], spec["geometry"]["x_min"] + spec["geometry"]["width"]]
+                shown = self.plot_area("#fig-map")["range"]
+                self.assertLess(shown[1] - shown[0], 0.8 * (domain[1] - domain[0]), shown)
+                front = [t["name"] for t in self.chart_data("#fig-map") if t.get("name", "").startswith("slip front")]
+                self.assertEqual(len(front), 1)
+                self.assertRegex(front[0], r"^slip front \(\|V\| > [0-9.e+-]+ m/s\)$")
+                self.assertIn("Zoomed to the event", " ".join(self.texts("#fig-map + .caption")))
+                self.shot(f"run-{name}")
+                button = self.css("#map-view")[0]
+                self.assertEqual(button.text, "show the whole domain and run")
+                self.js("arguments[0].scrollIntoView({block: 'center'})", button)
+                button.click()
+                self.wait(lambda d: self.plot_area("#fig-map")["range"][1] - self.plot_area("#fig-map")["range"][0]
+                          > 0.95 * (domain[1] - domain[0]), message="the whole domain")
+                self.wait(lambda d: self.plot_area("#fig-vr")["range"] == self.plot_area("#fig-map")["range"],
+                          message="V_r follows")
+                self.shot(f"run-{name}-whole")
+                self.assertEqual(self.css("#map-view")[0].text, "zoom to the event")
+        # The rock run's page lists the values it did not give, with where they came from.
+        self.open_run(runs["rock"]["id"])
+        checks = " ".join(self.texts("#job-checks"))
+        self.assertIn("derived: a tenth of the duration 0.05 s", self.js(
+            "return document.getElementById('job-checks').textContent"))
+        self.assertIn("No warning", checks)
+        self.assert_no_console_errors("run pages zoomed to the event")
 
     def test_rupture_speed_axis_is_the_maps_x1_axis(self):
         self.open_run(self.bi_run["id"])
@@ -262,6 +306,13 @@ class WebViews(BrowserCase):
             self.assertEqual(row[0], "agree" if step["agree"] else "differ")
         lc = self.texts("#lc-value")[0]
         self.assertTrue(lc.endswith(" m") and "not determined" not in lc, lc)
+        # The headline answer first: the search's verdict with its bracket, then labelled numbers.
+        self.assertEqual(self.texts("#answer-verdict"), [study["answer"]["verdict"]])
+        self.assertTrue(study["answer"]["verdict"].startswith(f"L_c = {search['L_c']:g} m, in ["),
+                        study["answer"])
+        order = self.js("return [...document.querySelectorAll('#view section.card')].map(s => s.id)")
+        self.assertEqual(order[0], "study-answer")
+        self.assertIn("not the rule's answer", " ".join(self.texts("#study-answer")))
         # Plain Coulomb beside the L (the paper scene is well-posed under it): one row per L.
         coulomb = search["coulomb"]
         self.assertIn(coulomb["status"], self.texts("#search-coulomb p")[0])

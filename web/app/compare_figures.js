@@ -6,7 +6,7 @@
 import { h, fmt } from './dom.js';
 import { get } from './api.js';
 import { axis, chart, chartMessage, plotly } from './plots.js';
-import { PAPER_PROBES, nucleationPatch, signalWindow, waveSpeeds } from './job_figures.js';
+import { jobPositions, nucleationPatch, signalWindow, waveSpeeds } from './job_figures.js';
 
 const MM = 1e3; // m/s -> mm/s
 const MAX_POSITIONS = 4;
@@ -45,11 +45,11 @@ export async function drawCompareFigures(box, runs, rows) {
     h('h3', { text: 'Slip front: arrival time against x1' }), frontBox,
     h('h3', { text: 'Any parameter against any metric' }), scatterTools, scatterBox);
 
-  // The paper's positions inside every run's domain (the front lists every node).
+  // The first run's own stations or probes inside every run's domain (the front lists every
+  // node), as the run page.
   const lo = Math.max(...withFront.map((r) => Math.min(...r.front.x1)));
   const hi = Math.min(...withFront.map((r) => Math.max(...r.front.x1)));
-  const inside = PAPER_PROBES.filter((x) => x >= lo && x <= hi);
-  picks.value = (inside.length ? inside : (Number.isFinite(lo + hi) ? [Number(((lo + hi) / 2).toPrecision(3))] : [])).join(', ');
+  picks.value = Number.isFinite(lo + hi) ? jobPositions(withFront[0].job.spec, lo, hi, MAX_POSITIONS).map((p) => p.x).join(', ') : '';
 
   async function drawVt() {
     const wanted = picks.value.split(/[,\s]+/).filter(Boolean).map(Number).filter(Number.isFinite).slice(0, MAX_POSITIONS);

@@ -21,6 +21,18 @@ function meshText(mesh) {
   return known.length ? known.map(([k, v]) => `${k} = ${typeof v === 'number' && !Number.isInteger(v) ? fmt(v, 6) : v}${MESH_UNITS[k] || ''}`).join(', ') : '—';
 }
 
+// What the validation said when the job was accepted: its warnings, and the values with a unit
+// it did not give (derived from its scene, or the paper's defaults), with where they came from.
+function checksCard(job) {
+  const warnings = job.warnings || [];
+  const taken = (job.provenance || []).filter((v) => v.source !== 'given' && !String(v.source).startsWith('preset'));
+  if (!warnings.length && !taken.length) return null;
+  return h('section', { class: 'card wide', id: 'job-checks' }, h('h2', { text: 'Checks before the run' }),
+    warnings.length ? h('ul', { class: 'warnings' }, warnings.map((w) => h('li', {}, '⚠ ', h('code', { text: w.pointer }), `: ${w.message}`))) : h('p', { class: 'muted', text: 'No warning.' }),
+    taken.length ? h('details', {}, h('summary', { text: `Values the job did not give (${taken.length})` }),
+      kvTable(taken.map((v) => [v.pointer, `${fmt(v.value, 6)} ${v.unit} — ${v.source}`]))) : null);
+}
+
 export async function jobPage(view, page, id) {
   const head = h('div', { class: 'pagehead' });
   const live = h('section', { class: 'card', id: 'job-live' });
@@ -89,6 +101,7 @@ export async function jobPage(view, page, id) {
       ])),
       h('section', { class: 'card' }, h('h2', { text: 'Cost' }), kvTable([
         ['wall time', job.status === 'running' && job.started_at ? `${fmtDuration((Date.now() - Date.parse(job.started_at)) / 1000)} so far` : (job.cached_from ? 'none: reused' : fmtDuration(job.wall_time_s))],
+        job.estimate ? ['estimated before the run', `${fmtDuration(job.estimate.wall_time_s)}${job.estimate.stops_on_arrest ? ' at most (the whole duration)' : ''}, ${fmt(job.estimate.steps)} steps of ${fmt(job.estimate.dt)} s`] : null,
         ['steps', m.steps ?? job.progress?.steps],
         ['time step', m.dt != null ? `${fmt(m.dt)} s${m.stable_dt != null ? ` (stable ${fmt(m.stable_dt)} s)` : ''}` : '—'],
         ['mesh', meshText(m.mesh)],
@@ -109,6 +122,7 @@ export async function jobPage(view, page, id) {
         ['host, attempts', `${job.host || '—'}, ${job.attempts ?? '—'}`],
         ['tags', (job.tags || []).join(', ') || '—'],
       ])),
+      checksCard(job),
       h('section', { class: 'card wide' }, h('details', {}, h('summary', { text: 'Job spec (canonical JSON, defaults filled)' }),
         h('pre', { class: 'json', text: JSON.stringify(spec, null, 2) }))));
   };

@@ -1,6 +1,8 @@
 // The paper's Fig. 2 for one run, from JSON slices of its HDF5 file (/fields) and its front
 // (/front): (a) |V| in the x1–t plane with the slip front, (c) V_r(x1) directly below it on the
-// same x1 axis (zoom one, the other follows), (b) |V|(t) at chosen x1. Units and colour scales
+// same x1 axis (zoom one, the other follows), (b) |V|(t) at chosen x1 — by default the job's
+// own stations, else its probes. The map opens on the event (the nodes and times that slipped),
+// the whole domain and run one click away. Units and colour scales
 // are the CLI's (clients/slipfront_client/plots/): |V| in mm/s; the map logarithmic over four
 // decades below its largest |V|, or linear clipped at the 90th percentile of the slipping
 // nodes' |V|; grey (darker = faster, as the paper) or viridis.
@@ -12,7 +14,6 @@ import { axis, chart, chartMessage, linkXAxes, plotly } from './plots.js';
 const MARKS = ['#d62728', '#1f77b4', '#2ca02c', '#9467bd', '#e377c2', '#17becf'];
 const FRONT = '#ff7f0e';
 const MM = 1e3; // m/s -> mm/s
-export const PAPER_PROBES = [6, 10]; // x1 [m] of the paper's Fig. 2b
 const LOG_DECADES = 4;
 const CLIP_PERCENTILE = 0.9;
 const SIGNAL_FRACTION = 0.01;
@@ -60,11 +61,43 @@ export function nucleationPatch(spec) {
   return [0, Math.hypot(n.a, n.b)];
 }
 
-// The default V(t) positions: the paper's x1 = 6 and 10 m where the domain has them, else the
-// middle of the domain.
-export function defaultProbes(xlo, xhi) {
-  const inside = PAPER_PROBES.filter((x) => x >= xlo && x <= xhi);
-  return inside.length ? inside : [Number(((xlo + xhi) / 2).toPrecision(3))];
+// The default V(t) positions: the job's own stations (at most `most`, spread along them), else
+// its probes (spectrum_x1, arrival_x1), each once and inside [xlo, xhi]; else the middle of the
+// domain. [{x, what}], what: "station" or the probe's field.
+export function jobPositions(spec, xlo, xhi, most = 6) {
+  const inside = (x) => Number.isFinite(x) && x >= xlo && x <= xhi;
+  const stations = (spec?.stations?.x1 || []).filter(inside).sort((a, b) => a - b);
+  let picked = stations.map((x) => ({ x, what: 'station' }));
+  if (!picked.length) {
+    picked = [['spectrum_x1', spec?.probe?.spectrum_x1], ['arrival_x1', spec?.probe?.arrival_x1]]
+      .filter(([, x]) => inside(x)).map(([what, x]) => ({ x, what: `probe.${what}` }))
+      .filter((p, i, all) => all.findIndex((q) => q.x === p.x) === i).sort((a, b) => a.x - b.x);
+  }
+  if (picked.length > most) picked = Array.from({ length: most }, (_, i) => picked[Math.round((i * (picked.length - 1)) / (most - 1))]);
+  return picked.length ? picked : [{ x: Number(((xlo + xhi) / 2).toPrecision(3)), what: 'the middle of the domain' }];
+}
+
+// The event in the x1–t box: the nodes where |V| ever exceeded 1 % of its peak (and those the
+// front reached), padded by 10 % of their span (at least two cells) each side; the times from
+// the first sample to the last |V| above 1 % of the peak, padded by 15 %. Null when it fills
+// most of the box (nothing to zoom to) or nothing slipped. absV: [n_t][n_x].
+export function eventWindow(x, t, absV, front, xRange) {
+  let peak = 0;
+  for (const row of absV) for (const v of row) if (v > peak) peak = v;
+  if (!(peak > 0)) return null;
+  const level = SIGNAL_FRACTION * peak;
+  let x0 = Infinity, x1 = -Infinity, tLast = -Infinity;
+  absV.forEach((row, i) => row.forEach((v, j) => {
+    if (!(v > level)) return;
+    x0 = Math.min(x0, x[j]); x1 = Math.max(x1, x[j]); tLast = Math.max(tLast, t[i]);
+  }));
+  (front?.x1 || []).forEach((xi, i) => { if (Number.isFinite(front.arrival_time[i])) { x0 = Math.min(x0, xi); x1 = Math.max(x1, xi); } });
+  const dx = x.length > 1 ? (x[x.length - 1] - x[0]) / (x.length - 1) : 1;
+  const pad = Math.max(0.1 * (x1 - x0), 2 * dx);
+  const xs = [Math.max(xRange[0], x0 - pad), Math.min(xRange[1], x1 + pad)];
+  const ts = [t[0], Math.min(t[t.length - 1], tLast + 0.15 * Math.max(tLast - t[0], 1e-12))];
+  const fills = (xs[1] - xs[0]) / (xRange[1] - xRange[0]) > 0.8 && (ts[1] - ts[0]) / (t[t.length - 1] - t[0]) > 0.8;
+  return fills ? null : { x: xs, t: ts };
 }
 
 // The colour normalisation of |V| [mm/s] (the CLI's colour_norm): {zmin, zmax, clipped}, with
@@ -110,11 +143,12 @@ export async function drawFigures(figs, job) {
   const scale = select('map-scale', [['log', `log, ${LOG_DECADES} decades below the largest |V| (as the CLI)`], ['linear', 'linear, clipped at the 90th percentile of the slipping |V|']], 'log');
   const colours = select('map-colours', [['greys', 'grey: darker = faster (as the CLI and the paper)'], ['viridis', 'viridis']], 'greys');
   const picks = h('input', { id: 'vt-x1', type: 'text', size: 22 });
+  const viewButton = h('button', { id: 'map-view', type: 'button' });
   const pickMsg = h('span', { id: 'vt-message', class: 'muted' });
   const stem = `slipfront-${String(job.id).slice(0, 8)}`;
   figs.append(
     h('h3', { text: '(a) Slip velocity |V| in the x1–t plane, with the slip front' }),
-    h('div', { class: 'toolbar' }, h('label', { for: 'map-scale', text: 'colour scale: ' }), scale, h('label', { for: 'map-colours', text: 'colours: ' }), colours),
+    h('div', { class: 'toolbar' }, h('label', { for: 'map-scale', text: 'colour scale: ' }), scale, h('label', { for: 'map-colours', text: 'colours: ' }), colours, viewButton),
     mapBox, mapCaption,
     h('h3', { text: '(c) Rupture speed V_r(x1), on the x1 axis of (a)' }), vrBox, vrCaption,
     h('h3', { text: '(b) Slip velocity history |V|(t) at chosen x1' }),
@@ -133,11 +167,37 @@ export async function drawFigures(figs, job) {
   const absV = slice.values.map((row) => row.map((v) => (v === null ? null : Math.abs(v) * MM)));
   const flat = absV.flat().filter((v) => v !== null && Number.isFinite(v));
   const frontTrace = [];
+  // One threshold for the front and the stations unless the job gives two: each is labelled.
+  const frontThreshold = job.metrics?.front_threshold ?? job.spec?.probe?.front_threshold;
   if (front) {
     const pts = front.x1.map((xi, i) => [xi, front.arrival_time[i]]).filter(([, ti]) => Number.isFinite(ti)).sort((a, b) => a[0] - b[0]);
-    frontTrace.push({ type: 'scatter', mode: 'lines', x: pts.map((p) => p[0]), y: pts.map((p) => p[1]), name: 'slip front', line: { color: FRONT, width: 1.6 }, hovertemplate: 'front: x1 = %{x:.3f} m, t = %{y:.4g} s<extra></extra>' });
+    frontTrace.push({ type: 'scatter', mode: 'lines', x: pts.map((p) => p[0]), y: pts.map((p) => p[1]), name: `slip front (|V| > ${fmt(frontThreshold)} m/s)`, line: { color: FRONT, width: 1.6 }, hovertemplate: 'front: x1 = %{x:.3f} m, t = %{y:.4g} s<extra></extra>' });
   }
+  const ruptures = (job.metrics?.stations || []).filter((s) => Number.isFinite(s.rupture_time));
+  if (ruptures.length) {
+    const threshold = job.spec?.stations?.rupture_threshold;
+    frontTrace.push({ type: 'scatter', mode: 'markers', x: ruptures.map((s) => s.x1), y: ruptures.map((s) => s.rupture_time),
+      name: `station rupture times (|V| > ${fmt(threshold)} m/s${threshold === frontThreshold ? ', the front\'s threshold' : ''})`,
+      marker: { symbol: 'diamond', size: 8, color: '#ffffff', line: { color: FRONT, width: 1.6 } }, hovertemplate: 'station x1 = %{x:.4g} m, rupture t = %{y:.4g} s<extra></extra>' });
+  }
+  // The map opens on the event; the button shows the whole domain and run, and back.
+  const box = { x: xRange, t: [t[0], t[t.length - 1]] };
+  const event = eventWindow(x, t, absV, front, xRange);
+  let view = event || box;
+  const setViewButton = () => {
+    viewButton.hidden = !event;
+    viewButton.textContent = view === box ? 'zoom to the event' : 'show the whole domain and run';
+  };
+  setViewButton();
+  viewButton.addEventListener('click', async () => {
+    view = view === box ? event : box;
+    setViewButton();
+    await plotly().then((P) => P.relayout(mapBox, { 'xaxis.range': [...view.x], 'xaxis.autorange': false, 'yaxis.range': [...view.t], 'yaxis.autorange': false }));
+    mapCaption.textContent = mapText();
+  });
   let marks = [];
+  let colourText = '';
+  const mapText = () => `${colourText} ${view === box ? 'The whole domain and run.' : `Zoomed to the event: x1 from ${fmt(view.x[0])} to ${fmt(view.x[1])} m, t up to ${fmt(view.t[1])} s of ${fmt(t[t.length - 1])} s (where |V| exceeded 1 % of its peak, and the front); “show the whole domain and run” above, or double-click the map to come back here.`}`;
 
   const drawMap = async () => {
     const log = scale.value === 'log';
@@ -156,19 +216,28 @@ export async function drawFigures(figs, job) {
       type: 'heatmap', xaxis: 'x2', yaxis: 'y2', x: [0], y: levels, z: levels.map((v) => [v]), zmin, zmax, zauto: false,
       colorscale: colourscale, showscale: false, zsmooth: 'fast', hoverinfo: 'skip',
     };
-    const probeTraces = marks.map((m) => ({ type: 'scatter', mode: 'lines', x: [m.x, m.x], y: [t[0], t[t.length - 1]], name: `x1 = ${fmt(m.x, 4)} m`, line: { color: m.color, width: 1.4, dash: 'dash' }, hoverinfo: 'skip' }));
+    const probeTraces = marks.map((m) => ({ type: 'scatter', mode: 'lines', x: [m.x, m.x], y: [t[0], t[t.length - 1]], name: `x1 = ${fmt(m.x, 4)} m${m.what ? ` (${m.what})` : ''}`, line: { color: m.color, width: 1.4, dash: 'dash' }, hoverinfo: 'skip' }));
     const barTitle = `|V| [mm/s]${log ? ' (log scale)' : ''}${clipped ? ', clipped at top' : ''}`;
+    // More than three entries (stations, both thresholds) would hide the event: the legend
+    // goes above the plot, in rows of three, the top margin grown for them (the x axis, and
+    // so V_r's below, keeps its pixels: only the left and right margins are shared).
+    const entries = frontTrace.length + probeTraces.length;
+    const above = entries > 3;
+    const rows = Math.ceil(entries / 3);
     await chart(mapBox, {
-      data: [heat, bar, ...frontTrace, ...probeTraces], height: 440, filename: `${stem}-map`,
+      data: [heat, bar, ...frontTrace, ...probeTraces], height: 440 + (above ? 20 * rows : 0), filename: `${stem}-map`,
       layout: {
-        margin: MARGIN, xaxis: axis('x1 [m]', { range: xRange, autorange: false, domain: X_DOMAIN }), yaxis: axis('t [s]', { range: [t[0], t[t.length - 1]] }),
+        margin: above ? { ...MARGIN, t: MARGIN.t + 20 * rows } : MARGIN, xaxis: axis('x1 [m]', { range: [...view.x], autorange: false, domain: X_DOMAIN }), yaxis: axis('t [s]', { range: [...view.t], autorange: false }),
         xaxis2: { domain: COLOUR_BAR, anchor: 'y2', visible: false, fixedrange: true },
         yaxis2: axis(barTitle, { anchor: 'x2', side: 'right', range: [zmin, zmax], fixedrange: true, gridcolor: 'rgba(0,0,0,0)', ...(log ? { tickvals: decades, ticktext: decades.map((k) => fmt(10 ** k)) } : {}) }),
-        legend: { x: 0.01, y: 0.99, bgcolor: 'rgba(255,255,255,0.85)', bordercolor: '#c9d1da', borderwidth: 1 },
+        legend: above
+          ? { orientation: 'h', x: 0, xanchor: 'left', y: 1.01, yanchor: 'bottom', bgcolor: 'rgba(0,0,0,0)', borderwidth: 0 }
+          : { x: 0.01, y: 0.99, bgcolor: 'rgba(255,255,255,0.85)', bordercolor: '#c9d1da', borderwidth: 1 },
       },
     });
-    mapCaption.textContent = `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). ` +
+    colourText = `${slice.source_shape[0]} samples × ${slice.source_shape[1]} nodes in the file; shown every ${slice.stride.time} sample(s) and ${slice.stride.x1} node(s). ` +
       (log ? `Colours span ${LOG_DECADES} decades below the largest |V| (${fmt(10 ** zmax)} mm/s); white: below that (no slip).` : `Colours from 0 to ${fmt(zmax)} mm/s${clipped ? ', the 90th percentile of the slipping nodes’ |V|: faster nodes have the darkest colour' : ''}.`);
+    mapCaption.textContent = mapText();
   };
   scale.addEventListener('change', drawMap);
   colours.addEventListener('change', drawMap);
@@ -180,10 +249,13 @@ export async function drawFigures(figs, job) {
     drawVt();
   });
 
-  await drawVr(vrBox, vrCaption, job, front, xRange, stem);
+  await drawVr(vrBox, vrCaption, job, front, view.x, stem);
   if (front) linkXAxes(mapBox, vrBox);
 
-  picks.value = defaultProbes(x[0], x[x.length - 1]).join(', ');
+  // The job's own stations, else its probes (the map's dashed lines and the curves of (b)).
+  const positions = jobPositions(job.spec, x[0], x[x.length - 1], MARKS.length);
+  const whatAt = new Map(positions.map((p) => [p.x, p.what]));
+  picks.value = positions.map((p) => p.x).join(', ');
   function parsePicks() {
     return picks.value.split(/[,\s]+/).filter(Boolean).map(Number).filter((v) => Number.isFinite(v));
   }
@@ -195,13 +267,13 @@ export async function drawFigures(figs, job) {
     pickMsg.textContent = outside.length ? `outside the domain [${fmt(xRange[0])}, ${fmt(xRange[1])}] m, left out: ${outside.join(', ')}` : '';
     try {
       const slices = await Promise.all(xs.map((xi) => get(`/api/v1/jobs/${job.id}/fields/slip_velocity?x1_min=${xi}&x1_max=${xi}&max_points=4000`)));
-      const series = slices.map((s, i) => ({ x: s.x1[0], t: s.time, v: s.values.map((r) => (r[0] === null ? null : Math.abs(r[0]) * MM)), color: MARKS[i % MARKS.length] }));
-      marks = series.map((s) => ({ x: s.x, color: s.color }));
+      const series = slices.map((s, i) => ({ x: s.x1[0], asked: xs[i], t: s.time, v: s.values.map((r) => (r[0] === null ? null : Math.abs(r[0]) * MM)), color: MARKS[i % MARKS.length] }));
+      marks = series.map((s) => ({ x: s.x, color: s.color, what: whatAt.get(s.asked) }));
       await drawMap();
       if (!series.length) { chartMessage(vtBox, 'No position inside the domain.'); return; }
       const signal = signalWindow(series);
       await chart(vtBox, {
-        data: series.map((s) => ({ type: 'scatter', mode: 'lines', x: s.t, y: s.v, name: `x1 = ${fmt(s.x, 4)} m`, line: { color: s.color, width: 1.6 }, hovertemplate: '%{y:.3g} mm/s' })),
+        data: series.map((s) => ({ type: 'scatter', mode: 'lines', x: s.t, y: s.v, name: `x1 = ${fmt(s.x, 4)} m${whatAt.get(s.asked) ? ` (${whatAt.get(s.asked)})` : ''}`, line: { color: s.color, width: 1.6 }, hovertemplate: '%{y:.3g} mm/s' })),
         height: 320, filename: `${stem}-velocity`,
         layout: {
           hovermode: 'x unified', margin: { l: 80, r: 24, t: 30, b: 50, autoexpand: false },

@@ -3,9 +3,9 @@
 // method (GET /api/v1/job-defaults?method=); a submission sends only the fields that differ
 // from those defaults, so the paper's scene submitted untouched is the paper's run. The
 // server's 422 puts each error beside its field.
-import { h, fill, fmt } from './dom.js';
+import { h, fill, fmt, clear } from './dom.js';
 import { get, post, token } from './api.js';
-import { SchemaForm, valueAt } from './schema_form.js';
+import { SchemaForm, showValidation, valueAt } from './schema_form.js';
 import { loadPresets } from './presets.js';
 import { showErrors } from './form_errors.js';
 import { defaultMethod, jobSchema, methodNames } from './methods.js';
@@ -15,12 +15,22 @@ import { defaultMethod, jobSchema, methodNames } from './methods.js';
 // these in the schema's order.
 const GROUP_ORDER = ['material', 'geometry', 'loading', 'friction', 'nucleation', 'time', 'output', 'probe'];
 
+// The validation's cost estimate in a line: steps, time step, memory and wall time.
+function estimateText(answer) {
+  const e = answer.estimate;
+  const memory = `${fmt(answer.memory_estimate_bytes / 1e6)} MB`;
+  if (!e) return `memory estimate ${memory}`;
+  const wall = e.wall_time_s === null || e.wall_time_s === undefined ? '' : `, about ${fmt(e.wall_time_s)} s on this server${e.stops_on_arrest ? ' (at most: the run ends earlier once the rupture arrests)' : ''}`;
+  return `${fmt(e.steps)} steps of dt = ${fmt(e.dt)} s, memory ${memory}${wall}`;
+}
+
 export async function jobForm(view) {
   const holder = h('div', { id: 'job-fields' });
   const presetBox = h('select', { id: 'job-preset' });
   const presetNote = h('p', { id: 'preset-note', class: 'muted' });
   const fresh = h('input', { type: 'checkbox', id: 'job-fresh' });
   const general = h('div', { id: 'form-errors' });
+  const warned = h('div', { id: 'form-warnings' });
   const estimate = h('span', { id: 'memory-estimate', class: 'muted' });
   const sendBtn = h('button', { type: 'submit', id: 'job-submit', class: 'primary', text: 'Submit' });
   const form = h('form', { id: 'job-form', class: 'specform', novalidate: true },
@@ -28,7 +38,7 @@ export async function jobForm(view) {
     h('div', { class: 'row' },
       h('div', { class: 'field preset' }, h('label', { for: 'job-preset', text: 'preset' }), presetBox, presetNote),
       h('div', { class: 'field check' }, h('label', { for: 'job-fresh' }, fresh, ' fresh (run even if an identical result exists)'))),
-    holder, general,
+    holder, warned, general,
     h('div', { class: 'actions' }, sendBtn, estimate, h('span', { class: 'muted', text: token() ? '' : ' (no token set: fine on a server without tokens)' })));
   view.append(form);
   fill(holder, h('p', { class: 'muted', text: 'Loading the job schema…' }));
@@ -64,7 +74,7 @@ export async function jobForm(view) {
     fields.showMethod(method);
     describe(preset, unknown);
   };
-  presetBox.addEventListener('change', () => applyPreset().catch((e) => { general.textContent = e.message; }));
+  presetBox.addEventListener('change', () => applyPreset().then(() => check()).catch((e) => { general.textContent = e.message; }));
   if (methodInput) {
     methodInput.addEventListener('change', async () => {
       const method = JSON.parse(methodInput.value);
@@ -72,8 +82,47 @@ export async function jobForm(view) {
       fields.showMethod(method);
     });
   }
+  // The server checks the job while one types (POST /jobs/validate, at most one request in
+  // flight, the last answer wins): errors and warnings beside their fields, derived values
+  // written into theirs, the cost estimate beside the submit button.
+  let asked = 0;
+  let timer = null;
+  const body = () => {
+    const b = fields.changes(defaults);
+    if (methodInput && !methodInput.closest('[hidden]')) b.method = JSON.parse(methodInput.value);
+    return b;
+  };
+  const check = async () => {
+    const mine = ++asked;
+    try {
+      const answer = await post('/api/v1/jobs/validate', body());
+      if (mine !== asked) return;
+      if (answer.valid === false) { // beside the fields, as a 422 of a submission
+        showErrors(form, general, { message: `the job is invalid (${answer.errors.length} error${answer.errors.length === 1 ? '' : 's'})`, errors: answer.errors });
+        estimate.textContent = '';
+        return;
+      }
+      form.querySelectorAll('.ferr').forEach((e) => { e.textContent = ''; });
+      form.querySelectorAll('.invalid').forEach((e) => e.classList.remove('invalid'));
+      clear(general);
+      const rest = showValidation(fields, answer);
+      clear(warned);
+      warned.className = rest.length ? 'warn' : '';
+      if (rest.length) warned.append(h('ul', {}, rest.map((w) => h('li', { text: `⚠ ${w.pointer}: ${w.message}` }))));
+      estimate.textContent = estimateText(answer);
+    } catch (e) {
+      if (mine !== asked) return;
+      if (e.errors?.length) showErrors(form, general, e); else general.textContent = e.message;
+      estimate.textContent = '';
+    }
+  };
+  const later = () => { clearTimeout(timer); timer = setTimeout(check, 350); };
+  form.addEventListener('input', later);
+  form.addEventListener('change', later);
+
   await applyPreset();
   if (source === 'built-in' && note) describe(presets[0]);
+  await check();
 
   form.addEventListener('submit', async (ev) => {
     ev.preventDefault();

@@ -80,7 +80,7 @@ function verdictCard(box, answer) {
     h('p', { id: 'fit-verdict', class: `verdict ${v.rich_enough ? 'rich' : 'bound'}`, text: v.text }),
     h('p', { id: 'fit-reason', class: 'muted', text: v.reason }),
     kvTable([
-      ['measured length L_m', h('span', { id: 'fit-L', text: `${fmt(f.L, 4)} m` })],
+      [v.rich_enough ? 'measured length L_m' : 'fitted L_m (below the bound: not a measurement)', h('span', { id: 'fit-L', text: `${fmt(f.L, 4)} m` })],
       ['95 % interval of L_m', interval(f.L_interval_95, 'm'), 'statistical error (Jacobian, widened for the misfit’s correlation) and sampling error (refits on every second sample) in quadrature'],
       ['V*', f.v_star_fitted ? `${fmt(f.v_star, 4)} m/s, 95 % ${interval(f.v_star_interval_95, 'm/s')}` : `${fmt(f.v_star, 4)} m/s (given)`],
       ['μ', f.mu_fitted ? `${fmt(f.mu, 5)} ± ${fmt(f.mu_standard_error, 2)}` : `${fmt(f.mu, 5)} (given)`],
@@ -209,7 +209,7 @@ export function lengthFitPage(view) {
 
   view.append(
     h('div', { class: 'pagehead' }, h('h1', { text: 'Length fit (paper §6)' })),
-    h('p', { class: 'muted', text: 'The experimentalist’s procedure: fit the simplified Prakash–Clifton law to the record of a slip event (the measured length L_m), compute the measured critical frequency f_m from L_c(f_m) = L_m, and look at the power the event carries above f_m. More than 1 %: the event is rich enough and L_m is the interface’s physical length; otherwise L_m is only an upper bound.' }),
+    h('p', { class: 'muted', text: 'The experimentalist’s procedure: fit the simplified Prakash–Clifton law to the record of a slip event (the measured length L_m), compute the measured critical frequency f_m from L_c(f_m) = L_m, and look at the power the event carries above f_m. More than 1 %: the event is rich enough and L_m is the interface’s physical length; otherwise the event only bounds the length, by its own critical length (at least L_m).' }),
     form, verdict, figures);
 
   form.addEventListener('submit', async (ev) => {

@@ -223,8 +223,8 @@ export class SchemaForm {
     record.setDefault = setDefault;
     setDefault(schema.default);
     record.element = kind === 'boolean'
-      ? h('div', { class: 'field check' }, h('label', { for: id, title: pointer }, control, ` ${labelOf(name, schema)}`), nodes, h('span', { class: 'ferr' }))
-      : h('div', { class: 'field' }, h('label', { for: id, text: labelOf(name, schema), title: pointer }), control, nodes, h('span', { class: 'ferr' }));
+      ? h('div', { class: 'field check' }, h('label', { for: id, title: pointer }, control, ` ${labelOf(name, schema)}`), nodes, h('span', { class: 'ferr' }), h('span', { class: 'fwarn' }))
+      : h('div', { class: 'field' }, h('label', { for: id, text: labelOf(name, schema), title: pointer }), control, nodes, h('span', { class: 'ferr' }), h('span', { class: 'fwarn' }));
     record.element.dataset.field = pointer;
     this.fields.push(record);
     groupFields.push(record);
@@ -264,10 +264,12 @@ export class SchemaForm {
   // pointers of `spec` that no field takes.
   write(base, spec = {}) {
     this.base = base;
+    this.derived = {};
     for (const f of this.fields) {
       const fallback = valueAt(base, f.pointer) ?? f.schema.default;
       f.setDefault(fallback);
-      f.write(valueAt(spec, f.pointer) ?? fallback);
+      f.shown = valueAt(spec, f.pointer) ?? fallback;
+      f.write(f.shown);
     }
     return leafPointers(spec).filter((p) => !this.fields.some((f) => p === f.pointer || p.startsWith(`${f.pointer}/`)));
   }
@@ -279,13 +281,50 @@ export class SchemaForm {
     for (const f of this.fields) {
       if (f.element.hidden) continue;
       const v = f.read();
-      const d = valueAt(base, f.pointer) ?? f.schema.default;
+      const d = this.derived?.[f.pointer] ?? valueAt(base, f.pointer) ?? f.schema.default;
       // Nothing typed into a field without a default: not sent.
       if (v === undefined || (d === undefined && ((Array.isArray(v) && !v.length) || v === false))) continue;
       if (JSON.stringify(v) !== JSON.stringify(d)) setAt(out, f.pointer, v);
     }
     return out;
   }
+}
+
+// What the server's validation says of the fields (POST /jobs/validate): a value it derived
+// from the scene is written into its field unless one typed there (and not sent back: the
+// server derives it again), with where it came from; a warning goes beside its field (the
+// longest pointer prefix), or to `rest` when no shown field takes it.
+export function showValidation(form, { warnings = [], provenance = [] }) {
+  const derived = new Map(provenance.filter((v) => String(v.source).startsWith('derived')).map((v) => [v.pointer, v]));
+  const rest = [];
+  for (const f of form.fields) {
+    const slot = f.element.querySelector(':scope > .fwarn');
+    if (slot) slot.textContent = '';
+    f.element.classList.remove('warned');
+    const d = derived.get(f.pointer);
+    const untouched = JSON.stringify(f.read()) === JSON.stringify(f.shown);
+    if (d) {
+      if (untouched) { f.shown = d.value; f.write(d.value); }
+      form.derived[f.pointer] = d.value;
+      if (slot) slot.textContent = `${d.source} (${fmt(d.value)} ${d.unit})`;
+    } else if (f.pointer in form.derived) {
+      delete form.derived[f.pointer];
+      const fallback = valueAt(form.base, f.pointer) ?? f.schema.default;
+      if (untouched) { f.shown = fallback; f.write(fallback); }
+    }
+  }
+  for (const w of warnings) {
+    let target = null;
+    for (const f of form.fields) {
+      if (f.element.hidden) continue;
+      if ((w.pointer === f.pointer || w.pointer.startsWith(`${f.pointer}/`)) && (!target || f.pointer.length > target.pointer.length)) target = f;
+    }
+    const slot = target?.element.querySelector(':scope > .fwarn');
+    if (!slot) { rest.push(w); continue; }
+    target.element.classList.add('warned');
+    slot.textContent = slot.textContent ? `${slot.textContent} · ⚠ ${w.message}` : `⚠ ${w.message}`;
+  }
+  return rest;
 }
 
 // A table of rows for an array of objects: one column per item property, a row per item,

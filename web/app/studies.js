@@ -46,8 +46,23 @@ export function studiesPage(view, page) {
   page.every(3000, () => load().catch(fail));
 }
 
+// The headline answer (docs/studies.md "The answer", computed by the server): the verdict, what
+// it means, how sure it is, and only then the other numbers, each labelled with what it is.
+export function answerBlock(box, answer) {
+  if (!answer) { fill(box); box.hidden = true; return; }
+  box.hidden = false;
+  const others = answer.others || [];
+  fill(box, h('h2', { text: 'The answer' }),
+    h('p', { class: 'verdict' }, h('strong', { id: 'answer-verdict', text: answer.verdict })),
+    h('p', { id: 'answer-meaning' }, h('em', { text: 'What it means: ' }), `${answer.meaning}.`),
+    h('p', { id: 'answer-certainty', class: 'muted' }, h('em', { text: 'How sure: ' }), `${answer.certainty}.`),
+    others.length ? h('div', {}, h('p', { class: 'muted', text: 'Other numbers, each for what it is:' }),
+      kvTable(others.map((o) => [`${fmt(o.value)} ${o.unit}`, o.label]))) : null);
+}
+
 export async function studyPage(view, page, id) {
   const head = h('div', { class: 'pagehead' });
+  const answerCard = h('section', { class: 'card answer', id: 'study-answer' });
   const summary = h('section', { class: 'card', id: 'study-summary' });
   const mapCard = h('section', { class: 'card', id: 'study-map' });
   const saCard = h('section', { class: 'card', id: 'study-speed' });
@@ -63,16 +78,15 @@ export async function studyPage(view, page, id) {
     const out = h('span');
     fill(head, h('h1', {}, study.name || `study ${shortId(study.id)}`, ' ', badge(study.status)),
       h('div', { class: 'sub muted' }, `${study.kind} study · ${methodHeading(study.method)} · id `, h('code', { text: study.id })));
-    fill(summary, h('h2', { text: study.kind === 'accuracy' ? 'Progress and answer' : 'Progress and L_c' }),
+    fill(summary, h('h2', { text: study.kind === 'accuracy' ? 'Progress' : 'Progress and the rule' }),
       progressBar(p.fraction, `${p.done ?? 0} of ${p.total ?? 0} runs final${study.status === 'running' ? ' (a convergence study adds finer meshes as it goes)' : ''}`),
       kvTable(study.kind === 'accuracy' ? [
         ['created / finished', `${fmtTime(study.created_at)} / ${fmtTime(study.finished_at)}`],
         ['submitted by', study.submitted_by],
       ] : [
-        ['L_c', h('strong', { id: 'lc-value', text: study.L_c != null ? `${fmt(study.L_c)} m` : (study.status === 'running' ? 'not determined yet' : 'not determined (see the reason)') })],
-        ['reason', h('span', { id: 'lc-reason', text: cl.reason || '—' })],
+        ['the rule over every L run', h('span', { id: 'lc-value', text: study.L_c != null ? `L_c = ${fmt(study.L_c)} m` : (study.status === 'running' ? 'not determined yet' : 'not determined (see the reason)') })],
+        ['its reason', h('span', { id: 'lc-reason', text: cl.reason || '—' })],
         ['next larger L', cl.next_larger_L != null ? `${fmt(cl.next_larger_L)} m` : '—'],
-        ['spectral estimate', study.spectral_critical_length != null ? `${fmt(study.spectral_critical_length)} m${cl.spectral_from_L != null ? ` (from the run at L = ${fmt(cl.spectral_from_L)} m)` : ''}` : '—'],
         ['created / finished', `${fmtTime(study.created_at)} / ${fmtTime(study.finished_at)}`],
         ['submitted by', study.submitted_by],
       ]),
@@ -131,7 +145,8 @@ export async function studyPage(view, page, id) {
     const { body, changed } = await getJSON(`/api/v1/studies/${id}`);
     if (!changed && study) return;
     study = body;
-    if (!head.isConnected) view.append(head, summary, mapCard, saCard, sceneCard, runsCard); // only for a study that exists
+    if (!head.isConnected) view.append(head, answerCard, summary, mapCard, saCard, sceneCard, runsCard); // only for a study that exists
+    answerBlock(answerCard, study.answer);
     render();
     sa = await get(`/api/v1/studies/${id}/speed-accuracy`).catch(() => null);
     await renderSpeed();

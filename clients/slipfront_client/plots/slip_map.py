@@ -1,6 +1,8 @@
 """(a) The slip velocity |V| in the x1–t plane (darker = faster), with the slip front (first
-time |V| exceeds the threshold) as a dark line and the probe positions of figure (b) — the
-paper's Fig. 2a.
+time |V| exceeds the threshold) as a dark line, the stations' rupture times, and the positions
+of figure (b) — by default the run's own stations, else its probes — the paper's Fig. 2a. The
+axes show the event (where and when |V| exceeded 1 % of its peak, and the front), unless
+`whole=True` asks for the whole domain and run.
 
 The colour scale must show the whole pulse, its tip and tail as well as its peak: by default
 it is logarithmic over four decades below the largest |V| (`scale="log"`); `scale="linear"`
@@ -50,9 +52,11 @@ def colour_norm(v, scale, vmax=None):
     raise UsageError(f"colour scale {scale!r}: choose from {', '.join(SCALES)}")
 
 
-def plot_map(result, probes=(6.0, 10.0), vmax=None, title=None, scale="log"):
-    """Figure (a) of one run; `probes` draws vertical lines where figure (b) samples V.
-    `scale`: "log" (default) or "linear" (clipped); `vmax` [m/s] sets the top of the scale."""
+def plot_map(result, probes=None, vmax=None, title=None, scale="log", whole=False):
+    """Figure (a) of one run; `probes` draws vertical lines where figure (b) samples V (None:
+    the run's own stations or probes, Result.positions). `scale`: "log" (default) or "linear"
+    (clipped); `vmax` [m/s] sets the top of the scale; `whole`: the whole domain and run
+    instead of the event."""
     data = map_data(result)
     fig, ax = new_figure(6.4, 4.8)
     v = data["abs_slip_velocity"] * 1e3  # mm/s
@@ -68,20 +72,36 @@ def plot_map(result, probes=(6.0, 10.0), vmax=None, title=None, scale="log"):
     if scale == "log":
         bar.ax.set_facecolor("white")  # |V| below the scale's bottom: no slip
     data.update(scale=scale, vmin=float(norm.vmin), vmax=float(norm.vmax), clipped=clipped)
+    front_threshold, station_threshold = result.thresholds()
     if data["front_x1"].size:
         order = np.argsort(data["front_x1"])
         ax.plot(data["front_x1"][order], data["front_time"][order], color="tab:orange", lw=1.4,
-                label="slip front")
+                label=f"slip front (|V| > {front_threshold:.3g} m/s)")
+    ruptures = [(s["x1"], s["rupture_time"]) for s in result.metrics.get("stations") or []
+                if s.get("rupture_time") is not None]
+    if ruptures:
+        same = station_threshold == front_threshold
+        ax.plot(*zip(*ruptures), ls="none", marker="D", ms=5, mfc="white", mec="tab:orange",
+                label=f"station rupture times (|V| > {station_threshold:.3g} m/s"
+                      + (", as the front)" if same else ")"))
     lo, hi = float(data["x1"].min()), float(data["x1"].max())
+    watched = result.positions() if probes is None else [(float(x), "") for x in probes]
     drawn = []
-    for x, style in zip(probes, ["--", ":", "-.", (0, (5, 2, 1, 2))]):
+    for (x, what), style in zip(watched, ["--", ":", "-.", (0, (5, 2, 1, 2))]):
         if lo <= x <= hi:
-            ax.axvline(x, color="tab:red", ls=style, lw=1.0, label=f"probe x1 = {x:g} m")
+            ax.axvline(x, color="tab:red", ls=style, lw=1.0,
+                       label=f"x1 = {x:g} m ({what})" if what else f"probe x1 = {x:g} m")
             drawn.append(x)
     data["probes"] = drawn
+    window = None if whole else result.event_window()
+    if window:
+        ax.set_xlim(*window[0])
+        ax.set_ylim(*window[1])
+    data["window"] = window
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", fontsize="small", framealpha=0.9)
-    ax.set_xlabel("x1 [m]")
+    ax.set_xlabel("x1 [m]" + ("" if window is None else
+                              "  (zoomed to the event; the whole box: plot map --whole)"))
     ax.set_ylabel("t [s]")
-    ax.set_title(title or f"Slip velocity, {result.label()}")
+    ax.set_title(title or f"Slip velocity, {result.label()}", fontsize="medium")
     return fig, data

@@ -40,9 +40,12 @@ def signal_window(samples, fraction=SIGNAL_FRACTION, pad=0.15):
     return max(first, t0 - pad * width), min(last, t1 + pad * width)
 
 
-def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True, labels=None):
-    """One panel per position; one line per run, named by `labels` (default: each run's
-    label). Positions outside a run are skipped."""
+def plot_velocity(results, positions=None, title=None, zoom=True, labels=None):
+    """One panel per position (None: the first run's own stations or probes,
+    Result.positions); one line per run, named by `labels` (default: each run's label).
+    Positions outside a run are skipped."""
+    watched = dict(results[0].positions()) if results and positions is None else {}
+    positions = list(watched) if positions is None else positions
     wide = len(results) > MAX_INSIDE_LEGEND
     fig, axes = plt.subplots(len(positions), 1,
                              figsize=(6.4 + (4.0 if wide else 0.0), 2.6 * len(positions) + 0.6),
@@ -65,7 +68,8 @@ def plot_velocity(results, positions=(6.0, 10.0), title=None, zoom=True, labels=
         if window:
             ax.set_xlim(*window)
             data.setdefault("windows", {})[x] = window
-        ax.set_title(f"x1 = {x:g} m" + (" (zoomed to the signal)" if window else ""),
+        what = f" ({watched[x]})" if x in watched else ""
+        ax.set_title(f"x1 = {x:g} m{what}" + (" (zoomed to the signal)" if window else ""),
                      fontsize="medium")
         ax.set_xlabel("t [s]")
         if ax.lines:

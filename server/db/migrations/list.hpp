@@ -19,5 +19,6 @@ const char* m8_accuracy_studies();
 const char* m9_run_annotations();
 const char* m10_file_intents();
 const char* m11_imported_results();
+const char* m12_job_validation();
 
 } // namespace slipfront::server::migrations

@@ -9,6 +9,7 @@
 
 #include <string>
 #include <string_view>
+#include <optional>
 #include <vector>
 
 namespace slipfront {
@@ -20,8 +21,22 @@ struct FrictionState {
   double theta = 0;     // the state variable of rate-and-state friction [s]
 };
 
+// How a coefficient law weakens with slip: mu falls by `drop` over the slip path `distance` [m]
+// (slip weakening: mu_s - mu_d over D_c; rate-and-state: b over D_c).
+struct Weakening {
+  double drop = 0.0;
+  double distance = 0.0;
+};
+
 // The FrictionValues a law reads (a profile may set only these).
 using FrictionParameters = std::vector<double FrictionValues::*>;
+
+// How a coefficient law weakens with slip: mu falls by `drop` over the slip path `distance` [m]
+// (the scale of its process zone; api/scene_checks.cpp).
+struct Weakening {
+  double drop = 0.0;
+  double distance = 0.0;
+};
 
 class CoefficientLaw {
 public:
@@ -67,6 +82,9 @@ public:
   virtual double solve_slip_rate(const FrictionValues& values, const FrictionState& state,
                                  double sigma_star, double eta, double tau_lock,
                                  double guess) const;
+  // How mu weakens with slip (the scale of its process zone, D_c mu* / (drop sigma): the
+  // resolution check of api/scene_checks.cpp); none for a constant coefficient.
+  virtual std::optional<Weakening> weakening(const FrictionValues&) const { return std::nullopt; }
 };
 
 // Every coefficient law a job can name, in the job schema's order (friction_laws.cpp), with

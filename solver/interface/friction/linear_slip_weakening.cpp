@@ -45,6 +45,9 @@ public:
                      double /*slip_rate*/) const override {
     return v.mu_s - (v.mu_s - v.mu_d) * std::min(state.slip_path / v.D_c, 1.0);
   }
+  std::optional<Weakening> weakening(const FrictionValues& v) const override {
+    return Weakening{v.mu_s - v.mu_d, v.D_c};
+  }
 };
 
 } // namespace

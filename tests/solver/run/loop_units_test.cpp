@@ -225,6 +225,28 @@ TEST(ArrestRule, QuietWindowAfterNucleationAndLastArrival) {
   EXPECT_TRUE(keep_going.arrested());
 }
 
+// An overstressed patch nucleates as long as it takes: the window starts only once the front
+// has reached a node outside the patch (FrontTracker::first_arrival_outside).
+TEST(ArrestRule, AnOverstressedPatchIsWatchedOnceTheFrontLeavesIt) {
+  SimulationParams p;
+  p.nucleation.type = NucleationType::overstressed_patch;
+  p.time.arrest_window = 1.0;
+  ArrestRule rule(p);
+  const double inside_only = 0.1, not_yet = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(rule.update(5.0, inside_only, not_yet)); // still nucleating after 4.9 s
+  EXPECT_FALSE(rule.arrested());
+  EXPECT_FALSE(rule.update(5.5, 5.2, 5.2)); // left the patch at 5.2 s
+  EXPECT_TRUE(rule.update(6.3, 5.2, 5.2));
+
+  FrontTracker front(4, 1e-3, {false, true, true, false}); // nodes 1, 2: the patch
+  EXPECT_EQ(front.first_arrival_outside(), not_yet);
+  front.update({0.0, 1.0, 1.0, 0.0}, 0.05, 0.1);
+  EXPECT_EQ(front.first_arrival_outside(), not_yet);
+  EXPECT_LT(front.last_new_arrival(), 0.1);
+  front.update({0.0, 1.0, 1.0, 1.0}, 0.15, 0.1);
+  EXPECT_NEAR(front.first_arrival_outside(), 0.05 + 1e-3 * 0.1, 1e-12); // the crossing
+}
+
 TEST(ProgressReporter, ThrottledAfterStepsAndAlwaysAtTheEnd) {
   std::vector<Progress> seen;
   RunHooks hooks;

@@ -1,0 +1,289 @@
+#include "api/cost_estimate.hpp"
+
+#include "api/json_number.hpp"
+#include "api/number_text.hpp"
+#include "solver/simulation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+namespace slipfront::api {
+
+namespace {
+
+constexpr std::size_t terms = 4; // setup and the method's three kinds of work
+
+// The work of a run as the three terms its method's model times.
+std::array<double, terms> terms_of(const std::string& method, const RunWork& w) {
+  if (method == "spectral_bi") return {1.0, w.lag_steps, w.lower_lag_steps, w.interface_steps};
+  return {1.0, w.node_steps, w.row_steps, w.interface_steps};
+}
+
+CostCoefficients coefficients_of(const std::string& method, const std::array<double, terms>& c) {
+  CostCoefficients k;
+  k.setup = c[0];
+  k.interface_step = c[3];
+  if (method == "spectral_bi") {
+    k.lag_step = c[1];
+    k.lower_lag_step = c[2];
+  } else {
+    k.node_step = c[1];
+    k.row_step = c[2];
+  }
+  return k;
+}
+
+std::array<double, terms> values_of(const std::string& method, const CostCoefficients& k) {
+  if (method == "spectral_bi") return {k.setup, k.lag_step, k.lower_lag_step, k.interface_step};
+  return {k.setup, k.node_step, k.row_step, k.interface_step};
+}
+
+// The names of the terms in the model's file.
+std::array<const char*, terms> term_names(const std::string& method) {
+  if (method == "spectral_bi")
+    return {"setup_s", "lag_step_s", "lower_lag_step_s", "interface_step_s"};
+  return {"setup_s", "node_step_s", "row_step_s", "interface_step_s"};
+}
+
+// Solves the n x n system a x = b (Gaussian elimination with partial pivoting); false if it
+// is singular.
+bool solve(std::vector<std::vector<double>> a, std::vector<double> b, std::vector<double>& x) {
+  const std::size_t n = b.size();
+  for (std::size_t col = 0; col < n; ++col) {
+    std::size_t pivot = col;
+    for (std::size_t r = col + 1; r < n; ++r)
+      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
+    if (!(std::abs(a[pivot][col]) > 1e-300)) return false;
+    std::swap(a[pivot], a[col]);
+    std::swap(b[pivot], b[col]);
+    for (std::size_t r = col + 1; r < n; ++r) {
+      const double f = a[r][col] / a[col][col];
+      for (std::size_t c = col; c < n; ++c)
+        a[r][c] -= f * a[col][c];
+      b[r] -= f * b[col];
+    }
+  }
+  x.assign(n, 0.0);
+  for (std::size_t r = n; r-- > 0;) {
+    double s = b[r];
+    for (std::size_t c = r + 1; c < n; ++c)
+      s -= a[r][c] * x[c];
+    x[r] = s / a[r][r];
+  }
+  return true;
+}
+
+// Least squares on the relative error over the samples, with every coefficient >= 0: the best
+// fit among the subsets of terms whose unconstrained fit is non-negative.
+std::array<double, terms> fit(const std::string& method, const std::vector<const CostSample*>& s) {
+  std::array<double, terms> best{};
+  double best_residual = std::numeric_limits<double>::infinity();
+  for (unsigned subset = 1; subset < (1u << terms); ++subset) {
+    std::vector<std::size_t> used;
+    for (std::size_t t = 0; t < terms; ++t)
+      if (subset & (1u << t)) used.push_back(t);
+    if (used.size() > s.size()) continue;
+    // Rows x / T against 1, each column scaled to at most 1 (the counts span many decades).
+    std::vector<double> scale(used.size(), 0.0);
+    for (const CostSample* sample : s) {
+      const auto x = terms_of(method, sample->work);
+      for (std::size_t i = 0; i < used.size(); ++i)
+        scale[i] = std::max(scale[i], x[used[i]] / sample->wall_time_s);
+    }
+    if (std::any_of(scale.begin(), scale.end(), [](double v) { return !(v > 0); })) continue;
+    std::vector<std::vector<double>> a(used.size(), std::vector<double>(used.size(), 0.0));
+    std::vector<double> b(used.size(), 0.0), c;
+    for (const CostSample* sample : s) {
+      const auto x = terms_of(method, sample->work);
+      for (std::size_t i = 0; i < used.size(); ++i) {
+        const double xi = x[used[i]] / sample->wall_time_s / scale[i];
+        b[i] += xi;
+        for (std::size_t j = 0; j < used.size(); ++j)
+          a[i][j] += xi * x[used[j]] / sample->wall_time_s / scale[j];
+      }
+    }
+    if (!solve(a, b, c)) continue;
+    std::array<double, terms> candidate{};
+    bool non_negative = true;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      candidate[used[i]] = c[i] / scale[i];
+      non_negative = non_negative && candidate[used[i]] >= 0;
+    }
+    if (!non_negative) continue;
+    double residual = 0;
+    for (const CostSample* sample : s) {
+      const auto x = terms_of(method, sample->work);
+      double model = 0;
+      for (std::size_t t = 0; t < terms; ++t)
+        model += candidate[t] * x[t];
+      residual += std::pow(model / sample->wall_time_s - 1.0, 2);
+    }
+    if (residual < best_residual) {
+      best_residual = residual;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+nlohmann::json coefficients_json(const std::string& method, const CostCoefficients& k) {
+  const auto v = values_of(method, k);
+  const auto names = term_names(method);
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t t = 0; t < terms; ++t)
+    j[names[t]] = v[t];
+  return j;
+}
+
+} // namespace
+
+CostModel CostModel::built_in() {
+  // Calibrated by `slipfront calibrate` on the development machine (docs/performance.md
+  // "Cost estimate"), for a server that was never calibrated.
+  CostModel m;
+  m.machine = "the development machine (2 cores shared with other work, load about 4)";
+  m.calibrated_at = "2026-11-28T11:31:59Z";
+  m.source = "built-in";
+  // {setup, node_step, row_step, interface_step, lag_step, lower_lag_step} [s]
+  m.coefficients["fe"][1] = {0.0493, 4.358e-9, 0.0, 1.743e-7, 0.0, 0.0};
+  m.coefficients["fe"][2] = {0.0369, 3.736e-9, 0.0, 1.963e-7, 0.0, 0.0};
+  m.coefficients["spectral_bi"][1] = {0.0, 0.0, 0.0, 0.0, 7.953e-9, 3.729e-9};
+  m.coefficients["spectral_bi"][2] = {0.0, 0.0, 0.0, 0.0, 8.724e-9, 1.076e-9};
+  return m;
+}
+
+nlohmann::json CostModel::to_json() const {
+  nlohmann::json methods = nlohmann::json::object();
+  for (const auto& [method, by_threads] : coefficients)
+    for (const auto& [threads, k] : by_threads)
+      methods[method][std::to_string(threads)] = coefficients_json(method, k);
+  return {{"machine", machine}, {"calibrated_at", calibrated_at}, {"coefficients", methods}};
+}
+
+std::optional<CostModel> CostModel::from_json(const nlohmann::json& json, std::string& error) {
+  CostModel m;
+  try {
+    m.machine = json.value("machine", std::string());
+    m.calibrated_at = json.value("calibrated_at", std::string());
+    for (const auto& [method, by_threads] : json.at("coefficients").items()) {
+      if (method != "fe" && method != "spectral_bi")
+        throw std::runtime_error("unknown method " + method);
+      for (const auto& [threads, k] : by_threads.items()) {
+        const int t = std::stoi(threads);
+        if (t < 1) throw std::runtime_error("thread count " + threads);
+        std::array<double, terms> v{};
+        const auto names = term_names(method);
+        for (std::size_t i = 0; i < terms; ++i) {
+          v[i] = k.value(names[i], 0.0); // a term a file leaves out costs nothing
+          if (!(v[i] >= 0 && std::isfinite(v[i])))
+            throw std::runtime_error(std::string(names[i]) + " is not a number >= 0");
+        }
+        m.coefficients[method][t] = coefficients_of(method, v);
+      }
+    }
+  } catch (const std::exception& e) {
+    error = std::string("not a cost model: ") + e.what();
+    return std::nullopt;
+  }
+  return m;
+}
+
+CostModel CostModel::read_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": not JSON: " + e.what());
+  }
+  std::string error;
+  auto model = from_json(json, error);
+  if (!model) throw std::runtime_error(path + ": " + error);
+  model->source = path;
+  return *model;
+}
+
+std::optional<CostCoefficients> CostModel::at(const std::string& method, int threads) const {
+  const auto found = coefficients.find(method);
+  if (found == coefficients.end() || found->second.empty()) return std::nullopt;
+  const auto& by_threads = found->second;
+  if (const auto exact = by_threads.find(threads); exact != by_threads.end()) return exact->second;
+  // The nearest calibrated count, its work terms scaled as if the threads shared it evenly.
+  auto nearest = by_threads.begin();
+  for (auto it = by_threads.begin(); it != by_threads.end(); ++it)
+    if (std::abs(it->first - threads) < std::abs(nearest->first - threads)) nearest = it;
+  CostCoefficients k = nearest->second;
+  const double ratio = double(nearest->first) / threads;
+  k.node_step *= ratio;
+  k.row_step *= ratio;
+  k.interface_step *= ratio;
+  k.lag_step *= ratio;
+  k.lower_lag_step *= ratio;
+  return k;
+}
+
+double modelled_wall_time(const CostModel& model, const std::string& method, int threads,
+                          const RunWork& work) {
+  const auto k = model.at(method, threads);
+  if (!k) return std::numeric_limits<double>::quiet_NaN();
+  const auto x = terms_of(method, work);
+  const auto c = values_of(method, *k);
+  double wall = 0;
+  for (std::size_t t = 0; t < terms; ++t)
+    wall += c[t] * x[t];
+  return wall;
+}
+
+CostEstimate estimate_cost(const SimulationParams& params, double memory_bytes,
+                           const CostModel& model) {
+  const RunWork work = estimated_work(params);
+  CostEstimate e;
+  e.steps = work.steps;
+  e.dt = work.dt;
+  e.memory_bytes = memory_bytes;
+  e.threads =
+      params.threads > 0 ? params.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string method = params.method == Method::spectral_bi ? "spectral_bi" : "fe";
+  e.wall_time_s = modelled_wall_time(model, method, e.threads, work);
+  e.stops_on_arrest = params.time.stop_on_arrest;
+  e.model = model.source + (model.machine.empty() ? "" : ", " + model.machine) +
+            (model.calibrated_at.empty() ? "" : ", calibrated " + model.calibrated_at);
+  return e;
+}
+
+nlohmann::json estimate_json(const CostEstimate& e) {
+  return {{"steps", json_number(e.steps)},
+          {"dt", json_number(e.dt)},
+          {"memory_bytes", json_bytes(e.memory_bytes)},
+          {"wall_time_s", json_number(e.wall_time_s)},
+          {"threads", e.threads},
+          {"stops_on_arrest", e.stops_on_arrest},
+          {"model", e.model}};
+}
+
+std::string wall_time_text(double seconds) {
+  if (!std::isfinite(seconds)) return "an unknown time";
+  if (seconds < 120) return number_text(seconds, 2) + " s";
+  if (seconds < 7200) return number_text(seconds / 60, 2) + " min";
+  if (seconds < 2 * 86400) return number_text(seconds / 3600, 2) + " h";
+  return number_text(seconds / 86400, 2) + " days";
+}
+
+CostModel fit_cost_model(const std::vector<CostSample>& samples) {
+  CostModel model;
+  std::map<std::pair<std::string, int>, std::vector<const CostSample*>> groups;
+  for (const CostSample& s : samples)
+    if (s.wall_time_s > 0) groups[{s.method, s.threads}].push_back(&s);
+  for (const auto& [key, group] : groups)
+    model.coefficients[key.first][key.second] = coefficients_of(key.first, fit(key.first, group));
+  return model;
+}
+
+} // namespace slipfront::api
