@@ -2,6 +2,7 @@
 
 #include "api/json_number.hpp"
 #include "api/number_text.hpp"
+#include "solver/methods.hpp"
 #include "solver/simulation.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <stdexcept>
 #include <thread>
 
 namespace slipfront::api {
@@ -19,36 +21,29 @@ namespace {
 
 constexpr std::size_t terms = 4; // setup and the method's three kinds of work
 
-// The work of a run as the three terms its method's model times.
+// The method of that name, or an error naming it.
+const MethodEntry& entry_of(const std::string& method) {
+  const MethodEntry* entry = find_method(method);
+  if (!entry) throw std::runtime_error("unknown method " + method);
+  return *entry;
+}
+
+// The work of a run as the terms its method's model times.
 std::array<double, terms> terms_of(const std::string& method, const RunWork& w) {
-  if (method == "spectral_bi") return {1.0, w.lag_steps, w.lower_lag_steps, w.interface_steps};
-  return {1.0, w.node_steps, w.row_steps, w.interface_steps};
-}
-
-CostCoefficients coefficients_of(const std::string& method, const std::array<double, terms>& c) {
-  CostCoefficients k;
-  k.setup = c[0];
-  k.interface_step = c[3];
-  if (method == "spectral_bi") {
-    k.lag_step = c[1];
-    k.lower_lag_step = c[2];
-  } else {
-    k.node_step = c[1];
-    k.row_step = c[2];
-  }
-  return k;
-}
-
-std::array<double, terms> values_of(const std::string& method, const CostCoefficients& k) {
-  if (method == "spectral_bi") return {k.setup, k.lag_step, k.lower_lag_step, k.interface_step};
-  return {k.setup, k.node_step, k.row_step, k.interface_step};
+  const MethodEntry& entry = entry_of(method);
+  std::array<double, terms> x{1.0};
+  for (std::size_t t = 1; t < terms; ++t)
+    x[t] = w.*(entry.cost_terms[t - 1].work);
+  return x;
 }
 
 // The names of the terms in the model's file.
 std::array<const char*, terms> term_names(const std::string& method) {
-  if (method == "spectral_bi")
-    return {"setup_s", "lag_step_s", "lower_lag_step_s", "interface_step_s"};
-  return {"setup_s", "node_step_s", "row_step_s", "interface_step_s"};
+  const MethodEntry& entry = entry_of(method);
+  std::array<const char*, terms> names{"setup_s"};
+  for (std::size_t t = 1; t < terms; ++t)
+    names[t] = entry.cost_terms[t - 1].name;
+  return names;
 }
 
 // Solves the n x n system a x = b (Gaussian elimination with partial pivoting); false if it
@@ -133,7 +128,7 @@ std::array<double, terms> fit(const std::string& method, const std::vector<const
 }
 
 nlohmann::json coefficients_json(const std::string& method, const CostCoefficients& k) {
-  const auto v = values_of(method, k);
+  const auto& v = k.seconds;
   const auto names = term_names(method);
   nlohmann::json j = nlohmann::json::object();
   for (std::size_t t = 0; t < terms; ++t)
@@ -150,11 +145,12 @@ CostModel CostModel::built_in() {
   m.machine = "the development machine (2 cores shared with other work, load about 4)";
   m.calibrated_at = "2026-11-28T11:31:59Z";
   m.source = "built-in";
-  // {setup, node_step, row_step, interface_step, lag_step, lower_lag_step} [s]
-  m.coefficients["fe"][1] = {0.0493, 4.358e-9, 0.0, 1.743e-7, 0.0, 0.0};
-  m.coefficients["fe"][2] = {0.0369, 3.736e-9, 0.0, 1.963e-7, 0.0, 0.0};
-  m.coefficients["spectral_bi"][1] = {0.0, 0.0, 0.0, 0.0, 7.953e-9, 3.729e-9};
-  m.coefficients["spectral_bi"][2] = {0.0, 0.0, 0.0, 0.0, 8.724e-9, 1.076e-9};
+  // FE {setup, node_step, row_step, interface_step} [s]
+  m.coefficients["fe"][1] = {{0.0493, 4.358e-9, 0.0, 1.743e-7}};
+  m.coefficients["fe"][2] = {{0.0369, 3.736e-9, 0.0, 1.963e-7}};
+  // BI {setup, lag_step, lower_lag_step, interface_step} [s]
+  m.coefficients["spectral_bi"][1] = {{0.0, 7.953e-9, 3.729e-9, 0.0}};
+  m.coefficients["spectral_bi"][2] = {{0.0, 8.724e-9, 1.076e-9, 0.0}};
   return m;
 }
 
@@ -172,8 +168,7 @@ std::optional<CostModel> CostModel::from_json(const nlohmann::json& json, std::s
     m.machine = json.value("machine", std::string());
     m.calibrated_at = json.value("calibrated_at", std::string());
     for (const auto& [method, by_threads] : json.at("coefficients").items()) {
-      if (method != "fe" && method != "spectral_bi")
-        throw std::runtime_error("unknown method " + method);
+      entry_of(method); // throws for a method this code does not have
       for (const auto& [threads, k] : by_threads.items()) {
         const int t = std::stoi(threads);
         if (t < 1) throw std::runtime_error("thread count " + threads);
@@ -184,7 +179,7 @@ std::optional<CostModel> CostModel::from_json(const nlohmann::json& json, std::s
           if (!(v[i] >= 0 && std::isfinite(v[i])))
             throw std::runtime_error(std::string(names[i]) + " is not a number >= 0");
         }
-        m.coefficients[method][t] = coefficients_of(method, v);
+        m.coefficients[method][t] = {v};
       }
     }
   } catch (const std::exception& e) {
@@ -221,11 +216,8 @@ std::optional<CostCoefficients> CostModel::at(const std::string& method, int thr
     if (std::abs(it->first - threads) < std::abs(nearest->first - threads)) nearest = it;
   CostCoefficients k = nearest->second;
   const double ratio = double(nearest->first) / threads;
-  k.node_step *= ratio;
-  k.row_step *= ratio;
-  k.interface_step *= ratio;
-  k.lag_step *= ratio;
-  k.lower_lag_step *= ratio;
+  for (std::size_t t = 1; t < terms; ++t) // the set-up is not shared
+    k.seconds[t] *= ratio;
   return k;
 }
 
@@ -234,7 +226,7 @@ double modelled_wall_time(const CostModel& model, const std::string& method, int
   const auto k = model.at(method, threads);
   if (!k) return std::numeric_limits<double>::quiet_NaN();
   const auto x = terms_of(method, work);
-  const auto c = values_of(method, *k);
+  const auto& c = k->seconds;
   double wall = 0;
   for (std::size_t t = 0; t < terms; ++t)
     wall += c[t] * x[t];
@@ -250,7 +242,7 @@ CostEstimate estimate_cost(const SimulationParams& params, double memory_bytes,
   e.memory_bytes = memory_bytes;
   e.threads =
       params.threads > 0 ? params.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  const std::string method = params.method == Method::spectral_bi ? "spectral_bi" : "fe";
+  const std::string method(params.method.name());
   e.wall_time_s = modelled_wall_time(model, method, e.threads, work);
   e.stops_on_arrest = params.time.stop_on_arrest;
   e.model = model.source + (model.machine.empty() ? "" : ", " + model.machine) +
@@ -282,7 +274,7 @@ CostModel fit_cost_model(const std::vector<CostSample>& samples) {
   for (const CostSample& s : samples)
     if (s.wall_time_s > 0) groups[{s.method, s.threads}].push_back(&s);
   for (const auto& [key, group] : groups)
-    model.coefficients[key.first][key.second] = coefficients_of(key.first, fit(key.first, group));
+    model.coefficients[key.first][key.second] = {fit(key.first, group)};
   return model;
 }
 

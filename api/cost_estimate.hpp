@@ -2,7 +2,8 @@
 // step and memory, and its wall time on this machine from a cost model calibrated here
 // (`slipfront calibrate`, stored with the server as DATA_DIR/cost_model.json).
 //
-// The model times the work counts of solver/run_work.hpp, per method and thread count:
+// The model times the work counts of solver/run_work.hpp, per method and thread count, as
+// the method's entry names them (its cost_terms):
 //   FE: wall = setup + node_step * node_steps + row_step * row_steps
 //              + interface_step * interface_steps
 //   BI: wall = setup + lag_step * lag_steps + lower_lag_step * lower_lag_steps
@@ -18,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -25,14 +27,10 @@
 
 namespace slipfront::api {
 
-// Seconds per unit of work of one method at one thread count.
+// Seconds per unit of work of one method at one thread count: the set-up [s], then one per
+// count of the method's work it times (its entry's cost_terms, solver/method_entry.hpp) [s].
 struct CostCoefficients {
-  double setup = 0;          // [s] a run's set-up (mesh, stable step, result file)
-  double node_step = 0;      // FE [s]
-  double row_step = 0;       // FE [s]
-  double interface_step = 0; // both methods [s]
-  double lag_step = 0;       // BI [s]
-  double lower_lag_step = 0; // BI [s]
+  std::array<double, 4> seconds{}; // {setup, then the method's three terms}
 };
 
 struct CostModel {

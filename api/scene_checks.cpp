@@ -31,11 +31,22 @@ bool warned(const std::vector<FieldWarning>& warnings, const std::string& pointe
                      [&](const FieldWarning& w) { return w.pointer == pointer; });
 }
 
-// Whether the run reads the field at all (plain coulomb keeps L and v_star unused in its
-// canonical form; a disabled nucleation keeps its fields).
+// Whether a friction law or regularisation of the run has the number `name`.
+bool has_parameter(const LawDescription& law, const std::string& name) {
+  return std::any_of(law.parameters.begin(), law.parameters.end(),
+                     [&](const LawParameter& q) { return name == q.name; });
+}
+
+// Whether the run reads the field at all (a friction number only its law or regularisation
+// has: plain coulomb keeps L and v_star unused in its canonical form; a disabled nucleation
+// keeps its fields).
 bool read_by_run(const SimulationParams& p, const std::string& pointer) {
-  if (pointer == "/friction/L" || pointer == "/friction/v_star")
-    return effective_regularization(p.friction) == Regularization::slip_scale;
+  const std::string friction = "/friction/";
+  if (pointer.rfind(friction, 0) == 0) {
+    const std::string name = pointer.substr(friction.size());
+    return has_parameter(coefficient_law(p.friction).description(), name) ||
+           has_parameter(effective_regularization(p.friction).description(), name);
+  }
   if (pointer.rfind("/nucleation/", 0) == 0) return p.nucleation.enabled;
   return true;
 }
@@ -140,7 +151,7 @@ void probes_outside_patch(const JobSpec& job, std::vector<FieldWarning>& out) {
                    text(p.probes.arrival_x1) + " m lies inside the nucleation patch " + where +
                        ": the arrival there is the nucleation's, not the rupture's "
                        "(arrival_time_at_probe, and the convergence rule that compares it)"});
-  if (inside(p.probes.spectrum_x1) && p.friction.law == FrictionLaw::prakash_clifton)
+  if (inside(p.probes.spectrum_x1) && effective_regularization(p.friction).slip_filter())
     out.push_back({"/probe/spectrum_x1", text(p.probes.spectrum_x1) +
                                              " m lies inside the nucleation patch " + where +
                                              ": the strength recorded there is the nucleation's "

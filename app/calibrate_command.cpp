@@ -106,7 +106,7 @@ int compare(const CalibrateOptions& options) {
       throw std::runtime_error(path + ": " + parsed.errors[0].pointer + ": " +
                                parsed.errors[0].reason);
     const SimulationParams& p = parsed.spec->params;
-    const std::string method = api::method_name(p.method);
+    const std::string method = std::string(p.method.name());
     // With its result file, as the server writes one (and as the calibration runs).
     const std::string file = (std::filesystem::temp_directory_path() /
                               ("slipfront-compare-" + std::to_string(::getpid()) + ".h5"))
@@ -161,7 +161,7 @@ int calibrate(const CalibrateOptions& options) {
       }
       std::sort(walls.begin(), walls.end());
       api::CostSample s;
-      s.method = api::method_name(parsed.spec->params.method);
+      s.method = std::string(parsed.spec->params.method.name());
       s.threads = t;
       s.work = estimated_work(parsed.spec->params, reached);
       s.wall_time_s = walls[walls.size() / 2];

@@ -6,8 +6,10 @@
 
 #include "solver/params.hpp"
 #include "solver/rupture_method.hpp"
+#include "solver/run_work.hpp"
 #include "solver/step_count.hpp"
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <string>
@@ -38,6 +40,12 @@ struct WaveSpeedLimit {
   const char* why = ""; // "the spectral_bi kernel allows (poisson_ratio at most 0.49995)"
 };
 
+// A count of a run's work that the cost model times: "node_step_s" for RunWork::node_steps.
+struct CostTerm {
+  const char* name;
+  double RunWork::*work;
+};
+
 struct MethodEntry {
   Method method;           // its name: the job's "method", the metrics' and the result file's
   const char* label;       // short, for table cells and legends: "FE", "BI"
@@ -60,6 +68,11 @@ struct MethodEntry {
   TimeStepBounds (*time_step_bounds)(const SimulationParams& params);
   double (*step_count_bound)(const SimulationParams& params);
   double (*estimated_memory_bytes)(const SimulationParams& params);
+  // The work of a run to `until` seconds, in the counts the cost model times (run_work.hpp).
+  RunWork (*estimated_work)(const SimulationParams& params, double until);
+  // The three counts of that work the cost model times besides the set-up
+  // (api/cost_estimate.hpp): each its name in the model's file and its RunWork member.
+  std::array<CostTerm, 3> cost_terms;
   // The discretisation in a phrase ("Q4 2x2 Gauss, lumped mass, central differences"), and
   // with the run's options ("...; top boundary: traction"): the metrics' method_description
   // before the friction law.

@@ -33,9 +33,7 @@ double step_count_bound(const SimulationParams& params) {
 
 RunWork estimated_work(const SimulationParams& params, double until) {
   if (until < 0) until = params.time.duration;
-  if (params.method == Method::spectral_bi)
-    return spectral::SpectralMethod::estimated_work(params, until);
-  return fe::FiniteElementMethod::estimated_work(params, until);
+  return method_entry(params.method).estimated_work(params, until);
 }
 
 RunResult run_simulation(const SimulationParams& params, const RunHooks& hooks) {

@@ -31,13 +31,6 @@ struct Weakening {
 // The FrictionValues a law reads (a profile may set only these).
 using FrictionParameters = std::vector<double FrictionValues::*>;
 
-// How a coefficient law weakens with slip: mu falls by `drop` over the slip path `distance` [m]
-// (the scale of its process zone; api/scene_checks.cpp).
-struct Weakening {
-  double drop = 0.0;
-  double distance = 0.0;
-};
-
 class CoefficientLaw {
 public:
   virtual ~CoefficientLaw() = default;
