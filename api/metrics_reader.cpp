@@ -2,6 +2,7 @@
 
 #include "api/json_fields.hpp" // child_pointer
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -54,6 +55,21 @@ Check numbers_object(std::size_t max_keys) {
   };
 }
 
+// An object whose members are the given names only, each a text or a number (or null):
+// one entry of `provenance` or `job_warnings`.
+Check record_of(std::vector<std::string> names) {
+  return [names](const json& v) -> std::string {
+    if (!v.is_object()) return "must be an object";
+    for (const auto& [key, member] : v.items()) {
+      if (std::find(names.begin(), names.end(), key) == names.end())
+        return "has a member " + key + " that is not one of its names";
+      if (!number_or_null(member).empty() && !text(member).empty())
+        return "member " + key + " must be a text or a number";
+    }
+    return "";
+  };
+}
+
 // A list of at most max_entries entries, each passing `entry`.
 Check list_of(Check entry) {
   return [entry](const json& v) -> std::string {
@@ -93,6 +109,10 @@ const std::map<std::string, Check>& checks() {
       {"code_version", text},
       {"method", text},
       {"method_description", text},
+      // What the validation said about the job (api/run_job.cpp): its values with their
+      // sources and its warnings.
+      {"provenance", list_of(record_of({"pointer", "value", "unit", "source"}))},
+      {"job_warnings", list_of(record_of({"pointer", "message"}))},
       // Older spellings of rupture_speed.max and .mean (api/metrics_row.cpp reads them).
       {"max_rupture_speed", number_or_null},
       {"mean_rupture_speed", number_or_null},

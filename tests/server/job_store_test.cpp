@@ -463,6 +463,7 @@ TEST(JobStore, AnImportedResultIsReusedByItsImporterOnly) {
   {
     Database raw(path); // as a build at schema version 10 left it
     raw.exec("ALTER TABLE jobs DROP COLUMN result_imported_by");
+    raw.exec("ALTER TABLE jobs DROP COLUMN validation"); // added at version 12
     raw.set_user_version(10);
   }
   JobStore store(path);
