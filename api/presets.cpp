@@ -1,7 +1,7 @@
 #include "api/presets.hpp"
 
-#include "api/json_fields.hpp"
 #include "api/job_methods.hpp"
+#include "api/json_fields.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -5,8 +5,8 @@
 #pragma once
 
 #include "solver/params.hpp"
-#include "solver/rupture_method.hpp"
 #include "solver/run_work.hpp"
+#include "solver/rupture_method.hpp"
 #include "solver/step_count.hpp"
 
 #include <array>

@@ -111,7 +111,7 @@ def opening_lines(search_study, fe_study, bi_study):
                         (bi_study, "the BI convergence study over the paper's L")):
         if other is not None and other is not main:
             extra.append((what, report_mod.verdict_text(other), None))
-    method = report_mod.SHORT.get(report_mod.method_of(main), "?")
+    method = methods.label(report_mod.method_of(main))
     kind = "L search" if main.get("search") else f"{main.get('kind', 'convergence')} study"
     lines = ["## The answer\n", f"From the {method} {kind} `{main.get('id')}`:\n"]
     lines += report_mod.answer_lines(main, extra)

@@ -6,6 +6,8 @@
 #include "api/study/study_answer.hpp"
 #include "server/http/api_prefix.hpp"
 
+#include <map>
+
 namespace slipfront::server {
 
 using nlohmann::json;
@@ -14,10 +16,16 @@ namespace {
 
 // Whether a study's scene is the paper's: the scene hash of an empty job of its method.
 bool paper_scene(const std::string& method, const std::string& scene_hash) {
-  static const std::string fe = api::scene_hash(api::parse_job(json::object()).spec->canonical);
-  static const std::string bi =
-      api::scene_hash(api::parse_job({{"method", "spectral_bi"}}).spec->canonical);
-  return scene_hash == (method == "spectral_bi" ? bi : fe);
+  static const std::map<std::string, std::string> paper = [] {
+    std::map<std::string, std::string> hashes;
+    for (const std::string& name : api::method_names()) {
+      auto parsed = api::parse_job({{"method", name}});
+      if (parsed.ok()) hashes[name] = api::scene_hash(parsed.spec->canonical);
+    }
+    return hashes;
+  }();
+  const auto found = paper.find(method);
+  return found != paper.end() && found->second == scene_hash;
 }
 
 } // namespace

@@ -7,9 +7,9 @@
 #include "solver/interface/friction/law_description.hpp"
 #include "solver/params.hpp"
 
+#include <optional>
 #include <string>
 #include <string_view>
-#include <optional>
 #include <vector>
 
 namespace slipfront {
