@@ -55,7 +55,7 @@ void MeshStepper::interface_row(LevelRecord& level) {
     if (params_.extra_load) extra = params_.extra_load(x1, t);
     const double nucleation =
         nucleation_traction(params_.nucleation, parameters_.normal_stress[i], x1, t);
-    load1_[i] = extra.t1 * dx;
+    load1_[i] = (extra.t1 + nucleation_shear_traction(params_.nucleation, x1, t)) * dx;
     load2_[i] = (nucleation + extra.t2) * dx;
   }
   const bool compute_energy = level.compute_energy;

@@ -161,6 +161,7 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
     const double sigma1 = parameters_.shear_stress[i], sigma2 = parameters_.normal_stress[i];
     InterfaceTraction load;
     if (params_.extra_load) load = params_.extra_load(x1, t_half);
+    load.t1 += nucleation_shear_traction(params_.nucleation, x1, t_half);
     load.t2 += nucleation_traction(params_.nucleation, sigma2, x1, t_half);
     load1_[i] = load.t1;
     load2_[i] = load.t2;
