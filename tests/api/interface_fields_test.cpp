@@ -55,7 +55,7 @@ TEST(InterfaceFields, SlipWeakeningValuesAreChecked) {
 
 TEST(InterfaceFields, AValueTheLawDoesNotUseIsRefused) {
   expect_error({{"friction", {{"mu_s", 0.7}}}}, "/friction/mu_s",
-               {R"(not used by friction law "prakash_clifton")", "it uses mu, L, v_star"});
+               {R"(not used by friction law "prakash_clifton")", "it uses mu, v_star, L"});
   expect_error({{"friction", {{"law", "slip_weakening"}, {"mu", 0.7}}}}, "/friction/mu",
                {R"("slip_weakening" with regularization "none")", "mu_s, mu_d, D_c"});
   expect_error({{"friction", {{"law", "slip_weakening"}, {"L", 1e-3}}}}, "/friction/L",
@@ -77,7 +77,7 @@ TEST(InterfaceFields, AValueTheLawDoesNotUseIsRefused) {
           .ok());
   expect_error({{"friction", {{"law", "slip_weakening"}, {"regularization", "slip_scale"}}},
                 {"profiles", {{{"x1_max", 0.0}, {"t_star", 2e-3}}}}},
-               "/profiles/0/t_star", {"it uses mu_s, mu_d, D_c, L, v_star"});
+               "/profiles/0/t_star", {"it uses mu_s, mu_d, D_c, v_star, L"});
 }
 
 TEST(InterfaceFields, TheInitialStateMustBeStuckOutsideThePatch) {
