@@ -29,8 +29,8 @@ public:
       d.check = [](const FrictionValues& v) -> std::optional<ValueProblem> {
         if (v.mu_d <= v.mu_s) return std::nullopt;
         return ValueProblem{{&FrictionValues::mu_s, &FrictionValues::mu_d},
-                            "mu_d = " + number_text(v.mu_d, 12) + " exceeds mu_s = " +
-                                number_text(v.mu_s, 12) + " (it weakens)"};
+                            "mu_d = " + number_text(v.mu_d, 12) +
+                                " exceeds mu_s = " + number_text(v.mu_s, 12) + " (it weakens)"};
       };
       return d;
     }();
