@@ -152,6 +152,32 @@ std::vector<std::pair<std::string, std::string>> regularization_names() {
   return names;
 }
 
+nlohmann::json unregularized_patch(const Friction& friction) {
+  const RegularizationLaw& regularization = effective_regularization(friction);
+  if (!regularization.filters()) return nlohmann::json::object();
+  const CoefficientLaw& law = coefficient_law(friction);
+  Friction bare = friction;
+  nlohmann::json patch = nlohmann::json::object();
+  if (*law.fixed_regularization()) {
+    bare.law = law.unregularized_law();
+    patch["law"] = bare.law;
+  } else {
+    patch["regularization"] = "none";
+  }
+  bare.regularization = "none";
+  const CoefficientLaw& after = coefficient_law(bare);
+  auto taken = [&](const std::string& name) {
+    for (const char* legacy : after.description().legacy_fields)
+      if (name == legacy) return true;
+    return false;
+  };
+  for (const LawParameter& p : regularization.description().parameters)
+    if (!after.description().uses(p.member) && !taken(p.name)) patch[p.name] = nullptr;
+  for (const LawChoice& c : regularization.description().choices)
+    if (!taken(c.name)) patch[c.name] = nullptr;
+  return patch;
+}
+
 std::string friction_field_name(double FrictionValues::*member) {
   for (const FrictionField& field : friction_fields())
     if (field.member == member) return field.name;

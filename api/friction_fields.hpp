@@ -47,6 +47,13 @@ std::string friction_field_name(double FrictionValues::*member);
 // regularization "none" (it uses mu_s, mu_d, D_c)'.
 std::string unused_friction_field(const Friction& friction);
 
+// The JSON merge patch of `friction` that takes the regularisation away and keeps the
+// coefficient (an L search's companion runs, docs/studies-api.md "L search"): prakash_clifton
+// becomes coulomb (its unregularised law), another law gets "regularization": "none", and the
+// regularisation's fields the law then has no use for are removed. {} without a
+// regularisation.
+nlohmann::json unregularized_patch(const Friction& friction);
+
 // The range of a law's number as the reader checks it.
 Interval interval_of(const Bounds& bounds);
 

@@ -130,8 +130,11 @@ void read_nucleation(ObjectReader& in, Nucleation& n) {
   in.boolean("enabled", n.enabled);
   in.choice("type", n.type,
             {{"ellipse", NucleationType::ellipse},
-             {"overstressed_patch", NucleationType::overstressed_patch}});
+             {"overstressed_patch", NucleationType::overstressed_patch},
+             {"stress_perturbation", NucleationType::stress_perturbation}});
   const bool ellipse = n.type == NucleationType::ellipse;
+  const bool patch = n.type == NucleationType::overstressed_patch;
+  const bool perturbation = n.type == NucleationType::stress_perturbation;
   if (ellipse) in.drop_canonical("type"); // the canonical form of the records before it existed
   auto field = [&](bool used, const char* key, double& target, const Interval& allowed,
                    const char* only) {
@@ -145,9 +148,14 @@ void read_nucleation(ObjectReader& in, Nucleation& n) {
   field(ellipse, "b", n.b, positive(), "ellipse");
   field(ellipse, "v", n.v, non_negative(), "ellipse");
   field(ellipse, "alpha", n.alpha, closed_interval(0.0, 1.0), "ellipse");
-  field(!ellipse, "x1_min", n.x1_min, any_finite(), "overstressed_patch");
-  field(!ellipse, "x1_max", n.x1_max, any_finite(), "overstressed_patch");
-  field(!ellipse, "shear_stress", n.shear_stress, any_finite(), "overstressed_patch");
+  field(patch, "x1_min", n.x1_min, any_finite(), "overstressed_patch");
+  field(patch, "x1_max", n.x1_max, any_finite(), "overstressed_patch");
+  field(patch, "shear_stress", n.shear_stress, any_finite(), "overstressed_patch");
+  field(perturbation, "x1", n.x1, any_finite(), "stress_perturbation");
+  field(perturbation, "radius", n.radius, positive(), "stress_perturbation");
+  field(perturbation, "shear_stress_increase", n.shear_stress_increase, any_finite(),
+        "stress_perturbation");
+  field(perturbation, "rise_time", n.rise_time, positive(), "stress_perturbation");
 }
 
 namespace {
@@ -158,6 +166,9 @@ void read_profile(ObjectReader& in, const Friction& friction, Profile& profile) 
   in.optional_number("x1_min", lo, any_finite());
   in.optional_number("x1_max", hi, any_finite());
   in.boolean("outside", profile.outside);
+  std::optional<double> ramp;
+  in.optional_number("ramp", ramp, non_negative());
+  if (ramp) profile.ramp = *ramp;
   in.optional_number("shear_stress", profile.shear_stress, any_finite());
   in.optional_number("normal_stress", profile.normal_stress, negative());
   const StrengthLaw law(friction);

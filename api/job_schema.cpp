@@ -77,7 +77,9 @@ const std::map<std::string, Words>& fixed_words() {
       {"/nucleation/type",
        {"", "`ellipse`: the moving ellipse of the paper's appendix A (a, b, v, alpha); "
             "`overstressed_patch`: a uniform initial shear stress in [x1_min, x1_max] (x1_min, "
-            "x1_max, shear_stress)"}},
+            "x1_max, shear_stress); `stress_perturbation`: a smooth shear-stress increase "
+            "Delta tau_0 F(r) G(t) around x1 (SCEC TPV101; x1, radius, shear_stress_increase, "
+            "rise_time)"}},
       {"/nucleation/a",
        {"m", "a_ell: the ellipse's size along x1 − v t, xi = (x1 − v t)/a (docs/physics.md; "
              "ellipse)"}},
@@ -94,11 +96,25 @@ const std::map<std::string, Words>& fixed_words() {
       {"/nucleation/shear_stress",
        {"Pa", "the initial shear stress in the patch (applied after the profiles; may exceed "
               "the static strength)"}},
+      {"/nucleation/x1", {"m", "centre of the stress perturbation"}},
+      {"/nucleation/radius",
+       {"m", "R: the perturbation is Delta tau_0 F(r) with F(r) = exp(r²/(r² − R²)) for r < R, "
+             "0 beyond (docs/physics.md)"}},
+      {"/nucleation/shear_stress_increase",
+       {"Pa", "Delta tau_0: the perturbation's largest shear-stress increase, at its centre"}},
+      {"/nucleation/rise_time",
+       {"s", "T: the perturbation grows by G(t) = exp((t − T)²/(t (t − 2T))) for 0 < t < T and "
+             "stays after it"}},
       {"/profiles",
-       {"", "piecewise-constant overrides along x1 of the initial stresses and the friction "
-            "values, applied in order after the uniform values (entries: below)"}},
+       {"", "overrides along x1 of the initial stresses and the friction values, piecewise "
+            "constant or with smooth ramps, applied in order after the uniform values "
+            "(entries: below)"}},
       {"/profiles/*/x1_min", {"m", "left end of the closed interval; absent: unbounded"}},
       {"/profiles/*/x1_max", {"m", "right end of the closed interval; absent: unbounded"}},
+      {"/profiles/*/ramp",
+       {"m", "w: beyond each end of the interval the entry's share falls smoothly from 1 to 0 "
+             "over w by SCEC TPV101's boxcar B (docs/physics.md \"Profiles\"); absent or 0: "
+             "piecewise constant"}},
       {"/profiles/*/outside",
        {"", "apply to x1 < x1_min or x1 > x1_max (strict) instead of the interval"}},
       {"/profiles/*/shear_stress", {"Pa", "initial shear stress tau1_0 there"}},
@@ -357,6 +373,7 @@ using UsedWhen = std::vector<Condition>;
 std::map<std::string, UsedWhen> used_when() {
   const UsedWhen ellipse{{"/nucleation/type", {"ellipse"}}};
   const UsedWhen patch{{"/nucleation/type", {"overstressed_patch"}}};
+  const UsedWhen perturbation{{"/nucleation/type", {"stress_perturbation"}}};
   const UsedWhen elastic_lower{{"/lower/solid", {"elastic"}}};
   std::map<std::string, UsedWhen> rules = {
       {"/nucleation/a", ellipse},
@@ -366,6 +383,10 @@ std::map<std::string, UsedWhen> used_when() {
       {"/nucleation/x1_min", patch},
       {"/nucleation/x1_max", patch},
       {"/nucleation/shear_stress", patch},
+      {"/nucleation/x1", perturbation},
+      {"/nucleation/radius", perturbation},
+      {"/nucleation/shear_stress_increase", perturbation},
+      {"/nucleation/rise_time", perturbation},
       {"/lower/density", elastic_lower},
       {"/lower/young_modulus", elastic_lower},
       {"/lower/poisson_ratio", elastic_lower},

@@ -31,10 +31,10 @@ bool warned(const std::vector<FieldWarning>& warnings, const std::string& pointe
                      [&](const FieldWarning& w) { return w.pointer == pointer; });
 }
 
-// Whether a friction law or regularisation of the run has the number `name`.
-bool has_parameter(const LawDescription& law, const std::string& name) {
+// Whether a friction law or regularisation of the run reads the number `name`.
+bool reads(const LawDescription& law, const std::string& name, const Friction& friction) {
   return std::any_of(law.parameters.begin(), law.parameters.end(),
-                     [&](const LawParameter& q) { return name == q.name; });
+                     [&](const LawParameter& q) { return name == q.name && q.read_by(friction); });
 }
 
 // Whether the run reads the field at all (a friction number only its law or regularisation
@@ -44,8 +44,8 @@ bool read_by_run(const SimulationParams& p, const std::string& pointer) {
   const std::string friction = "/friction/";
   if (pointer.rfind(friction, 0) == 0) {
     const std::string name = pointer.substr(friction.size());
-    return has_parameter(coefficient_law(p.friction).description(), name) ||
-           has_parameter(effective_regularization(p.friction).description(), name);
+    return reads(coefficient_law(p.friction).description(), name, p.friction) ||
+           reads(effective_regularization(p.friction).description(), name, p.friction);
   }
   if (pointer.rfind("/nucleation/", 0) == 0) return p.nucleation.enabled;
   return true;
@@ -119,13 +119,28 @@ void process_zone_resolution(const JobSpec& job, std::vector<FieldWarning>& out)
   const double dx = 1.0 / p.geometry.nodes_per_meter;
   const double elements = zone / dx;
   if (elements >= min_process_zone_elements) return;
-  out.push_back(
-      {"/geometry/nodes_per_meter",
-       "the slip-weakening process zone, (9 pi / 32) mu* D_c / ((mu_s - mu_d) |normal_stress|) = " +
-           text(zone) + " m at rest, spans " + text(elements) + " elements of dx = " + text(dx) +
-           " m, and it shrinks as the rupture speeds up; Day et al. (2005) resolve it with " +
-           text(min_process_zone_elements) + " or more: nodes_per_meter at least " +
-           text(std::ceil(min_process_zone_elements / zone * 100) / 100)});
+  out.push_back({"/geometry/nodes_per_meter",
+                 std::string(coefficient_law(p.friction).weakening(p.friction)->formula) + " = " +
+                     text(zone) + " m at rest, spans " + text(elements) +
+                     " elements of dx = " + text(dx) +
+                     " m, and it shrinks as the rupture speeds up; Day et al. (2005) resolve it "
+                     "with " +
+                     text(min_process_zone_elements) + " or more: nodes_per_meter at least " +
+                     text(std::ceil(min_process_zone_elements / zone * 100) / 100)});
+}
+
+// A law whose coefficient grows with the slip rate everywhere (rate-and-state with a >= b and
+// no profile that changes a or b) cannot host a rupture that grows on its own.
+void velocity_strengthening(const JobSpec& job, std::vector<FieldWarning>& out) {
+  const SimulationParams& p = job.params;
+  if (p.friction.law != "rate_and_state" || p.friction.a < p.friction.b) return;
+  for (const Profile& profile : p.profiles)
+    for (const auto& [member, value] : profile.friction)
+      if (member == &FrictionValues::a || member == &FrictionValues::b) return;
+  out.push_back({"/friction/a", "a = " + text(p.friction.a) +
+                                    " is at least b = " + text(p.friction.b) +
+                                    " on the whole interface: velocity strengthening, where a "
+                                    "rupture does not grow on its own (it needs a - b < 0)"});
 }
 
 void arrest_window_room(const JobSpec& job, std::vector<FieldWarning>& out) {
@@ -190,7 +205,7 @@ double static_process_zone(const SimulationParams& p) {
   };
   const double lower = p.lower.elastic() ? compliance(p.lower.material) : 0.0; // rigid plane
   const double modulus = 2.0 / (compliance(p.material) + lower);
-  return 9.0 * std::numbers::pi / 32.0 * modulus * weakening->distance / strength_drop;
+  return weakening->factor * modulus * weakening->distance / strength_drop;
 }
 
 std::vector<FieldWarning> scene_warnings(const JobSpec& job) {
@@ -198,6 +213,7 @@ std::vector<FieldWarning> scene_warnings(const JobSpec& job) {
   paper_defaults_at_another_scale(job, warnings);
   stresses_against_modulus(job, warnings);
   process_zone_resolution(job, warnings);
+  velocity_strengthening(job, warnings);
   arrest_window_room(job, warnings);
   probes_outside_patch(job, warnings);
   duration_against_nucleation(job, warnings);
@@ -209,6 +225,18 @@ nlohmann::json warnings_json(const std::vector<FieldWarning>& warnings) {
   for (const FieldWarning& w : warnings)
     list.push_back({{"pointer", w.pointer}, {"message", w.message}});
   return list;
+}
+
+} // namespace slipfront::api
+
+namespace slipfront::api {
+
+nlohmann::json resolution_json(const SimulationParams& params) {
+  const double zone = static_process_zone(params);
+  if (!(zone > 0)) return nullptr;
+  return {{"process_zone", zone},
+          {"elements", zone * params.geometry.nodes_per_meter},
+          {"formula", coefficient_law(params.friction).weakening(params.friction)->formula}};
 }
 
 } // namespace slipfront::api

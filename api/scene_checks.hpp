@@ -12,22 +12,28 @@
 
 #include "api/job_spec.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <vector>
 
 namespace slipfront::api {
 
-// The smallest number of elements across the static slip-weakening process zone that gives
-// no warning.
+// The smallest number of elements across the static process zone that gives no warning.
 inline constexpr double min_process_zone_elements = 3.0;
 
 // Call it for a job without errors, after api/scene_defaults.hpp filled its provenance.
 std::vector<FieldWarning> scene_warnings(const JobSpec& job);
 
-// The static process zone of linear slip weakening (Day et al. 2005),
+// The static process zone of the law (its Weakening): linear slip weakening (Day et al. 2005)
 //   Lambda_0 = (9 pi / 32) mu* D_c / ((mu_s - mu_d) |normal_stress|),
-// with mu* = 2 / ((1 - nu+)/mu+ + (1 - nu-)/mu-) (mu / (1 - nu) for two identical solids, 2 mu
+// rate-and-state (Ampuero & Rubin 2008) Lambda_0 = mu* D_c / (b |normal_stress|), with
+// mu* = 2 / ((1 - nu+)/mu+ + (1 - nu-)/mu-) (mu / (1 - nu) for two identical solids, 2 mu
 // / (1 - nu) on the rigid plane, where only one side deforms) [m]; NaN for a law that does not
 // weaken.
 double static_process_zone(const SimulationParams& params);
+
+// The record's resolution (docs/api-job-spec.md "Warnings"): {process_zone [m], elements (its
+// length over dx), formula}, null for a law that does not weaken.
+nlohmann::json resolution_json(const SimulationParams& params);
 
 } // namespace slipfront::api

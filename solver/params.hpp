@@ -3,6 +3,7 @@
 // structs one to one; the solver itself knows nothing of JSON.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -75,6 +76,26 @@ struct FrictionValues {
   double L = 5e-5;      // characteristic length of the slip-scale regularisation [m]
   double v_star = 1e-4; // reference velocity V* of the slip-scale regularisation [m/s]
   double t_star = 1e-3; // time of the time-scale regularisation [s]
+  // Rate-and-state friction (rate_and_state); D_c and v_star are its characteristic slip and
+  // reference slip rate.
+  double a = 0.01;                 // direct effect
+  double b = 0.015;                // evolution effect
+  double f0 = 0.6;                 // steady-state coefficient at V*
+  double theta = 10.0;             // initial state [s] (initial_state "theta")
+  double initial_slip_rate = 1e-6; // [m/s]
+};
+
+// The state law of rate-and-state friction (docs/physics.md "Rate-and-state friction").
+enum class StateEvolution {
+  aging, // d theta/dt = 1 - |V| theta / D_c
+  slip,  // d theta/dt = -(|V| theta / D_c) ln(|V| theta / D_c)
+};
+
+// Where the initial state of rate-and-state friction comes from.
+enum class InitialState {
+  steady_state, // theta = D_c / V_ini
+  theta,        // the value `theta` (and its profiles)
+  stress,       // the theta whose strength at V_ini equals the initial shear stress (SCEC TPV101)
 };
 
 // The friction a job chose: its coefficient law and its regularisation by their job JSON
@@ -86,11 +107,14 @@ struct Friction : FrictionValues {
   // the slip scale).
   std::string regularization = "none";
   StrengthUpdate update = StrengthUpdate::exponential_ramp;
+  StateEvolution state_evolution = StateEvolution::aging;  // rate_and_state
+  InitialState initial_state = InitialState::steady_state; // rate_and_state
 };
 
 enum class NucleationType {
-  ellipse,           // the moving ellipse of the paper's appendix A (after Cochard & Rice 2000)
-  overstressed_patch // a uniform initial shear stress inside [x1_min, x1_max]
+  ellipse,            // the moving ellipse of the paper's appendix A (after Cochard & Rice 2000)
+  overstressed_patch, // a uniform initial shear stress inside [x1_min, x1_max]
+  stress_perturbation // a smooth shear-stress increase in space and time (SCEC TPV101)
 };
 
 // How the rupture is started (docs/physics.md "Nucleation"). enabled = false: not at all.
@@ -104,21 +128,37 @@ struct Nucleation {
   // The overstressed patch: the initial shear stress [Pa] in the closed interval [x1_min, x1_max].
   double x1_min = -0.5, x1_max = 0.5;
   double shear_stress = 0.012;
+  // The stress perturbation: Delta tau(x1, t) = shear_stress_increase F(r) G(t), r = |x1 - x1|,
+  // F(r) = exp(r^2/(r^2 - R^2)) for r < R, G(t) = exp((t - T)^2/(t (t - 2T))) for 0 < t < T, 1
+  // after (docs/physics.md "Nucleation").
+  double x1 = 0.0;                     // centre [m]
+  double radius = 3000.0;              // R [m]
+  double shear_stress_increase = 25e6; // Delta tau_0 [Pa]
+  double rise_time = 1.0;              // T [s]
   bool ellipse() const { return enabled && type == NucleationType::ellipse; }
   bool patch() const { return enabled && type == NucleationType::overstressed_patch; }
+  bool perturbation() const { return enabled && type == NucleationType::stress_perturbation; }
 };
 
-// A piecewise-constant override of the initial stresses and the friction values along x1
-// (docs/physics.md "Profiles"), applied after the uniform values, in the order given.
+// An override of the initial stresses and the friction values along x1 (docs/physics.md
+// "Profiles"), applied after the uniform values, in the order given: piecewise constant, or
+// with a smooth ramp of width w on each side of the interval, where the weight falls from 1
+// to 0 by SCEC TPV101's boxcar, B(d) = (1 + tanh(w/(d - w) + w/d)) / 2 at a distance d < w
+// from the interval (the value there is old + B (new - old)).
 struct Profile {
   double x1_min = -std::numeric_limits<double>::infinity(); // closed interval [x1_min, x1_max]
   double x1_max = std::numeric_limits<double>::infinity();
   bool outside = false;                              // apply to x1 < x1_min or x1 > x1_max instead
+  double ramp = 0.0;                                 // w [m]; 0: piecewise constant
   std::optional<double> shear_stress, normal_stress; // [Pa]
   std::vector<std::pair<double FrictionValues::*, double>> friction; // (value, number)
-  bool covers(double x1) const {
-    const bool inside = x1 >= x1_min && x1 <= x1_max;
-    return outside ? !inside : inside;
+  bool covers(double x1) const { return weight(x1) > 0.0; }
+  // The share of the profile's values at x1: 1 where it applies, 0 where it does not.
+  double weight(double x1) const {
+    const double d = std::max({x1_min - x1, x1 - x1_max, 0.0}); // distance from the interval
+    double inside = d == 0.0 ? 1.0 : 0.0;
+    if (d > 0.0 && d < ramp) inside = 0.5 * (1.0 + std::tanh(ramp / (d - ramp) + ramp / d));
+    return outside ? 1.0 - inside : inside;
   }
 };
 

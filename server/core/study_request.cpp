@@ -1,6 +1,7 @@
 #include "server/core/study_request.hpp"
 
 #include "api/free_text.hpp"
+#include "api/friction_fields.hpp"
 #include "api/job_methods.hpp"
 #include "api/number_text.hpp"
 #include "server/core/priority.hpp"
@@ -34,8 +35,12 @@ std::optional<StudyKind> parse_study_kind(const std::string& text) {
   return std::nullopt;
 }
 
-nlohmann::json coulomb_overrides() {
-  return {{"friction", {{"law", "coulomb"}}}};
+nlohmann::json coulomb_overrides(const nlohmann::json& base) {
+  // The base's friction as a job reads it (a preset expanded, the defaults filled in); a base
+  // that does not validate gets the paper's patch (its errors are the study's to report).
+  const api::ParseResult parsed = api::parse_job(base);
+  const Friction friction = parsed.spec ? parsed.spec->params.friction : Friction();
+  return {{"friction", api::unregularized_patch(friction)}};
 }
 
 const std::vector<double>& default_ladder() {

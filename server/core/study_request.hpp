@@ -58,11 +58,13 @@ nlohmann::json run_document(const StudyRequest& request, const std::string& stud
                             const nlohmann::json& overrides, const std::string& regime, double L,
                             double n_d);
 
-// An L search's plain-Coulomb runs (docs/studies-api.md "L search"): their regime and the
-// merge patch that makes the base's friction plain Coulomb (its constant mu, no
-// regularisation; friction.L is set but not used).
+// An L search's unregularised runs (docs/studies-api.md "L search"): their regime ("coulomb",
+// the name it has had since the paper's law, whose unregularised limit is plain Coulomb) and
+// the merge patch that takes the regularisation of the base's friction away, keeping its
+// coefficient (api::unregularized_patch: prakash_clifton -> coulomb, another law's
+// regularization -> "none").
 constexpr const char* coulomb_regime = "coulomb";
-nlohmann::json coulomb_overrides();
+nlohmann::json coulomb_overrides(const nlohmann::json& base);
 
 // The default convergence ladder.
 const std::vector<double>& default_ladder();

@@ -63,6 +63,7 @@ nlohmann::json job_to_json(const Job& job, const std::vector<std::string>& field
   j["warnings"] = validation("warnings", nlohmann::json::array());
   j["provenance"] = validation("provenance", nullptr);
   j["estimate"] = validation("estimate", nullptr);
+  j["resolution"] = validation("resolution", nullptr);
   j["links"] = {{"self", api_prefix + "/jobs/" + job.id},
                 {"metrics", api_prefix + "/jobs/" + job.id + "/metrics"},
                 {"front", api_prefix + "/jobs/" + job.id + "/front"},

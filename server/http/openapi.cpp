@@ -130,6 +130,7 @@ const char* document = R"json({
         "warnings": {"type": "array", "items": {"$ref": "#/components/schemas/Warning"}, "description": "what the validation warned about when the job was accepted (docs/api-job-spec.md \"Warnings\")"},
         "provenance": {"type": "array", "nullable": true, "items": {"$ref": "#/components/schemas/ValueSource"}, "description": "every number with a unit the run takes and where it came from; null for jobs accepted before it was kept"},
         "estimate": {"type": "object", "nullable": true, "description": "the cost estimate before the run (docs/performance.md \"Cost estimate\")"},
+        "resolution": {"type": "object", "nullable": true, "description": "the law's static process zone [m], the elements across it and its formula; null for a law that does not weaken (docs/api-job-spec.md \"Warnings\")"},
         "links": {"type": "object"}}},
       "Warning": {"type": "object", "properties": {"pointer": {"type": "string"}, "message": {"type": "string"}}},
       "ValueSource": {"type": "object", "properties": {"pointer": {"type": "string"}, "value": {"type": "number"},
@@ -139,6 +140,7 @@ const char* document = R"json({
         "spec_sha256": {"type": "string"}, "memory_estimate_bytes": {"type": "number"},
         "warnings": {"type": "array", "items": {"$ref": "#/components/schemas/Warning"}},
         "provenance": {"type": "array", "items": {"$ref": "#/components/schemas/ValueSource"}},
+        "resolution": {"type": "object", "nullable": true},
         "estimate": {"type": "object", "nullable": true}}}
     },
     "responses": {

@@ -8,6 +8,7 @@
 #include "api/job_spec.hpp"
 #include "api/json_parse.hpp"
 #include "api/number_text.hpp"
+#include "api/scene_checks.hpp"
 
 #include <filesystem>
 
@@ -85,6 +86,7 @@ api::ParseResult JobService::validate(nlohmann::json doc) const {
 nlohmann::json JobService::validation_json(const api::JobSpec& spec) const {
   return {{"warnings", api::warnings_json(spec.warnings)},
           {"provenance", api::provenance_json(spec.provenance)},
+          {"resolution", api::resolution_json(spec.params)},
           {"estimate", api::estimate_json(api::estimate_cost(
                            spec.params, spec.memory_estimate_bytes, options_.cost_model))}};
 }

@@ -133,8 +133,8 @@ std::vector<Planned> plan_runs(const StudyRequest& r) {
       int first = 0;
       for (double n_d : r.n_d)
         if (n_d <= r.n_d_max)
-          out.push_back(
-              {std::string(coulomb_regime), coulomb_overrides(), r.search->from, n_d, first++ < 2});
+          out.push_back({std::string(coulomb_regime), coulomb_overrides(r.base), r.search->from,
+                         n_d, first++ < 2});
     }
     break;
   case StudyKind::accuracy: {

@@ -325,8 +325,8 @@ void StudySupervisor::step_locked(const std::string& study_id) {
         if (plan.state == api::RefinementPlan::State::waiting) plans_open = true;
         if (plan.state == api::RefinementPlan::State::run_next) {
           auto r = submit_study_run(jobs_, studies_, *study, request,
-                                    coulomb ? coulomb_overrides() : json::object(), regime, L,
-                                    plan.next_n_d, true);
+                                    coulomb ? coulomb_overrides(request.base) : json::object(),
+                                    regime, L, plan.next_n_d, true);
           if (r.job) {
             submitted = true;
             plans_open = true;

@@ -8,6 +8,7 @@
 #include "solver/interface/nucleation.hpp"
 #include "solver/interface/split_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slipfront::fe {
@@ -55,7 +56,7 @@ void MeshStepper::interface_row(LevelRecord& level) {
     if (params_.extra_load) extra = params_.extra_load(x1, t);
     const double nucleation =
         nucleation_traction(params_.nucleation, parameters_.normal_stress[i], x1, t);
-    load1_[i] = extra.t1 * dx;
+    load1_[i] = (extra.t1 + nucleation_shear_traction(params_.nucleation, x1, t)) * dx;
     load2_[i] = (nucleation + extra.t2) * dx;
   }
   const bool compute_energy = level.compute_energy;
@@ -65,6 +66,7 @@ void MeshStepper::interface_row(LevelRecord& level) {
   const InterfaceRowOf lo = two_solids ? interface_row_of(*lower_) : InterfaceRowOf{};
   double work = 0, dissipated = 0, kinetic = 0, strain = 0;
   double lower_dissipated = 0, lower_kinetic = 0, lower_strain = 0;
+  const bool rate_dependent = node_.law.coefficient().rate_dependent();
   for (int i = 0; i < nx; ++i) {
     // The initial contact force on the upper solid, C0_i = dx (-tau0_i, |sigma0_i|) (the
     // node's initial stresses); the perturbation sees C - C0 (the lower block -(C - C0)).
@@ -105,9 +107,23 @@ void MeshStepper::interface_row(LevelRecord& level) {
       gap = up.uy[i] + lo.uy[i];
       slip_speed = std::abs(v1_old - w1_old);
     }
-    const SplitNodeStep s =
+    // Before the first step the medium is at rest, but a law of the slip rate may have the
+    // interface slide already (rate-and-state's initial slip rate): its state is advanced
+    // over the first interval with that rate.
+    if (t == 0.0)
+      slip_speed =
+          std::max(slip_speed, node_.law.coefficient().initial_slip_rate(parameters_.friction[i]));
+    SplitNodeStep s =
         resolve_split_node(node_, parameters_.friction[i], gap, upper, lower, !two_solids,
                            slip_speed, friction_[i], iface_.pressure[i], c0);
+    if (rate_dependent) {
+      // A law of the slip rate is solved at V^{n+1/2}: its state is advanced to there too,
+      // with the mean slip speed over [t_{n-1/2}, t_{n+1/2}] (a corrector, as the spectral
+      // method's; docs/physics.md "Rate-and-state friction").
+      const double mean_speed = 0.5 * (slip_speed + std::abs(s.relative.v1));
+      s = resolve_split_node(node_, parameters_.friction[i], gap, upper, lower, !two_solids,
+                             mean_speed, friction_[i], iface_.pressure[i], c0);
+    }
     const InterfaceNodeStep& r = s.relative;
     friction_[i] = r.friction;
     const double v1_new = s.upper.v1, v2_new = s.upper.v2;

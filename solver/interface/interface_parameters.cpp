@@ -19,18 +19,23 @@ NodeParameters node_parameters(const SimulationParams& params, double x1) {
   node.friction = params.friction; // the FrictionValues part
   for (std::size_t k = 0; k < params.profiles.size(); ++k) {
     const Profile& profile = params.profiles[k];
-    if (!profile.covers(x1)) continue;
+    const double w = profile.weight(x1);
+    if (!(w > 0.0)) continue;
+    // The profile's value where it applies in full (exactly), a blend in its ramp.
+    auto apply = [w](double& target, double value) {
+      target = w == 1.0 ? value : target + w * (value - target);
+    };
     const int source = int(k);
     if (profile.shear_stress) {
-      node.shear_stress = *profile.shear_stress;
+      apply(node.shear_stress, *profile.shear_stress);
       node.shear_source = source;
     }
     if (profile.normal_stress) {
-      node.normal_stress = *profile.normal_stress;
+      apply(node.normal_stress, *profile.normal_stress);
       node.normal_source = source;
     }
     for (const auto& [member, value] : profile.friction) {
-      node.friction.*member = value;
+      apply(node.friction.*member, value);
       node.friction_sources.emplace_back(member, source);
     }
   }
@@ -45,7 +50,8 @@ NodeParameters node_parameters(const SimulationParams& params, double x1) {
 std::vector<double> parameter_breakpoints(const SimulationParams& params) {
   std::vector<double> points;
   for (const Profile& profile : params.profiles)
-    for (double x : {profile.x1_min, profile.x1_max})
+    for (double x : {profile.x1_min, profile.x1_max, profile.x1_min - profile.ramp,
+                     profile.x1_max + profile.ramp})
       if (std::isfinite(x)) points.push_back(x);
   if (params.nucleation.patch()) {
     points.push_back(params.nucleation.x1_min);
@@ -110,7 +116,8 @@ InterfaceFields resting_interface(const InterfaceParameters& parameters, const S
   const std::vector<FrictionState> state = resting_friction(parameters, law);
   for (std::size_t i = 0; i < nx; ++i) {
     f.pressure[i] = std::abs(parameters.normal_stress[i]);
-    f.strength[i] = law.strength(parameters.friction[i], state[i]);
+    f.strength[i] = law.strength(parameters.friction[i], state[i],
+                                 law.coefficient().initial_slip_rate(parameters.friction[i]));
   }
   f.state.assign(nx, std::int8_t(NodeState::stick));
   return f;

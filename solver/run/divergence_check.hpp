@@ -31,6 +31,7 @@ public:
 
 private:
   bool two_solids_;          // a lower elastic solid: passivity is checked per solid
+  bool strength_bounded_;    // mu <= mu_0 for the law (not rate-and-state): tau_s is checked by it
   std::vector<double> mu_0_; // static coefficient of each node
   double speed_limit_ = 0;
   double max_coulomb_strength_ = 0; // the largest mu_0 p seen, mu_0 p0 included

@@ -182,6 +182,7 @@ void SpectralMethod::solve_nodes(const std::vector<double>& slip_speed) {
     const double sigma1 = parameters_.shear_stress[i], sigma2 = parameters_.normal_stress[i];
     InterfaceTraction load;
     if (params_.extra_load) load = params_.extra_load(x1, t_half);
+    load.t1 += nucleation_shear_traction(params_.nucleation, x1, t_half);
     load.t2 += nucleation_traction(params_.nucleation, sigma2, x1, t_half);
     load1_[i] = load.t1;
     load2_[i] = load.t2;
@@ -226,15 +227,24 @@ void SpectralMethod::step(bool /*compute_energy*/) {
   // Predictor: this interval's memory term with V^{n-1/2}; the strength update with the
   // slip speed of the last interval. Corrector: with the solved V^{n+1/2}, and the mean slip
   // speed over [t_{n-1/2}, t_{n+1/2}]. Slip speeds are those of the relative motion.
+  // Before the first step the medium is at rest, but a law of the slip rate may have the
+  // interface slide already (rate-and-state's initial slip rate): the last interval's slip
+  // speed is then that rate.
   std::vector<double>& slip_speed = slip_speed_;
+  auto last_speed = [&](int i) {
+    const double at_rest =
+        step_ == 0 ? node_.law.coefficient().initial_slip_rate(parameters_.friction[i]) : 0.0;
+    return std::max(std::abs(slip_rate(i)), at_rest);
+  };
   for (int i = 0; i < nx_; ++i)
-    slip_speed[i] = std::abs(slip_rate(i));
+    slip_speed[i] = last_speed(i);
   upper_.predict();
   if (lower_) lower_->predict();
   solve_nodes(slip_speed);
   for (int pass = 1; pass <= params_.spectral.corrector_passes; ++pass) {
     for (int i = 0; i < nx_; ++i)
-      slip_speed[i] = std::abs(0.5 * (slip_rate(i) + new_slip_rate(i)));
+      slip_speed[i] = step_ == 0 ? 0.5 * (last_speed(i) + std::abs(new_slip_rate(i)))
+                                 : std::abs(0.5 * (slip_rate(i) + new_slip_rate(i)));
     upper_.correct();
     if (lower_) lower_->correct();
     solve_nodes(slip_speed);

@@ -2,6 +2,7 @@
 // api/material_reader.hpp): the friction laws and their values, the overstressed patch,
 // `profiles`, the material in wave speeds; every refusal names its field, and the fields
 // new with them leave the hash of every older job as it was (docs/api-job-spec.md).
+#include "api/friction_fields.hpp"
 #include "api/job_spec.hpp"
 
 #include <gtest/gtest.h>
@@ -55,7 +56,7 @@ TEST(InterfaceFields, SlipWeakeningValuesAreChecked) {
 
 TEST(InterfaceFields, AValueTheLawDoesNotUseIsRefused) {
   expect_error({{"friction", {{"mu_s", 0.7}}}}, "/friction/mu_s",
-               {R"(not used by friction law "prakash_clifton")", "it uses mu, L, v_star"});
+               {R"(not used by friction law "prakash_clifton")", "it uses mu, v_star, L"});
   expect_error({{"friction", {{"law", "slip_weakening"}, {"mu", 0.7}}}}, "/friction/mu",
                {R"("slip_weakening" with regularization "none")", "mu_s, mu_d, D_c"});
   expect_error({{"friction", {{"law", "slip_weakening"}, {"L", 1e-3}}}}, "/friction/L",
@@ -77,7 +78,7 @@ TEST(InterfaceFields, AValueTheLawDoesNotUseIsRefused) {
           .ok());
   expect_error({{"friction", {{"law", "slip_weakening"}, {"regularization", "slip_scale"}}},
                 {"profiles", {{{"x1_max", 0.0}, {"t_star", 2e-3}}}}},
-               "/profiles/0/t_star", {"it uses mu_s, mu_d, D_c, L, v_star"});
+               "/profiles/0/t_star", {"it uses mu_s, mu_d, D_c, v_star, L"});
 }
 
 TEST(InterfaceFields, TheInitialStateMustBeStuckOutsideThePatch) {
@@ -258,6 +259,34 @@ TEST(InterfaceFields, CoulombWithTheSlipScaleIsPrakashClifton) {
                                                     {"regularization", "time_scale"},
                                                     {"t_star", 1e-3},
                                                     {"strength_update", "exponential_ramp"}}));
+}
+
+} // namespace
+} // namespace slipfront::api
+
+namespace slipfront::api {
+namespace {
+
+// The companion of an L search takes the regularisation away and keeps the coefficient, each
+// law as its description says; the job it makes validates.
+TEST(InterfaceFields, TheUnregularisedPatchKeepsTheCoefficient) {
+  auto patch_of = [](const json& friction) {
+    const ParseResult r = parse_job({{"friction", friction}});
+    EXPECT_TRUE(r.ok()) << friction.dump();
+    return r.ok() ? unregularized_patch(r.spec->params.friction) : json();
+  };
+  EXPECT_EQ(patch_of({{"law", "prakash_clifton"}}), (json{{"law", "coulomb"}}));
+  EXPECT_EQ(patch_of({{"law", "coulomb"}}), json::object());
+  EXPECT_EQ(patch_of({{"law", "slip_weakening"}, {"regularization", "time_scale"}}),
+            (json{{"regularization", "none"}, {"t_star", nullptr}, {"strength_update", nullptr}}));
+  const json rsf = {{"law", "rate_and_state"}, {"regularization", "slip_scale"}, {"L", 1e-3}};
+  EXPECT_EQ(patch_of(rsf),
+            (json{{"regularization", "none"}, {"L", nullptr}, {"strength_update", nullptr}}));
+  // The patched friction is a valid job: rate-and-state keeps v_star, its own reference rate.
+  json bare = rsf;
+  bare.merge_patch(patch_of(rsf));
+  const ParseResult r = parse_job({{"friction", bare}});
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.errors.front().pointer + ": " + r.errors.front().reason);
 }
 
 } // namespace

@@ -14,11 +14,6 @@
 namespace slipfront::api {
 namespace {
 
-// A field of an elastic lower solid (read only with "lower": {"solid": "elastic"}).
-bool elastic_lower_field(const std::string& pointer) {
-  return pointer.rfind("/lower/", 0) == 0 && pointer != "/lower/solid";
-}
-
 // A field of the items of an array of objects is "/profiles/*/mu": in a job, item 0.
 std::string job_pointer(const JobField& field) {
   std::string pointer = field.pointer;
@@ -27,20 +22,44 @@ std::string job_pointer(const JobField& field) {
   return pointer;
 }
 
+// The schema's x-when of a field as a list of conditions ({pointer, values}), one of which
+// must hold; a field of `profiles` entries has the x-when of the friction field it overrides.
+std::vector<nlohmann::json> conditions_of(const std::string& pointer) {
+  static const nlohmann::json schema = job_json_schema();
+  std::string own = pointer;
+  if (own.starts_with("/profiles/*/")) own = "/friction/" + own.substr(12);
+  const std::size_t slash = own.rfind('/');
+  const std::string section = slash == 0 ? "" : own.substr(1, slash - 1);
+  const nlohmann::json& parent = section.empty() ? schema : schema["properties"][section];
+  if (!parent.is_object() || !parent.contains("properties")) return {};
+  const nlohmann::json field =
+      parent["properties"].value(own.substr(slash + 1), nlohmann::json::object());
+  const nlohmann::json when = field.value("x-when", nlohmann::json());
+  if (when.is_null()) return {};
+  if (when.is_array()) return {when.begin(), when.end()};
+  return {when};
+}
+
+// Makes the job choose what the field at `pointer` needs (its first x-when condition, and
+// what that choice needs in turn: regularization needs a law that lets the job choose it).
+void choose_for(nlohmann::json& job, const std::string& pointer, int depth = 0) {
+  const std::vector<nlohmann::json> when = conditions_of(pointer);
+  if (when.empty() || depth > 4) return;
+  const std::string chooser = when.front()["pointer"];
+  job[nlohmann::json::json_pointer(chooser)] = when.front()["values"][0];
+  choose_for(job, chooser, depth + 1);
+}
+
 // The job in which a field applies: some fields belong to a choice made elsewhere (another
-// friction law or regularisation, the overstressed patch, the wave-speed form of the
-// material, an entry of `profiles`) and are refused without it (docs/api-job-spec.md); the
-// options of `stations` are shown with one station.
+// friction law or regularisation, a type of nucleation, an elastic lower solid: the schema's
+// x-when says which, derived from the laws) and are refused without it (docs/api-job-spec.md);
+// the wave-speed form of the material is the other form; the options of `stations` are shown
+// with one station.
 nlohmann::json context_for(const JobField& field) {
   nlohmann::json job = nlohmann::json::object();
   const std::string& p = field.pointer;
   const std::string name = p.substr(p.rfind('/') + 1);
-  if (name == "mu_s" || name == "mu_d" || name == "D_c") job["friction"]["law"] = "slip_weakening";
-  if (name == "t_star") job["friction"] = {{"law", "coulomb"}, {"regularization", "time_scale"}};
-  if (p == "/friction/regularization") job["friction"]["law"] = "coulomb";
-  if (p == "/nucleation/x1_min" || p == "/nucleation/x1_max" || p == "/nucleation/shear_stress")
-    job["nucleation"]["type"] = "overstressed_patch";
-  if (elastic_lower_field(p)) job["lower"]["solid"] = "elastic";
+  choose_for(job, p);
   if (name == "p_wave_speed" || name == "s_wave_speed") { // of `material` or `lower`
     const Material paper;                                 // the default material in its other form
     const std::string section = p.substr(1, p.rfind('/') - 1);

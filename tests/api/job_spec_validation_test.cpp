@@ -134,7 +134,8 @@ TEST(JobValidation, UnknownFieldReasonListsTheKnownOnes) {
   const ParseResult result = parse_job({{"friction", {{"l", 1e-5}}}});
   ASSERT_EQ(result.errors.size(), 1u);
   EXPECT_NE(result.errors[0].reason.find(
-                "D_c, L, law, mu, mu_d, mu_s, regularization, strength_update, t_star, v_star"),
+                "D_c, L, a, b, f0, initial_slip_rate, initial_state, law, mu, mu_d, mu_s, "
+                "regularization, state_evolution, strength_update, t_star, theta, v_star"),
             std::string::npos)
       << result.errors[0].reason;
 }
@@ -159,8 +160,8 @@ TEST(JobValidation, WrongTypesNameTheExpectedTypeAndTheValueGot) {
 
 TEST(JobValidation, EnumerationsListTheirSpellings) {
   expect_single_error(
-      {{"friction", {{"law", "rate_and_state"}}}}, "/friction/law",
-      R"(must be one of "prakash_clifton", "coulomb", "slip_weakening", got "rate_and_state")");
+      {{"friction", {{"law", "dieterich"}}}}, "/friction/law",
+      R"(must be one of "prakash_clifton", "coulomb", "slip_weakening", "rate_and_state", got "dieterich")");
   expect_single_error({{"friction", {{"strength_update", "rk4"}}}}, "/friction/strength_update",
                       R"("exponential_ramp", "exponential", "explicit_euler")");
   expect_single_error({{"geometry", {{"top_boundary", "free"}}}}, "/geometry/top_boundary",

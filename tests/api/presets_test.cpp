@@ -90,6 +90,59 @@ TEST(Presets, TheSceneNumbersAreTheIssuesWords) {
   EXPECT_EQ(pc->spec["loading"]["shear_stress"], 89.18e6);
 }
 
+TEST(Presets, TheRateAndStateScenesAreAsStated) {
+  // SEM2DPACK's example made in-plane (both state laws) and SCEC TPV101 in 2-D, as the
+  // rate-and-state scenes state them (docs/presets.md).
+  for (const char* name : {"rsf_slip_law_inplane", "rsf_aging_law_inplane"}) {
+    const Preset* p = find_preset(name);
+    ASSERT_NE(p, nullptr) << name;
+    const nlohmann::json& s = p->spec;
+    EXPECT_EQ(s["material"],
+              (nlohmann::json{{"density", 2673}, {"p_wave_speed", 6000}, {"s_wave_speed", 3464}}));
+    EXPECT_EQ(s["lower"]["solid"], "elastic");
+    EXPECT_EQ(s["lower"]["density"], 2673);
+    const nlohmann::json& f = s["friction"];
+    EXPECT_EQ(f["law"], "rate_and_state");
+    EXPECT_EQ(f["state_evolution"],
+              std::string(name).find("slip") != std::string::npos ? "slip" : "aging");
+    EXPECT_EQ(f["f0"], 0.6);
+    EXPECT_EQ(f["a"], 0.0125);
+    EXPECT_EQ(f["b"], 0.0172);
+    EXPECT_EQ(f["D_c"], 0.037);
+    EXPECT_EQ(f["v_star"], 1e-6);
+    EXPECT_EQ(f["initial_slip_rate"], 1e-3);
+    EXPECT_EQ(f["theta"], 4.0036e-14); // beyond 10 km
+    EXPECT_EQ(s["loading"]["normal_stress"], -120e6);
+    EXPECT_EQ(s["loading"]["shear_stress"], 0.01e6);
+    EXPECT_EQ(s["profiles"][0]["shear_stress"], 70e6);
+    EXPECT_EQ(s["profiles"][0]["theta"], 92.713);
+    EXPECT_EQ(s["profiles"][0]["x1_max"], 9999.999);
+    EXPECT_EQ(s["profiles"][1]["shear_stress"], 81.6e6);
+    EXPECT_EQ(s["profiles"][1]["x1_max"], 1499.999);
+    EXPECT_EQ(s["time"]["duration"],
+              std::string(name).find("slip") != std::string::npos ? 2.5 : 3.2);
+    EXPECT_EQ(s["stations"]["x1"], (nlohmann::json{0, 1500, 3000, 4500, 6000, 7500, 9000}));
+    EXPECT_EQ(s["stations"]["rupture_threshold"], 0.1);
+  }
+  const Preset* t = find_preset("tpv101_2d");
+  ASSERT_NE(t, nullptr);
+  const nlohmann::json& f = t->spec["friction"];
+  EXPECT_EQ(f["state_evolution"], "aging");
+  EXPECT_EQ(f["b"], 0.012);
+  EXPECT_EQ(f["D_c"], 0.02);
+  EXPECT_EQ(f["a"], 0.016);
+  EXPECT_EQ(t->spec["profiles"][0]["a"], 0.008);
+  EXPECT_EQ(t->spec["profiles"][0]["x1_max"], 15000);
+  EXPECT_EQ(t->spec["profiles"][0]["ramp"], 3000);
+  EXPECT_EQ(f["initial_slip_rate"], 1e-12);
+  EXPECT_EQ(f["initial_state"], "stress");
+  EXPECT_EQ(t->spec["loading"]["shear_stress"], 75e6);
+  EXPECT_EQ(t->spec["nucleation"]["shear_stress_increase"], 25e6);
+  EXPECT_EQ(t->spec["nucleation"]["radius"], 3000);
+  EXPECT_EQ(t->spec["nucleation"]["rise_time"], 1.0);
+  EXPECT_EQ(t->spec["time"]["duration"], 12);
+}
+
 TEST(Presets, ExamplesAreInTheCatalogue) {
   const Preset* quick = find_preset("quick_nd10");
   ASSERT_NE(quick, nullptr);

@@ -255,6 +255,38 @@ TEST(SceneWarnings, AProcessZoneFewElementsResolve) {
   EXPECT_TRUE(std::isnan(slipfront::api::static_process_zone(valid(json::object()).params)));
 }
 
+TEST(SceneWarnings, TheRateAndStateProcessZoneAndItsRecord) {
+  // The SEM2DPACK scene: Lambda_0 = (mu / (1 - nu)) D_c / (b |sigma|) for two identical solids.
+  json scene = slipfront::api::preset_job(*slipfront::api::find_preset("rsf_slip_law_inplane"),
+                                          "spectral_bi");
+  const double r = (3464.0 / 6000) * (3464.0 / 6000), nu = (1 - 2 * r) / (2 * (1 - r));
+  const double zone = (2673 * 3464.0 * 3464 / (1 - nu)) * 0.037 / (0.0172 * 120e6);
+  const auto preset = valid(scene);
+  EXPECT_NEAR(slipfront::api::static_process_zone(preset.params), zone, 1e-9 * zone);
+  const json record = slipfront::api::resolution_json(preset.params);
+  EXPECT_NEAR(record["elements"].get<double>(), zone * 0.04, 1e-9 * zone);
+  EXPECT_NE(record["formula"].get<std::string>().find("b |normal_stress|"), std::string::npos);
+  EXPECT_FALSE(warns_at(preset.warnings, "/geometry/nodes_per_meter")) << listed(preset.warnings);
+  // About 767 m: at dx = 500 m it spans 1.5 elements, fewer than 3.
+  expect_warning(merged(scene, {{"geometry", {{"nodes_per_meter", 0.002}}}}),
+                 "/geometry/nodes_per_meter", "rate-and-state process zone");
+  // A constant coefficient's record has no zone.
+  EXPECT_TRUE(slipfront::api::resolution_json(valid(json::object()).params).is_null());
+}
+
+TEST(SceneWarnings, RateAndStateStrengtheningEverywhere) {
+  json scene = slipfront::api::preset_job(*slipfront::api::find_preset("rsf_aging_law_inplane"),
+                                          "spectral_bi");
+  expect_no_warning(scene, "/friction/a");
+  expect_warning(merged(scene, {{"friction", {{"a", 0.02}}}}), "/friction/a",
+                 "velocity strengthening");
+  // A profile that weakens a region (TPV101's a = 0.008 inside 15 km) is not warned.
+  json tpv101 =
+      slipfront::api::preset_job(*slipfront::api::find_preset("tpv101_2d"), "spectral_bi");
+  ASSERT_GT(tpv101["friction"]["a"].get<double>(), tpv101["friction"]["b"].get<double>());
+  expect_no_warning(tpv101, "/friction/a");
+}
+
 TEST(SceneWarnings, AnArrestWindowTheRunLeavesNoRoomFor) {
   // The ellipse is over at 4.42 s: 5 s leave 0.58 s, less than the paper's 1 s window.
   expect_warning({{"time", {{"duration", 5}}}}, "/time/arrest_window", "can never end `arrested`");

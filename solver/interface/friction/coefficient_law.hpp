@@ -22,10 +22,14 @@ struct FrictionState {
 };
 
 // How a coefficient law weakens with slip: mu falls by `drop` over the slip path `distance` [m]
-// (slip weakening: mu_s - mu_d over D_c; rate-and-state: b over D_c).
+// (slip weakening: mu_s - mu_d over D_c; rate-and-state: b over D_c). Its process zone at rest
+// is factor mu* distance / (drop |sigma|) (mu* the interface's shear modulus), as `formula`
+// writes it (api/scene_checks.cpp: the resolution check and the record's resolution).
 struct Weakening {
   double drop = 0.0;
   double distance = 0.0;
+  double factor = 1.0;
+  const char* formula = "";
 };
 
 // The FrictionValues a law reads (a profile may set only these).
@@ -50,6 +54,11 @@ public:
   // Whether the interface starts stuck: the initial shear stress at most mu_0 |sigma| outside
   // the nucleation patch. Laws of the slip rate have no stick state and start sliding.
   virtual bool starts_stuck() const { return true; }
+  // Whether mu never exceeds mu_0, so that the strength stays within [0, mu_0 p]: the run's
+  // divergence check (solver/run/divergence_check.hpp) tests a regularisation's update by it.
+  virtual bool bounded_by_static() const { return true; }
+  // The slip rate a node has before the first step (a law of the slip rate starts sliding).
+  virtual double initial_slip_rate(const FrictionValues&) const { return 0.0; }
   // Whether the scene with this coefficient and no regularisation is a well-posed problem
   // whose mesh-converged answer regularised runs may be compared with (docs/studies-api.md
   // "L search"); `why` says which, and why (ill_posedness.cpp has the shared judgements).

@@ -14,6 +14,7 @@ namespace slipfront {
 const CoefficientLaw& prakash_clifton_law();
 const CoefficientLaw& coulomb_law();
 const CoefficientLaw& linear_slip_weakening_law();
+const CoefficientLaw& rate_and_state_law();
 const RegularizationLaw& no_regularization();
 const RegularizationLaw& slip_scale_regularization();
 const RegularizationLaw& time_scale_regularization();
@@ -25,6 +26,7 @@ std::vector<const CoefficientLaw*>& coefficient_table() {
       &prakash_clifton_law(),
       &coulomb_law(),
       &linear_slip_weakening_law(),
+      &rate_and_state_law(),
   };
   return laws;
 }

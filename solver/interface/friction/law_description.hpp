@@ -39,6 +39,10 @@ struct LawParameter {
   const char* unit;               // "" for a pure number
   const char* meaning;            // one phrase, for the schema and the docs
   Bounds allowed;
+  // Whether a run with the job's choices reads it (empty: always).
+  std::function<bool(const Friction&)> read_when = {};
+
+  bool read_by(const Friction& job) const { return !read_when || read_when(job); }
 };
 
 // A choice of a law, one per job: a JSON string among `options`.

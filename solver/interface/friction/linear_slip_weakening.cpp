@@ -8,6 +8,8 @@
 
 #include <algorithm>
 
+#include <numbers>
+
 namespace slipfront {
 
 namespace {
@@ -46,7 +48,10 @@ public:
     return v.mu_s - (v.mu_s - v.mu_d) * std::min(state.slip_path / v.D_c, 1.0);
   }
   std::optional<Weakening> weakening(const FrictionValues& v) const override {
-    return Weakening{v.mu_s - v.mu_d, v.D_c};
+    // The static process zone of Palmer & Rice (1973), as Day et al. (2005) write it.
+    return Weakening{v.mu_s - v.mu_d, v.D_c, 9.0 * std::numbers::pi / 32.0,
+                     "the slip-weakening process zone, (9 pi / 32) mu* D_c / ((mu_s - mu_d) "
+                     "|normal_stress|)"};
   }
 };
 

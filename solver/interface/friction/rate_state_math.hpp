@@ -11,12 +11,11 @@
 // V is a slip rate magnitude where the text says |V|; theta is in seconds.
 #pragma once
 
+#include "solver/params.hpp"
+
 namespace slipfront::rate_state {
 
-enum class StateLaw {
-  aging, // d theta/dt = 1 - V theta / D_c
-  slip,  // d theta/dt = -(V theta / D_c) ln(V theta / D_c)
-};
+using StateLaw = StateEvolution; // aging or slip (solver/params.hpp)
 
 // The numbers of the law at one node.
 struct Parameters {
