@@ -5,6 +5,7 @@
 #include "solver/interface/friction/regularization_law.hpp"
 #include "solver/interface/friction/strength_update.hpp"
 #include "solver/methods.hpp"
+#include "solver/run/station_summary.hpp"
 
 #include <cmath>
 
@@ -19,12 +20,18 @@ nlohmann::json numbers(const std::vector<double>& values) {
   return array;
 }
 
-// The rupture time at each station (docs/metrics.md "Stations"), null where it never ruptured.
+// Each station's rupture time (null where it never ruptured), peak slip rate and its time, and
+// final slip (docs/metrics.md "Stations").
 nlohmann::json stations_json(const StationRecords& stations) {
   nlohmann::json list = nlohmann::json::array();
-  for (std::size_t s = 0; s < stations.x1.size(); ++s)
+  for (std::size_t s = 0; s < stations.x1.size(); ++s) {
+    const StationSummary summary = summarize_station(stations, s, stations.rupture_threshold);
     list.push_back({{"x1", json_number(stations.x1[s])},
-                    {"rupture_time", json_number(stations.rupture_time[s])}});
+                    {"rupture_time", json_number(stations.rupture_time[s])},
+                    {"peak_slip_rate", json_number(summary.peak_slip_rate)},
+                    {"peak_time", json_number(summary.peak_time)},
+                    {"final_slip", json_number(summary.final_slip)}});
+  }
   return list;
 }
 

@@ -105,7 +105,7 @@ const std::map<std::string, Check>& checks() {
       {"message", text},
       {"cancelled", boolean},
       {"mesh", numbers_object(16)},
-      {"stations", list_of(numbers_object(2))},
+      {"stations", list_of(numbers_object(5))},
       {"code_version", text},
       {"method", text},
       {"method_description", text},

@@ -307,12 +307,14 @@ def cmd_stations(args, ctx):
             log(f"stations of job {args.id} written to {args.csv}")
         return 0
     st = stations.parse_stations_csv(text)
-    rows = [{"x1": float(x), "rupture_time": None if t != t else float(t)}  # NaN: never
-            for x, t in zip(st.x1, st.rupture_time)]
+    rows = stations.summary_rows(st)
     if args.json:
         print_json({"rupture_threshold": st.rupture_threshold, "stations": rows})
         return 0
     print(f"rupture threshold {st.rupture_threshold:g} m/s, {st.time.size} steps")
     print("\n".join(table(rows, [("station_x1 [m]", lambda r: r["x1"]),
-                                  ("rupture_time [s]", lambda r: r["rupture_time"])])))
+                                  ("rupture_time [s]", lambda r: r["rupture_time"]),
+                                  ("peak slip rate [m/s]", lambda r: r["peak_slip_rate"]),
+                                  ("peak time [s]", lambda r: r["peak_time"]),
+                                  ("final slip [m]", lambda r: r["final_slip"])])))
     return 0

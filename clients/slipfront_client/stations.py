@@ -112,3 +112,19 @@ def load_stations(path):
                         normal_traction=s["normal_traction"][()],
                         rupture_time=s["rupture_time"][()],
                         rupture_threshold=float(s.attrs["rupture_threshold"]))
+
+
+def summary_rows(st):
+    """Per station, as the metrics' `stations` (docs/metrics.md): x1, rupture_time (None if
+    never), the peak |V| and its first time, the slip at the last step."""
+    def number(v):
+        return None if v != v else float(v)  # NaN: null
+    rows = []
+    for k, (x, t) in enumerate(zip(st.x1, st.rupture_time)):
+        rate = np.abs(st.slip_rate[:, k]) if st.time.size else np.array([])
+        peak = int(np.argmax(rate)) if rate.size else None
+        rows.append({"x1": float(x), "rupture_time": number(t),
+                     "peak_slip_rate": None if peak is None else float(rate[peak]),
+                     "peak_time": None if peak is None else float(st.time[peak]),
+                     "final_slip": float(st.slip[-1, k]) if st.time.size else None})
+    return rows

@@ -377,7 +377,11 @@ json run_document(const StudyRequest& request, const std::string& study_id, cons
                   const std::string& regime, double L, double n_d) {
   json doc = request.base;
   doc.merge_patch(overrides);
-  doc["friction"]["L"] = L;
+  // An unregularised companion whose law takes no L (overrides with friction.L null: the
+  // patch removed it) runs without one; every other run takes the study's L.
+  const json* friction = overrides.contains("friction") ? &overrides["friction"] : nullptr;
+  const bool takes_no_L = friction && friction->contains("L") && (*friction)["L"].is_null();
+  if (!takes_no_L) doc["friction"]["L"] = L;
   doc["geometry"]["nodes_per_meter"] = n_d;
   if (!request.base.contains("name") || !request.base["name"].is_string()) {
     std::string name = request.name.empty() ? "study " + study_id.substr(0, 8) : request.name;
