@@ -178,6 +178,14 @@ nlohmann::json unregularized_patch(const Friction& friction) {
   return patch;
 }
 
+std::string unregularized_label(const Friction& friction) {
+  const CoefficientLaw& law = coefficient_law(friction);
+  if (law.constant()) return "plain Coulomb";
+  std::string name = law.description().name;
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name + " without regularisation";
+}
+
 std::string friction_field_name(double FrictionValues::*member) {
   for (const FrictionField& field : friction_fields())
     if (field.member == member) return field.name;

@@ -54,6 +54,11 @@ std::string unused_friction_field(const Friction& friction);
 // regularisation.
 nlohmann::json unregularized_patch(const Friction& friction);
 
+// What that companion is called in the study's pages and reports: "plain Coulomb" for a
+// constant coefficient, else "<law> without regularisation" ("rate and state without
+// regularisation").
+std::string unregularized_label(const Friction& friction);
+
 // The range of a law's number as the reader checks it.
 Interval interval_of(const Bounds& bounds);
 

@@ -33,8 +33,8 @@ from slipfront_client.reproduction import loadavg, study_wall, wait_study  # noq
 from slipfront_client.reproduction_plan import FE_ONLY  # noqa: E402
 
 PRESET = "bimaterial_rate_state_pc"
-SEARCH = {"from": 4e-2, "factor": 2, "floor": 1.2e-4, "confirm": 2, "coulomb": True}
-LADDER = [2.5, 5, 10, 20]
+SEARCH = {"from": 2e-2, "factor": 2, "floor": 5e-4, "confirm": 2, "coulomb": True}
+LADDER = [2.5, 5, 10]
 fmt = report_mod.fmt
 
 
@@ -47,6 +47,8 @@ def parse_args(argv):
     p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
     p.add_argument("--out", default=os.path.join(REPO, "docs", "rsf-study.md"),
                    help="report path (default docs/rsf-study.md)")
+    p.add_argument("--data-dir", help="server data dir when starting one (kept; default: "
+                   "temporary): a second run reuses the runs it holds")
     p.add_argument("--timeout", type=float, help="give up waiting after this many seconds")
     p.add_argument("--study-id", help="report on this existing study instead of creating one")
     return p.parse_args(argv)
@@ -227,12 +229,14 @@ def main(argv=None):
         if args.server:
             url = args.server
         else:
-            tmp = tempfile.mkdtemp(prefix="slipfront-rsfstudy-data-")
-            server = Server(args.binary or default_binary(), tmp,
+            data_dir = args.data_dir or tempfile.mkdtemp(prefix="slipfront-rsfstudy-data-")
+            tmp = None if args.data_dir else data_dir
+            os.makedirs(data_dir, exist_ok=True)
+            server = Server(args.binary or default_binary(), data_dir,
                             ["--workers", str(args.workers)], startup_timeout=30,
                             preexec_fn=lambda: os.nice(10)).start()
             url = server.url
-            log(f"server {url} (pid {server.proc.pid}, data {tmp}, niced)")
+            log(f"server {url} (pid {server.proc.pid}, data {data_dir}, niced)")
         api = Api(url, token=args.token, timeout=60)
         if args.study_id:
             study = api.study(args.study_id)

@@ -98,6 +98,7 @@ const char* document = R"json({
         "status": {"type": "string", "enum": ["running", "finished", "cancelled"]},
         "progress": {"type": "object", "properties": {"done": {"type": "integer"}, "total": {"type": "integer"}, "fraction": {"type": "number"}}},
         "scene_hash": {"type": "string"}, "L_c": {"type": "number", "nullable": true},
+        "companion_label": {"type": "string", "description": "what an L search's unregularised runs are called: plain Coulomb, or the law without regularisation"},
         "spectral_critical_length": {"type": "number", "nullable": true},
         "answer": {"type": "object", "description": "the headline answer (docs/studies.md \"The answer\"): {state, verdict, meaning, certainty, others: [{label, value, unit}]}"},
         "runs": {"type": "array", "items": {"$ref": "#/components/schemas/StudyRun"}},

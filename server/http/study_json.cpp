@@ -1,5 +1,6 @@
 #include "server/http/study_json.hpp"
 
+#include "api/friction_fields.hpp"
 #include "api/job_methods.hpp"
 #include "api/job_spec.hpp"
 #include "api/json_number.hpp"
@@ -28,6 +29,12 @@ bool paper_scene(const std::string& method, const std::string& scene_hash) {
   return found != paper.end() && found->second == scene_hash;
 }
 
+// The name of an L search's unregularised companion for the study's base (its law's).
+std::string companion_label(const json& base) {
+  const api::ParseResult parsed = api::parse_job(base);
+  return api::unregularized_label(parsed.spec ? parsed.spec->params.friction : Friction());
+}
+
 } // namespace
 
 json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, bool summary) {
@@ -44,6 +51,7 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
   j["finished_at"] = s.finished_at.empty() ? json(nullptr) : json(s.finished_at);
   j["scene_hash"] = s.scene_hash;
   j["method"] = api::method_name_of(s.base);
+  j["companion_label"] = companion_label(s.base);
   j["progress"] = {{"done", s.runs_done},
                    {"total", s.runs_total},
                    {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};

@@ -93,7 +93,7 @@ export async function studyPage(view, page, id) {
       study.status === 'running' ? h('div', { class: 'actions' }, h('button', { onclick: async () => {
         try { await post(`/api/v1/studies/${study.id}/cancel`); out.textContent = 'cancelled'; out.className = 'ok'; } catch (e) { out.textContent = e.message; out.className = 'error'; }
       }, text: 'Cancel study' }), out) : null,
-      searchSection(study.search),
+      searchSection(study.search, study.companion_label),
       accuracySection(study.accuracy, study.id));
     fill(mapCard, h('h2', { text: 'Convergence map (this study)' }),
       h('p', { class: 'muted', text: 'Each cell is a run at (L, n_d): converged when it agrees with the next finer mesh (propagation distance within 0.5 %, arrival time at the probe within 0.1 %). Cells fill in as runs finish; hover a cell for the reason.' }),
@@ -101,9 +101,9 @@ export async function studyPage(view, page, id) {
       // the refinement plan; a failure-regimes study's other regimes their own sections).
       convergenceGrid(study.convergence_map, (study.runs || []).filter((r) => !r.regime || r.regime === 'regularised'), 'study-cmap', { tolerances: cl.tolerances, finished: study.status !== 'running' }));
     if (study.refinement && Object.keys(study.refinement).length) {
-      mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [r.regime === 'coulomb' ? 'plain Coulomb' : `L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
+      mapCard.append(h('details', {}, h('summary', { text: 'Refinement plan per L' }), kvTable(Object.entries(study.refinement).map(([L, r]) => [r.regime === 'coulomb' ? (study.companion_label || 'plain Coulomb') : `L = ${fmt(Number(L))} m`, `${r.state}${r.next_n_d ? ` → n_d = ${r.next_n_d}` : ''}: ${r.reason || ''}`]))));
     }
-    fill(runsCard, h('h2', { text: 'Runs' }), h('p', {}, h('a', { id: 'compare-study', href: `#/compare?study=${study.id}`, text: 'Compare these runs side by side' })), runsTable(study.runs || [], study.status !== 'running'));
+    fill(runsCard, h('h2', { text: 'Runs' }), h('p', {}, h('a', { id: 'compare-study', href: `#/compare?study=${study.id}`, text: 'Compare these runs side by side' })), runsTable(study.runs || [], study.status !== 'running', study.companion_label));
     if (study.cross_method && (Array.isArray(study.cross_method) ? study.cross_method.length : Object.keys(study.cross_method).length)) {
       runsCard.append(h('details', {}, h('summary', { text: 'The same L by FE and BI (cross-method table)' }), h('pre', { class: 'json', text: JSON.stringify(study.cross_method, null, 2) })));
     }
@@ -165,13 +165,15 @@ function sceneOptions(scene) {
   return { tolerances: scene.critical_length?.tolerances, finished: mapIsFinal(scene.convergence_map) };
 }
 
-function runsTable(runs, finished) {
+// `companion`: what the study calls an L search's unregularised runs (the server's
+// companion_label: 'plain Coulomb', 'rate and state without regularisation').
+function runsTable(runs, finished, companion = 'plain Coulomb') {
   const t = h('table', { class: 'grid' });
   t.append(h('thead', {}, h('tr', {}, ['L [m]', 'n_d [1/m]', 'job', 'outcome', 'convergence', 'against', 'cache'].map((x) => h('th', { text: x })))));
   const b = h('tbody');
   for (const r of runs.slice().sort((a, c) => c.L - a.L || a.n_d - c.n_d)) {
     b.append(h('tr', {},
-      h('td', { class: 'num', text: r.regime ? `${fmt(r.L)} (${r.regime === 'coulomb' ? 'plain Coulomb: L unused' : r.regime})` : fmt(r.L) }), h('td', { class: 'num', text: fmt(r.n_d) }),
+      h('td', { class: 'num', text: r.regime ? `${fmt(r.L)} (${r.regime === 'coulomb' ? `${companion}: L unused` : r.regime})` : fmt(r.L) }), h('td', { class: 'num', text: fmt(r.n_d) }),
       h('td', {}, link(`#/jobs/${r.job_id}`, shortId(r.job_id)), ' ', badge(r.job_status)),
       h('td', { text: r.outcome || '—' }),
       h('td', {}, r.convergence ? statusBadge(r.convergence, finished) : '—'),

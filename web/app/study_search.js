@@ -16,23 +16,25 @@ function percent(v) {
   return v == null ? '—' : `${fmt(100 * v, 3)} %`;
 }
 
-// Each searched L against the plain-Coulomb run of the scene, where the search compares them.
-function coulombPart(coulomb) {
-  if (!coulomb) return h('p', { class: 'muted', id: 'search-coulomb', text: 'Plain Coulomb: not compared (ill-posed for this scene, or switched off).' });
+// Each searched L against the unregularised run of the scene (plain Coulomb for a constant
+// coefficient: the server's companion_label), where the search compares them.
+function coulombPart(coulomb, companion) {
+  const name = companion.charAt(0).toUpperCase() + companion.slice(1);
+  if (!coulomb) return h('p', { class: 'muted', id: 'search-coulomb', text: `${name}: not compared (ill-posed for this scene, or switched off).` });
   const rows = (coulomb.steps || []).map((s) => h('tr', { class: s.agree ? 'agree' : 'differ' },
-    h('td', { text: `${fmt(s.L)} vs Coulomb` }),
+    h('td', { text: `${fmt(s.L)} vs ${companion}` }),
     h('td', { class: 'num', text: percent(s.changes?.propagation_distance) }),
     h('td', { class: 'num', text: percent(s.changes?.arrival_time) }),
     h('td', { text: s.agree ? 'agree' : 'differ' }),
     h('td', { class: 'muted', text: s.reason || '' })));
   return h('div', { id: 'search-coulomb' },
-    h('p', {}, h('strong', { text: 'Plain Coulomb' }), `: ${coulomb.status || ''}`),
+    h('p', {}, h('strong', { text: name }), `: ${coulomb.status || ''}`),
     rows.length ? h('table', { class: 'data' },
-      h('thead', {}, h('tr', {}, ...['L against Coulomb [m]', 'Δ propagation distance (< 0.5 %)', 'Δ arrival time (< 0.1 %)', 'rule', 'why'].map((t) => h('th', { text: t })))),
+      h('thead', {}, h('tr', {}, ...[`L against ${companion} [m]`, 'Δ propagation distance (< 0.5 %)', 'Δ arrival time (< 0.1 %)', 'rule', 'why'].map((t) => h('th', { text: t })))),
       h('tbody', {}, ...rows)) : null);
 }
 
-export function searchSection(search) {
+export function searchSection(search, companion = 'plain Coulomb') {
   if (!search) return null;
   const rows = (search.steps || []).map((s) => h('tr', { class: s.agree ? 'agree' : 'differ' },
     h('td', { text: `${fmt(s.L)} → ${fmt(s.smaller_L)}` }),
@@ -48,5 +50,5 @@ export function searchSection(search) {
     rows.length ? h('table', { class: 'data', id: 'search-steps' },
       h('thead', {}, h('tr', {}, ...['L → next smaller L [m]', 'Δ propagation distance (< 0.5 %)', 'Δ arrival time (< 0.1 %)', 'rule', 'why'].map((t) => h('th', { text: t })))),
       h('tbody', {}, ...rows)) : h('p', { class: 'muted', text: 'No two mesh-converged L to compare yet.' }),
-    coulombPart(search.coulomb));
+    coulombPart(search.coulomb, companion));
 }
