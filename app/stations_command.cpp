@@ -25,12 +25,12 @@ void print_stations(std::ostream& out, const StationRecords& r, double threshold
   const bool own = std::isnan(threshold);
   if (own) threshold = r.rupture_threshold;
   out << "rupture threshold: " << threshold << " m/s"
-      << (own ? "" : " (asked; the run's: " + std::to_string(r.rupture_threshold) + " m/s)")
-      << "; " << r.time.size() << " steps recorded\n";
+      << (own ? "" : " (asked; the run's: " + std::to_string(r.rupture_threshold) + " m/s)") << "; "
+      << r.time.size() << " steps recorded\n";
   char line[300];
   std::snprintf(line, sizeof line, "%16s  %-30s  %16s  %16s  %12s  %14s\n", "station_x1 [m]",
-                "nodes x1 [m] (weights)", "rupture_time [s]", "peak_rate [m/s]",
-                "peak_time [s]", "final_slip [m]");
+                "nodes x1 [m] (weights)", "rupture_time [s]", "peak_rate [m/s]", "peak_time [s]",
+                "final_slip [m]");
   out << line;
   for (std::size_t s = 0; s < r.x1.size(); ++s) {
     char nodes[80];
@@ -50,7 +50,7 @@ void print_stations(std::ostream& out, const StationRecords& r, double threshold
 
 struct StationsOptions {
   std::string result_path;
-  std::string csv;     // "" = the rupture times; "-" = the CSV on stdout
+  std::string csv; // "" = the rupture times; "-" = the CSV on stdout
   double threshold = std::numeric_limits<double>::quiet_NaN(); // NaN: the run's
 };
 

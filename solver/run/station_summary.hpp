@@ -10,10 +10,10 @@
 namespace slipfront {
 
 struct StationSummary {
-  double rupture_time;    // [s] first |V| > threshold, linear between steps; NaN if never
-  double peak_slip_rate;  // [m/s] the largest |V|
-  double peak_time;       // [s] its (first) time
-  double final_slip;      // [m] the slip at the last recorded step
+  double rupture_time;   // [s] first |V| > threshold, linear between steps; NaN if never
+  double peak_slip_rate; // [m/s] the largest |V|
+  double peak_time;      // [s] its (first) time
+  double final_slip;     // [m] the slip at the last recorded step
 };
 
 // The summary of station s, its rupture time at `threshold` [m/s] (the recorder's own
