@@ -1,4 +1,4 @@
-"""Faults around a live server (issue 10): a second server on the same data dir, a full disk
+"""Faults around a live server: a second server on the same data dir, a full disk
 (a small tmpfs as data dir), a run that fills the disk, a read-only data dir, SIGKILL at
 random points of jobs' lives, running out of file descriptors. Each asserts what must hold:
 no accepted job lost or stuck, no 500, the database intact.
@@ -92,7 +92,7 @@ class SecondServerOnTheSameDir(unittest.TestCase):
             first.cleanup()
 
     def test_deleting_the_lock_file_does_not_free_the_dir(self):
-        """Issue 22 item 3: the lock was the file's; after `rm slipfront.lock` a second server
+        """The lock was the file's; after `rm slipfront.lock` a second server
         locked a new file of that name, re-queued the first one's running job and deleted its
         temporary file (the job ended failed, attempts 2)."""
         first = Server(BINARY, args=["--workers", "1"]).start()
@@ -636,7 +636,7 @@ class TokenReload(unittest.TestCase):
             os.remove(tokens.name)
 
     def test_a_fifo_as_token_file_never_blocks_sigterm(self):
-        """Issue 22 item 14: with the token file replaced by a FIFO, SIGHUP blocked the signal
+        """With the token file replaced by a FIFO, SIGHUP blocked the signal
         thread and a later SIGTERM was not handled."""
         directory = tempfile.mkdtemp(prefix="slipfront-fifo-tokens-")
         path = os.path.join(directory, "tokens")
