@@ -134,7 +134,7 @@ class HostileInput(unittest.TestCase):
         return self.server.post(path, data=text.encode(),
                                 headers={"Content-Type": "application/json"}, timeout=30)
 
-    # --- defect 1: nesting depth, shared by every endpoint that parses a body ----------
+    # --- nesting depth, shared by every endpoint that parses a body --------------------
     def test_deep_array_to_studies_is_422_not_a_crash(self):
         self.assertRejected(self.post_raw(STUDIES, nested(60000)), 422)
         self.assertRejected(self.post_raw(STUDIES, '{"tags": ' + nested(60000) + "}"), 422)
@@ -159,7 +159,7 @@ class HostileInput(unittest.TestCase):
         b = self.assertRejected(self.post_raw(JOBS, '{"tags": ' + nested(20) + "}"), 422)
         self.assertIn("/tags/0", [e["pointer"] for e in b["errors"]])
 
-    # --- defect 9: numbers beyond a double, non-finite filters, library messages -------
+    # --- numbers beyond a double, non-finite filters, library messages -----------------
     def test_number_overflow_in_job_names_the_field(self):
         cases = [
             ('{"time": {"duration": 1e999}}', "/time/duration"),
@@ -217,7 +217,7 @@ class HostileInput(unittest.TestCase):
                     self.assertRejected(self.server.get(JOBS, params={key: value}), 400,
                                         "/query/" + key)
 
-    # --- defect 4: a result file of hundreds of GB is refused at validation -------------
+    # --- a result file of hundreds of GB is refused at validation -----------------------
     def test_result_size_limit_names_the_interval(self):
         body = {"output": {"interval": 1e-6}, "time": {"duration": 3000.0}}  # ~55 GB
         b = self.assertRejected(self.server.submit(body), 422, "/output/interval")
@@ -225,7 +225,7 @@ class HostileInput(unittest.TestCase):
         study = {"grid": {"L": [5e-5], "n_d": [40]}, "base": body}
         self.assertRejected(self.server.post(STUDIES, json=study), 422, "/base/output/interval")
 
-    # --- defect 8: a result file deleted behind the server's back -------------------------
+    # --- a result file deleted behind the server's back -----------------------------------
     def test_deleted_result_file_is_410_and_never_reused(self):
         self.before = None
         spec = dict(TINY, name="to-delete", loading={"shear_stress": 0.01041})
@@ -242,7 +242,7 @@ class HostileInput(unittest.TestCase):
         again = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
         self.assertEqual(self.server.get(again["result"]["url"]).status_code, 200)
 
-    # --- defect 11: HEAD, log lines -------------------------------------------------------
+    # --- HEAD, log lines ------------------------------------------------------------------
     def test_head_answers_like_get_without_the_body(self):
         seed = self.seed["id"]
         for path in ["/healthz", "/metrics", "/api/v1/openapi.json", JOBS, f"{JOBS}/{seed}",
