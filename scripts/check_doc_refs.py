@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Check that the references in code and docs resolve.
+"""Check that the references in code and docs resolve, and that none cites the tracker.
 
-Two kinds of reference, in every tracked text file:
+Three kinds of reference, in every tracked text file:
   - a section of a doc, written `docs/X.md "Section"` (or `X.md "Section"` and
     `[X.md](X.md) "Section"` inside docs/; more sections may follow: `"A", "B"`): the file
     must exist and each quoted name must be a Markdown heading of it (compared without the
@@ -9,11 +9,15 @@ Two kinds of reference, in every tracked text file:
     quote may be the heading's beginning: "Endpoints" for "Endpoints (all JSON; ...)");
   - a source file, written as a path from the repository root (`solver/interface/law.hpp`,
     `tests/server/test_http.py`) or from a folder holding the citing file: it must exist (a
-    `*` in the name must match a file).
+    `*` in the name must match a file);
+  - a tracker number ("issue" and a number): code and docs must read on their own, so none
+    may appear (CHANGELOG.md, the history, is not read).
 Prints one line per broken reference (file:line: what) and a one-line summary; exits 1 if
-any is broken. Run from anywhere: /usr/bin/python3 scripts/check_doc_refs.py
+any is broken. Run from anywhere: /usr/bin/python3 scripts/check_doc_refs.py [--root DIR]
+(DIR a git work tree; by default this repository).
 """
 
+import argparse
 import glob
 import os
 import re
@@ -36,7 +40,8 @@ SOURCE_REF = re.compile(r'(?<![\w/.~$-])((?:%s)/[\w.*/-]*\w\.[\w*]+)' % "|".join
 SOURCE_EXTENSIONS = re.compile(r'\.(cpp|hpp|h|cc|py|md|txt|sh|js|html|css|json|cmake|\*)$')
 # Files not read: the history (it tells what was true then, in the words of then), this
 # script (its docstring shows the forms it checks) and fixtures that name files on purpose.
-NOT_CHECKED = ("CHANGELOG.md", "scripts/check_doc_refs.py", "tests/scripts/test_check_layers.py")
+NOT_CHECKED = ("CHANGELOG.md", "scripts/check_doc_refs.py", "tests/scripts/test_check_layers.py",
+               "tests/scripts/test_check_doc_refs.py")
 # A file a script writes (a report not yet generated) may be named by that script.
 WRITTEN_BY = {("clients/rsf_study.py", "docs/rsf-study.md")}
 # Files the build writes (web/CMakeLists.txt, web/presets.cmake), named as the web view's.
@@ -170,6 +175,10 @@ def check_tracker(path, text, problems):
 
 
 def main():
+    global ROOT
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--root", default=ROOT, help="the work tree to check")
+    ROOT = os.path.abspath(parser.parse_args().root)
     problems = []
     files = tracked_files()
     for path in files:
@@ -182,13 +191,14 @@ def main():
             continue
         check_doc_refs(path, text, problems)
         check_source_refs(path, text, problems)
+        check_tracker(path, text, problems)
     for p in problems:
         print(p)
     if problems:
         print("check_doc_refs: %d broken references in %d files" % (len(problems), len(files)))
         return 1
-    print("check_doc_refs: every doc section and source path cited in %d files resolves"
-          % len(files))
+    print("check_doc_refs: every doc section and source path cited in %d files resolves; "
+          "no tracker numbers" % len(files))
     return 0
 
 
