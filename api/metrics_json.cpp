@@ -21,7 +21,7 @@ nlohmann::json numbers(const std::vector<double>& values) {
 }
 
 // Each station's rupture time (null where it never ruptured), peak slip rate and its time, and
-// final slip (docs/metrics.md "Stations").
+// final slip (docs/metrics.md "Other metrics").
 nlohmann::json stations_json(const StationRecords& stations) {
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t s = 0; s < stations.x1.size(); ++s) {

@@ -1,10 +1,9 @@
-// The cost of the FE step, one block on the rigid plane against two equal blocks (issue 21:
-// "FE with two blocks at most 2.2 x today's single-block step per interface column"). The
-// paper's scene at n_d (1600 columns at 40), both blocks h high (20 m: the paper's), one
-// thread, every node
-// swept (quiet skipping off: the cost of a run once the waves fill the blocks, not of its
-// first steps); each benchmark iteration is one trip of `steps` steps over the mesh
-// (temporal blocking as the run does it, solver/fe/level_pipeline.hpp). Scenes: 0 the rigid
+// The cost of the FE step, one block on the rigid plane against two equal blocks (the
+// two-block target: "FE with two blocks at most 2.2 x today's single-block step per interface
+// column"). The paper's scene at n_d (1600 columns at 40), both blocks h high (20 m: the paper's),
+// one thread, every node swept (quiet skipping off: the cost of a run once the waves fill the
+// blocks, not of its first steps); each benchmark iteration is one trip of `steps` steps over the
+// mesh (temporal blocking as the run does it, solver/fe/level_pipeline.hpp). Scenes: 0 the rigid
 // plane (today's), 1 two identical blocks, 2 the lower block with the bimaterial presets'
 // contrast (c_s x 1.18, density x 1.0055, the same nu; dt of the faster solid).
 // The counter column_steps is what one iteration does: steps x interface columns.

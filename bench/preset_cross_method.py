@@ -5,7 +5,7 @@ Runs the preset (`slipfront presets NAME`) by the spectral BI method and by FE w
 blocks at the same element size, and prints a markdown table: each station's rupture time
 by both methods and their relative difference, the extents of the ruptured stretch (the
 smallest and largest x1 the front reached) and their difference relative to the propagation
-distance, the wall time of each run. Issue 21's bars: rupture times within 1 %, extents
+distance, the wall time of each run. The bars of the cross-method check: rupture times within 1 %, extents
 within 2 %. Stations inside an overstressed nucleation patch slip at t ~ 0 by construction
 and are listed but not compared; a station that ruptured by one method and not by the other
 fails the comparison. The FE blocks are those of the preset (its `fe` members: for the

@@ -11,7 +11,7 @@ patch here, breaks at once): the same mesh, time step and duration, so the wall 
 per step compares the laws. Each job runs by `build/slipfront run` `--repeats` times,
 alternating the laws; the median wall time per step (the metrics' wall_time_s over steps, the
 set-up excluded by subtracting a run of 1 % of the duration) is printed with the ratio.
-docs/performance.md "Rate-and-state: cost per step" holds its output.
+docs/performance.md "Rate-and-state friction: cost per step" holds its output.
 """
 
 import argparse

@@ -1,8 +1,7 @@
 #!/usr/bin/python3
 """The spectral boundary-integral (BI) method on the paper's scene: convergence, agreement
-with FE, small L, cost (issue 9, items 3, 4 and 6; docs/verification.md and
-docs/performance.md quote its tables).
-Over 400 lines on purpose: one script per issue's measurements, each table a function.
+with FE, small L, cost (docs/verification.md and docs/performance.md quote its tables).
+Over 400 lines on purpose: one script for the method's measurements, each table a function.
 
 Every run is the CLI, `slipfront run JOB.json --quiet` (metrics JSON on stdout), on the
 paper's scene (job defaults) with the fields named in its row; the job files are kept in
@@ -17,7 +16,7 @@ Sections (all by default; --only picks some):
   b  BI against FE where FE converges (L = 1e-4, 5e-5 m; FE n_d = 40 and 80), and L = 1e-3 m
   c  small L by BI: L = 1e-4 .. 1e-6 m along the n_d ladder until convergence (docs/metrics.md);
      plain Coulomb friction too
-  d  the targets of issue 9 item 6 (L = 5e-6 m converged < 60 s, the five-L ladder < 2 min,
+  d  the BI cost targets (L = 5e-6 m converged < 60 s, the five-L ladder < 2 min,
      L = 5e-5 m at FE n_d = 40 accuracy < 1 s)
   e  BI cost against n_d (growth exponent), FE against BI at the same accuracy
   t  (only when named) re-times the runs d and e quote: --repeats fresh runs each (one for
@@ -43,7 +42,7 @@ import time
 
 # The convergence rule of docs/metrics.md "Convergence status" (between n_d and 2 n_d).
 TOL_DISTANCE, TOL_ARRIVAL = 0.005, 0.001
-# Issue 9 item 3: BI against FE on the paper's scene.
+# The acceptance of BI against FE on the paper's scene.
 TOL_ARREST, TOL_PROBE_ARRIVAL, TOL_PEAK_V = 0.01, 0.005, 0.03
 METRICS = ("arrest_position", "propagation_distance", "arrival_time_at_probe",
            "max_slip_velocity", "spectral_velocity", "wall_time_s")
@@ -264,7 +263,7 @@ def section_a(runner, args, out):
 
 def section_b(runner, args, out):
     print("\n#### b. BI against FE on the paper's scene\n")
-    print("Relative difference (FE − BI)/BI; acceptance (issue 9 item 3): arrest 1 %, "
+    print("Relative difference (FE − BI)/BI; acceptance: arrest 1 %, "
           "arrival at 11 m 0.5 %, peak |V| at x1 = 6 m 3 %.\n")
     print("| L [m] | FE n_d | BI n_d | FE arrest / BI arrest [m] | diff | FE / BI arrival [s] | diff "
           "| FE / BI peak V at 6 m [mm/s] | diff | within |")
@@ -353,7 +352,7 @@ def section_c(runner, args, out):
 
 
 def section_d(runner, args, out):
-    print("\n#### d. Targets (issue 9 item 6)\n")
+    print("\n#### d. Targets (the BI cost targets)\n")
     d = {}
     # 1. L = 5e-6 m converged: the pair (n_d, 2 n_d) that shows it.
     runs, found = ladder(runner, args, 5e-6)

@@ -1,11 +1,11 @@
-// The cost of one BI step, the rigid plane against two elastic half-spaces (issue 21: "BI
-// bimaterial at most 2 x today's BI per step"). The paper's scene at n_d (1600 nodes at 40),
-// beta = 0.5, one thread; the method is first stepped `warm-up` steps (default: 1280, the
-// length of the paper's run at n_d = 40) so that the memory rings hold what a late step of a
-// run sums; then each benchmark iteration is one step. Scenes: 0 the rigid plane (today's),
-// 1 two identical solids (the same dt), 2 the lower solid with the bimaterial presets'
-// contrast (c_s x 1.18, density x 1.0055, the same nu): dt = beta dx / c_s of the faster
-// solid, so the upper solid keeps 1.18 times more lags per mode. docs/performance.md §6.
+// The cost of one BI step, the rigid plane against two elastic half-spaces (the
+// two-solid target: "BI bimaterial at most 2 x today's BI per step"). The paper's scene at n_d
+// (1600 nodes at 40), beta = 0.5, one thread; the method is first stepped `warm-up` steps (default:
+// 1280, the length of the paper's run at n_d = 40) so that the memory rings hold what a late step
+// of a run sums; then each benchmark iteration is one step. Scenes: 0 the rigid plane (today's), 1
+// two identical solids (the same dt), 2 the lower solid with the bimaterial presets' contrast (c_s
+// x 1.18, density x 1.0055, the same nu): dt = beta dx / c_s of the faster solid, so the upper
+// solid keeps 1.18 times more lags per mode. docs/performance.md §6.
 //
 //   build/bench/slipfront_spectral_step --benchmark_min_time=2
 #include "solver/spectral/spectral_method.hpp"

@@ -41,7 +41,7 @@ FORBIDDEN = {
     ("server/http", "server/db"): "handlers see services only (docs/architecture.md)",
 }
 
-# Where headers are looked for (item 2): the layers and the code beside them.
+# Where headers are looked for: the layers and the code beside them.
 HEADER_DIRS = ["app", "server", "api", "solver", "tests", "bench"]
 HEADER_SUFFIXES = (".hpp", ".h")
 SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".cc")

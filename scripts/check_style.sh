@@ -5,7 +5,9 @@
 #     names or placeholder-less f-strings;
 #   - no #include runs against the layer order (app -> server -> api -> solver, and the
 #     server's floors http -> services -> run -> db -> core) and every header opens with a
-#     comment saying what it holds (scripts/check_layers.py; docs/architecture.md).
+#     comment saying what it holds (scripts/check_layers.py; docs/architecture.md);
+#   - every reference to a doc's section (docs/X.md "Section") or to a source file by its path
+#     resolves (scripts/check_doc_refs.py).
 # (The build itself runs with -Werror in CI: SLIPFRONT_WERROR=ON.)
 # Fix formatting with: git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
 set -euo pipefail
@@ -23,6 +25,10 @@ if ! pyflakes3 "${py[@]}"; then
 fi
 if ! /usr/bin/python3 scripts/check_layers.py; then
   echo "check_style: scripts/check_layers.py found the problems above" >&2
+  status=1
+fi
+if ! /usr/bin/python3 scripts/check_doc_refs.py; then
+  echo "check_style: scripts/check_doc_refs.py found the broken references above" >&2
   status=1
 fi
 [ "$status" = 0 ] && echo "check_style: ${#cpp[@]} C++ files formatted, ${#py[@]} Python files clean"

@@ -2,7 +2,7 @@
 # The whole test suite, as CI runs it (.ci/run):
 #   1. packages + Release build with -Werror (scripts/setup.sh), the style checks
 #      (scripts/check_style.sh: clang-format, pyflakes), then every test except the `slow` label;
-#   2. the fuzzers (scripts/fuzz.sh: libFuzzer with clang, 25 s per target, 5 targets);
+#   2. the fuzzers (scripts/fuzz.sh: libFuzzer with clang, 25 s for each target it lists);
 #   3. an AddressSanitizer + UndefinedBehaviorSanitizer build of the same tests (without the
 #      `slow` and `no_sanitizer` labels).
 # Options: SLIPFRONT_SKIP_FUZZ=1 skips step 2, SLIPFRONT_SKIP_SANITIZE=1 step 3;

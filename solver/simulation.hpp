@@ -32,7 +32,7 @@ double estimated_memory_bytes(const SimulationParams& params);
 // The time step of a run before it starts. BI's is exact: time_step_factor dx / c_s. FE's is
 // safety_factor times the stable step of the mesh, found by power iteration when the run
 // starts (solver/fe/stable_time_step.hpp). Undamped that step is dx / c_p on every mesh
-// (tests/solver/stable_time_step_test.cpp): the longest; the shortest takes half of it, the
+// (tests/solver/fe/stable_time_step_test.cpp): the longest; the shortest takes half of it, the
 // margin the memory and result-size estimates have always kept, and the mesh damping's
 // shortening. In double: inf or 0 for an impossible job.
 // (TimeStepBounds: solver/step_count.hpp.)

@@ -1,4 +1,4 @@
-// The body of POST /api/v1/length-fits (docs/length-fit.md "Over HTTP"): the record, as an
+// The body of POST /api/v1/length-fits (docs/length-fit.md "Worked example"): the record, as an
 // object of columns or as CSV text, and the options v_star, fit_v_star, mu, station_x1,
 // slip_threshold, each range-checked; errors name the field by JSON pointer, a CSV cell by
 // its line and column.

@@ -1,7 +1,8 @@
 // The power spectrum of a record's contact pressure, the input the law filters (paper eq. 6;
-// docs/length-fit.md "The spectrum"): on the record's own samples when they are evenly
-// spaced, else on an even grid by linear interpolation; detrended, Hann-windowed and read as
-// the spectral estimate of the studies reads tau_s (solver/run/critical_length_estimate.hpp).
+// docs/length-fit.md "f_m, the spectrum and the verdict"): on the record's own samples when
+// they are evenly spaced, else on an even grid by linear interpolation; detrended,
+// Hann-windowed and read as the spectral estimate of the studies reads tau_s
+// (solver/run/critical_length_estimate.hpp).
 #pragma once
 
 #include "api/length_fit/interface_record.hpp"

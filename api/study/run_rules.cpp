@@ -51,7 +51,7 @@ double metric(const StudyRun& run, const char* key) {
 }
 
 // A run whose metrics say it took no step or simulated no time: whatever its status and
-// outcome, it measured nothing (issue 22: a run of 0 steps once ended "succeeded" with outcome
+// outcome, it measured nothing (a run of 0 steps once ended "succeeded" with outcome
 // no_rupture, and a study took it for a converged result).
 bool simulated_nothing(const StudyRun& run) {
   const double steps = metric(run, "steps"), time = metric(run, "simulated_time");

@@ -32,7 +32,7 @@ std::string outcome_of(const StudyRun& run);
 double metric(const StudyRun& run, const char* key);
 
 // What a run contributes. The server stores a diverged run as job status "failed" with
-// metrics outcome "diverged" (server/jobs/job_runner.cpp): it is a result, not a void run.
+// metrics outcome "diverged" (server/run/job_runner.cpp): it is a result, not a void run.
 // A cancelled run, and one whose metrics say it took 0 steps or simulated no time, is void.
 enum class RunState { measured, diverged, pending, void_run };
 RunState state_of(const StudyRun& run);

@@ -1,4 +1,5 @@
-"""What verifying result files costs a download (docs/reliability.md, issue 22 item 6).
+"""What verifying result files costs a download (docs/reliability.md: broken result
+files are never served as intact).
 
 Runs one job with a result file of a few MB, then times its first full download (the server
 hashes the file on its first use) and 30 one-byte Range downloads (verified already: an open

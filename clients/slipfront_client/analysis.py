@@ -2,7 +2,7 @@
 `results.run_row`: id, L, n_d, status, outcome, propagation_distance,
 arrival_time_at_probe, steps, simulated_time, wall_time_s).
 
-Convergence: the server's rules, one for one (docs/studies.md, "Convergence status of a
+Convergence: the server's rules, one for one (docs/studies.md, "Mesh-convergence status of a
 run"; api/study/convergence.cpp), so that a local plot colours a run as the server's
 map does. Both are tested against the same cases (tests/study/convergence_cases.json).
 A row without a status (a local result file) counts as succeeded. Runs are grouped by
@@ -119,7 +119,7 @@ def _agree(row, ref):
 
 def results_agree(row, ref):
     """Whether two run summaries agree by the convergence criterion (also the rule between
-    two L's, docs/studies.md "Agreement of two results"), `ref` the finer mesh or the
+    two L's, docs/studies.md "Mesh-convergence status of a run"), `ref` the finer mesh or the
     smaller L."""
     return _agree(row, ref)
 

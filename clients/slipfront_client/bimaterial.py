@@ -1,4 +1,4 @@
-"""The paper's question at a bimaterial interface (issue 21 item 7): the requests and the
+"""The paper's question at a bimaterial interface: the requests and the
 measurements behind clients/bimaterial_study.py.
 
 The scene is the `bimaterial_prakash_clifton` preset (two different solids, constant

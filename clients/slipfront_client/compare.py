@@ -1,4 +1,4 @@
-"""Runs side by side (`slipfront-client compare`, docs/client.md "Compare runs"): their run
+"""Runs side by side (`slipfront-client compare`, docs/client.md "compare"): their run
 fields, spec and metrics flattened into one table with the fields that differ marked, and the
 legend texts of their overlaid curves — each run's label (results.run_label: method, what is
 below the interface, the friction law by its scale parameter, n_d) followed by every other spec

@@ -74,7 +74,8 @@ def run_study(api, base=None, L=(), n_d=(), convergence=False, n_d_max=None, nam
 
 def list_runs(api, where=None, sort=None, limit=None, **filters):
     """The run table (one flat dict per job: job columns, spec.*, metrics.*, the
-    convergence status) of the jobs matching `where` (docs/server.md, "Searching runs")."""
+    convergence status) of the jobs matching `where` (docs/server.md, "Searching and
+    exporting runs")."""
     params = {"where": where, "sort": sort, **filters}
     text = api.export_runs("ndjson", params, limit=limit)
     return [json.loads(line) for line in text.splitlines() if line.strip()]

@@ -1,4 +1,4 @@
-// The search language of GET /api/v1/jobs (docs/server.md, "Searching runs"): `where`
+// The search language of GET /api/v1/jobs (docs/server.md, "Searching and exporting runs"): `where`
 // conditions and `sort` keys over the run table, parsed into a small syntax tree whose fields
 // come from a whitelist (job columns, every leaf of the canonical job spec, every metric).
 // The SQL that answers it, with every value and JSON path a bound parameter, is the store's
@@ -56,7 +56,7 @@ struct SortKey {
 };
 
 // Bounds on one search: each condition and key becomes SQL, and SQLite refuses an expression
-// tree deeper than 1000 (docs/server.md, "Searching runs"). Above them: QueryError.
+// tree deeper than 1000 (docs/server.md, "Searching and exporting runs"). Above them: QueryError.
 inline constexpr std::size_t max_where_conditions = 64;
 inline constexpr std::size_t max_sort_keys = 16;
 

@@ -173,7 +173,7 @@ SubmitResult JobService::submit_document(nlohmann::json doc, const SubmitOptions
 
   if (!job.fresh) {
     // A hit needs the same physics, code version and output settings: the file holds the
-    // sampling, so another sampling is another file (docs/server.md, "Result cache").
+    // sampling, so another sampling is another file (docs/server.md, "Endpoints").
     auto earlier = store_.find_reusable(spec.sha256, options_.code_version,
                                         spec.canonical.value("output", nlohmann::json()),
                                         {options.user, options_.auth_enabled});

@@ -1,4 +1,4 @@
-// What a station's series say about the rupture there (docs/metrics.md "Stations"): the first
+// What a station's series say about the rupture there (docs/metrics.md "Other metrics"): the first
 // time |V| exceeded a threshold, the peak slip rate and its time, the final slip. Derived
 // after the run from the series the station recorder keeps at every step.
 #pragma once

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Issue 24 item 5: one command line. Every command of `slipfront` answers --help (exit 0,
+"""One command line. Every command of `slipfront` answers --help (exit 0,
 stdout) with a usage line and an options table that list the same flags, `slipfront help
 COMMAND` says the same, every flag the docs name is in the help of its command, and a flag
 several commands take is one flag: the same help and the same error everywhere.

@@ -1,4 +1,4 @@
-// Issue 22, item 1: names and tags from clients may not hold control characters (a newline in
+// Names and tags from clients may not hold control characters (a newline in
 // a name once became a command in a SLURM batch script; docs/api-job-spec.md).
 #include "api/free_text.hpp"
 #include "api/job_spec.hpp"

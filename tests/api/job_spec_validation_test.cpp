@@ -212,7 +212,7 @@ TEST(JobValidation, NonFiniteNumbersAreRefused) {
   expect_single_error({{"geometry", {{"x_min", infinity}}}}, "/geometry/x_min",
                       "must be a finite number, got a non-finite number");
   expect_single_error({{"friction", {{"L", std::nan("")}}}}, "/friction/L", "non-finite");
-  // In JSON text, 1e999 overflows in the parser: one error, naming the member (issue 10).
+  // In JSON text, 1e999 overflows in the parser: one error, naming the member.
   const ParseResult result = parse_job_text(R"({"geometry": {"x_min": 1e999}})");
   ASSERT_EQ(result.errors.size(), 1u);
   EXPECT_EQ(result.errors[0].pointer, "/geometry/x_min");
@@ -243,7 +243,7 @@ TEST(JobValidation, ElementCountsStayBounded) {
   expect_single_error({{"geometry", {{"nodes_per_meter", 1e6}, {"height", 1}}}},
                       "/geometry/nodes_per_meter", "more than the 10000000 allowed along one axis");
   // An absurd resolution makes both axes too long: one error, on the resolution, not on the
-  // width and the height that are fine (issue 24 item 5). 1e300 overflows the products. An
+  // width and the height that are fine. 1e300 overflows the products. An
   // absurd length is blamed itself.
   for (const char* length : {"width", "height"}) {
     const ParseResult huge = parse_job({{"geometry", {{length, 1e300}}}});
@@ -437,7 +437,7 @@ TEST(JobValidationMethod, SpectralMemoryEstimateIsChecked) {
   EXPECT_LT(small.spec->memory_estimate_bytes, 2e8);
 }
 
-// Issue 10, defect 1: nesting is bounded while parsing, before any recursive walk.
+// Nesting is bounded while parsing, before any recursive walk.
 TEST(JobValidation, DeepNestingIsRefusedWhileParsing) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   const ParseResult result = parse_job_text(R"({"tags": )" + deep + "}");
@@ -450,7 +450,7 @@ TEST(JobValidation, DeepNestingIsRefusedWhileParsing) {
   EXPECT_EQ(syntax.errors[0].reason.find("json.exception"), std::string::npos);
 }
 
-// Issue 10, defect 4: the result file's size is estimated at validation and limited.
+// The result file's size is estimated at validation and limited.
 TEST(JobValidation, ResultSizeLimit) {
   const json tiny_interval = {{"output", {{"interval", 1e-6}}}, {"time", {{"duration", 3000.0}}}};
   EXPECT_TRUE(parse_job(tiny_interval).ok()) << "no limit by default (the CLI)";

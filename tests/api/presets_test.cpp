@@ -54,7 +54,8 @@ TEST(Presets, FeOnlyMembersApplyToFeJobsOnly) {
 }
 
 TEST(Presets, TheSceneNumbersAreTheIssuesWords) {
-  // SCEC TPV3 in 2-D and the two bimaterial scenes, as issue 21 states them.
+  // SCEC TPV3 in 2-D and the two bimaterial scenes, with the numbers they were
+  // specified with (docs/presets.md).
   const Preset* tpv3 = find_preset("scec_tpv3_2d");
   const Preset* sw = find_preset("bimaterial_slip_weakening");
   const Preset* pc = find_preset("bimaterial_prakash_clifton");

@@ -300,7 +300,7 @@ TEST_F(ResultFile, SampleOfTheWrongSizeIsRefused) {
   EXPECT_THROW(writer.write(synthetic_sample(synthetic_layout(4), 0)), std::invalid_argument);
 }
 
-// The error names the file and HDF5's reason once (issue 24 item 5: it was printed twice).
+// The error names the file and HDF5's reason once (it was printed twice).
 TEST_F(ResultFile, UnwritableDirectoryThrows) {
   slipfront::api::ResultFileWriter writer(path("missing/dir/r.h5"));
   std::string message;
@@ -314,7 +314,7 @@ TEST_F(ResultFile, UnwritableDirectoryThrows) {
   EXPECT_EQ(message.find("HDF5:"), message.rfind("HDF5:")) << message;
 }
 
-// A disk that fills while the file is written (issue 10): a tmpfs of 256 KiB as the
+// A disk that fills while the file is written: a tmpfs of 256 KiB as the
 // directory, mounted by the test (root only; skipped otherwise). The write fails with the
 // disk named, the partial file is gone, its blocks are free again, and no HDF5 object is
 // left open (before, the failed flush kept the file's objects registered in the library:

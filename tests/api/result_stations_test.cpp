@@ -115,7 +115,7 @@ TEST_F(ResultStations, AFileWithoutStationsHasNoGroupAndReadsEmpty) {
 TEST_F(ResultStations, UnreadableFilesSayWhy) {
   std::string why;
   EXPECT_FALSE(read_stations(path("missing.h5"), why).has_value());
-  EXPECT_EQ(why, "No such file or directory"); // the system's words (issue 24 item 5)
+  EXPECT_EQ(why, "No such file or directory"); // the system's words
   EXPECT_FALSE(read_stations(path(""), why).has_value());
   EXPECT_EQ(why, "Is a directory");
   std::ofstream(path("text.h5")) << "not HDF5";

@@ -1,4 +1,4 @@
-// Issue 22, item 2: a job whose fields are each in range but which implies an impossible run
+// A job whose fields are each in range but which implies an impossible run
 // (a step of 1e-302 s, 1e21 steps, an infinite wave speed, a run of 0 steps) is refused at
 // validation, naming the field; the step count and the estimates never overflow.
 #include "api/job_spec.hpp"

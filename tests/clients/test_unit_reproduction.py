@@ -35,7 +35,7 @@ class FilterRule(unittest.TestCase):
 
     def test_the_papers_critical_length_needs_about_eight_hertz(self):
         # by hand: sqrt(1/0.98^2 - 1) = 0.203059; (1e-4 + 2.36e-3) * 0.203059 = 4.99525e-4;
-        # / (2 pi 1e-5) = 7.950 Hz (docs/reproduction.md, "Why they differ")
+        # / (2 pi 1e-5) = 7.950 Hz (docs/reproduction.md, "The paper's L_c beside ours")
         self.assertAlmostEqual(critical_frequency.frequency_of(1e-5, 1e-4, 2.36e-3), 7.950,
                                delta=0.001)
 

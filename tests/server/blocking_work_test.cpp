@@ -2,7 +2,7 @@
 // blocks (as a slow database write or a large HDF5 read would) does not hold up a cheap
 // request on another connection, with a single I/O thread. Without the blocking-work pool
 // the same cheap request waits (the control case, which shows that the test can fail).
-// Exports beyond the bound are refused at once while submissions pass (issue 22 item 9). And
+// Exports beyond the bound are refused at once while submissions pass. And
 // the server's own heavy routes run on the pools they should.
 #include "server/core/server_stats.hpp"
 #include "server/http/http_session.hpp"

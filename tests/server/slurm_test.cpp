@@ -136,7 +136,7 @@ std::string read_text(const std::string& path) {
 }
 } // namespace
 
-// Issue 22, item 1: the job's name used to be written into a comment line of the script, so a
+// The job's name used to be written into a comment line of the script, so a
 // name holding a newline ran commands on the compute node or added #SBATCH options.
 TEST(SlurmJobDir, BatchScriptHoldsNoTextFromTheClient) {
   TempDir dir("slipfront-slurm-");

@@ -1,10 +1,10 @@
-"""Issue 24 items 5 and 8 over real HTTP on loopback (a `slipfront serve` on an ephemeral
+"""The API's details over real HTTP on loopback (a `slipfront serve` on an ephemeral
 port, temporary data dir):
-- item 8: a body of another Content-Type than JSON gets 415 naming application/json; a 405
+- the answers: a body of another Content-Type than JSON gets 415 naming application/json; a 405
   lists every method of the path in Allow; the OpenAPI document carries the code's version, a
   description naming both methods, its operations under the tags jobs, results, studies,
   presets and ops, and no HEAD rows;
-- item 5, `slipfront serve`'s command line: a port in use is said first and alone (no
+- `slipfront serve`'s command line: a port in use is said first and alone (no
   "shutting down" lines before it, nothing created), --config is read before the flags that
   override it, and the old name --max-memory-bytes still sets the memory limit.
 

@@ -1,4 +1,4 @@
-"""A cancel that arrives after a run's last step (issue 22 item 11): before, it was answered
+"""A cancel that arrives after a run's last step: before, it was answered
 202 and the job still ended `succeeded`. Now a 202 is always kept (the job ends `cancelled`,
 without a result file) and a cancel the run can no longer honour is a 409 "finishing".
 

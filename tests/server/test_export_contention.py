@@ -1,4 +1,4 @@
-"""Submissions and status reads while anonymous clients loop CSV exports (issue 22 item 9):
+"""Submissions and status reads while anonymous clients loop CSV exports:
 before, with 4 clients exporting 3,000 jobs in a loop, `POST /jobs` took about 1 s (p50).
 
 A real data dir is filled with 3,000 succeeded jobs (copies of one real run's rows, written

@@ -1,4 +1,4 @@
-"""Faults around a live server (issue 10): a second server on the same data dir, a full disk
+"""Faults around a live server: a second server on the same data dir, a full disk
 (a small tmpfs as data dir), a run that fills the disk, a read-only data dir, SIGKILL at
 random points of jobs' lives, running out of file descriptors. Each asserts what must hold:
 no accepted job lost or stuck, no 500, the database intact.
@@ -65,7 +65,7 @@ def add_cache_hits(server, count):
 
 
 class SecondServerOnTheSameDir(unittest.TestCase):
-    """Defect 2: the second server's start-up recovery re-queued the first one's running
+    """Before the fix, a second server's start-up recovery re-queued the first one's running
     job and deleted its temporary file."""
 
     def test_second_server_refuses_the_locked_dir(self):
@@ -92,7 +92,7 @@ class SecondServerOnTheSameDir(unittest.TestCase):
             first.cleanup()
 
     def test_deleting_the_lock_file_does_not_free_the_dir(self):
-        """Issue 22 item 3: the lock was the file's; after `rm slipfront.lock` a second server
+        """The lock was the file's; after `rm slipfront.lock` a second server
         locked a new file of that name, re-queued the first one's running job and deleted its
         temporary file (the job ended failed, attempts 2)."""
         first = Server(BINARY, args=["--workers", "1"]).start()
@@ -117,7 +117,7 @@ class SecondServerOnTheSameDir(unittest.TestCase):
 
 
 class FullDisk(unittest.TestCase):
-    """Defect 3: a data dir on a 3 MiB tmpfs, filled while a job runs and another waits."""
+    """A data dir on a 3 MiB tmpfs, filled while a job runs and another waits."""
 
     def setUp(self):
         self.mount = tempfile.mkdtemp(prefix="slipfront-tmpfs-")
@@ -225,7 +225,7 @@ def server_with_log_outside(test, data_dir, args=()):
 
 
 class RunFillsTheDisk(unittest.TestCase):
-    """Defect 4, second half: a run whose own result file fills the disk. Before, the job
+    """A run whose own result file fills the disk. Before, the job
     failed with "HDF5: writing rows of ... failed", HDF5 kept the file's objects open (the
     file's blocks stayed allocated until exit, "infinite loop closing library" at exit, and
     sometimes a SIGSEGV)."""
@@ -459,7 +459,7 @@ class KillAtRandomPoints(unittest.TestCase):
 
 
 class DescriptorExhaustion(unittest.TestCase):
-    """Defect 5: near the descriptor limit the accept loop spun and logged the same line
+    """Before the fix, near the descriptor limit the accept loop spun and logged the same line
     megabytes a second, and /healthz was unreachable."""
 
     def test_health_answers_with_every_descriptor_taken(self):
@@ -518,7 +518,7 @@ class DescriptorExhaustion(unittest.TestCase):
 
 
 class HeavyListings(unittest.TestCase):
-    """Defect 6: clients listing 1000 jobs each pushed /healthz to a p90 of seconds."""
+    """Before the fix, clients listing 1000 jobs each pushed /healthz to a p90 of seconds."""
 
     def test_health_stays_quick_under_listing_load(self):
         server = Server(BINARY, args=["--workers", "1", "--queue-limit", "2000"]).start()
@@ -563,7 +563,7 @@ class HeavyListings(unittest.TestCase):
 
 
 class DamagedDatabase(unittest.TestCase):
-    """Defect 10: a corrupted page was not noticed at start (every submit then 500s), and a
+    """Before the fix, a corrupted page was not noticed at start (every submit then 500s), and a
     zero-length database file was taken as a new database."""
 
     def test_empty_database_file_is_refused(self):
@@ -594,7 +594,7 @@ class DamagedDatabase(unittest.TestCase):
 
 
 class TokenReload(unittest.TestCase):
-    """Defect 11: tokens could only change with a restart."""
+    """Before the fix, tokens could only change with a restart."""
 
     def test_sighup_reloads_the_token_file(self):
         tokens = tempfile.NamedTemporaryFile("w", suffix=".tokens", delete=False)
@@ -636,7 +636,7 @@ class TokenReload(unittest.TestCase):
             os.remove(tokens.name)
 
     def test_a_fifo_as_token_file_never_blocks_sigterm(self):
-        """Issue 22 item 14: with the token file replaced by a FIFO, SIGHUP blocked the signal
+        """With the token file replaced by a FIFO, SIGHUP blocked the signal
         thread and a later SIGTERM was not handled."""
         directory = tempfile.mkdtemp(prefix="slipfront-fifo-tokens-")
         path = os.path.join(directory, "tokens")

@@ -1,4 +1,4 @@
-"""Hostile input against a live server over loopback (issue 10): every bad request gets its
+"""Hostile input against a live server over loopback: every bad request gets its
 4xx naming the field, never a 5xx or the JSON library's own messages, changes nothing, and
 the server still answers /healthz afterwards.
 
@@ -134,7 +134,7 @@ class HostileInput(unittest.TestCase):
         return self.server.post(path, data=text.encode(),
                                 headers={"Content-Type": "application/json"}, timeout=30)
 
-    # --- defect 1: nesting depth, shared by every endpoint that parses a body ----------
+    # --- nesting depth, shared by every endpoint that parses a body --------------------
     def test_deep_array_to_studies_is_422_not_a_crash(self):
         self.assertRejected(self.post_raw(STUDIES, nested(60000)), 422)
         self.assertRejected(self.post_raw(STUDIES, '{"tags": ' + nested(60000) + "}"), 422)
@@ -159,7 +159,7 @@ class HostileInput(unittest.TestCase):
         b = self.assertRejected(self.post_raw(JOBS, '{"tags": ' + nested(20) + "}"), 422)
         self.assertIn("/tags/0", [e["pointer"] for e in b["errors"]])
 
-    # --- defect 9: numbers beyond a double, non-finite filters, library messages -------
+    # --- numbers beyond a double, non-finite filters, library messages -----------------
     def test_number_overflow_in_job_names_the_field(self):
         cases = [
             ('{"time": {"duration": 1e999}}', "/time/duration"),
@@ -217,7 +217,7 @@ class HostileInput(unittest.TestCase):
                     self.assertRejected(self.server.get(JOBS, params={key: value}), 400,
                                         "/query/" + key)
 
-    # --- defect 4: a result file of hundreds of GB is refused at validation -------------
+    # --- a result file of hundreds of GB is refused at validation -----------------------
     def test_result_size_limit_names_the_interval(self):
         body = {"output": {"interval": 1e-6}, "time": {"duration": 3000.0}}  # ~55 GB
         b = self.assertRejected(self.server.submit(body), 422, "/output/interval")
@@ -225,7 +225,7 @@ class HostileInput(unittest.TestCase):
         study = {"grid": {"L": [5e-5], "n_d": [40]}, "base": body}
         self.assertRejected(self.server.post(STUDIES, json=study), 422, "/base/output/interval")
 
-    # --- defect 8: a result file deleted behind the server's back -------------------------
+    # --- a result file deleted behind the server's back -----------------------------------
     def test_deleted_result_file_is_410_and_never_reused(self):
         self.before = None
         spec = dict(TINY, name="to-delete", loading={"shear_stress": 0.01041})
@@ -242,7 +242,7 @@ class HostileInput(unittest.TestCase):
         again = self.server.wait_status(r.json()["id"], {"succeeded"}, timeout=60)
         self.assertEqual(self.server.get(again["result"]["url"]).status_code, 200)
 
-    # --- defect 11: HEAD, log lines -------------------------------------------------------
+    # --- HEAD, log lines ------------------------------------------------------------------
     def test_head_answers_like_get_without_the_body(self):
         seed = self.seed["id"]
         for path in ["/healthz", "/metrics", "/api/v1/openapi.json", JOBS, f"{JOBS}/{seed}",
@@ -261,7 +261,7 @@ class HostileInput(unittest.TestCase):
         self.assertEqual(self.server.get("/healthz").status_code, 200)
 
     def test_control_characters_in_names_and_tags_are_refused(self):
-        # Issue 22, item 1: such a name once went into a SLURM batch script (and a log line).
+        # Such a name once went into a SLURM batch script (and a log line).
         # Free text anywhere a client sends it: no C0, DEL, C1, U+2028/U+2029.
         forged = "x\n2026-01-01T00:00:00Z error FORGED\r\x1b[2J"
         grid = {"grid": {"L": [1e-4], "n_d": [5]}, "base": {"time": {"duration": 2.0}}}
@@ -283,7 +283,7 @@ class HostileInput(unittest.TestCase):
             self.assertNotIn("FORGED", line)
             self.assertNotIn("\x1b", line)
 
-    # --- issue 22, item 2: jobs whose fields imply an impossible run -------------------
+    # --- jobs whose fields imply an impossible run ------------------------------------
     def test_impossible_runs_are_422_naming_the_field(self):
         bi = {"method": "spectral_bi"}
         cases = [
@@ -304,7 +304,7 @@ class HostileInput(unittest.TestCase):
         self.assertRejected(self.server.post(STUDIES, json=study), 422,
                             "/base/spectral_bi/time_step_factor")
 
-    # --- issue 22, item 8: search expressions too long for SQLite --------------------------
+    # --- search expressions too long for SQLite -------------------------------------------
     def test_long_search_expressions_are_400_naming_the_limit(self):
         where = ";".join(f"L>{i}" for i in range(1100))  # 1,100 terms in 12 kB
         b = self.assertRejected(self.server.get(JOBS, params={"where": where}), 400,
@@ -321,7 +321,7 @@ class HostileInput(unittest.TestCase):
         longest = max(len(line) for line in self.server.read_log().splitlines())
         self.assertLess(longest, 4000)
 
-    # --- issue 22, item 10: an error body never amplifies its request -------------------
+    # --- an error body never amplifies its request -------------------------------------
     def test_error_bodies_list_at_most_100_errors(self):
         body = {f"u{i}": 0 for i in range(90000)}
         text = json.dumps(body, separators=(",", ":"))
@@ -336,7 +336,7 @@ class HostileInput(unittest.TestCase):
         self.assertEqual(len(b["errors"]), 100)
         self.assertIn("and 4900 more", b["detail"])
 
-    # --- issue 22, item 15 -----------------------------------------------------------
+    # --- study tags and absolute-form request targets ----------------------------------
     def test_study_tags_errors_point_at_what_the_client_sent(self):
         grid = {"grid": {"L": [1e-4], "n_d": [5]}, "base": {"time": {"duration": 2.0}}}
         # 31 of the study's own tags fit (its runs carry one more: study:<id>); 32 do not.
@@ -396,7 +396,7 @@ class HostileInput(unittest.TestCase):
             ({"material": {"density": "1"}}, "/material/density"),
             ({"material": {"poisson_ratio": 0.5}}, "/material/poisson_ratio"),
             ({"geometry": {"nodes_per_meter": 0}}, "/geometry/nodes_per_meter"),
-            # The absurd factor is blamed (issue 24 item 5), not the width it multiplies.
+            # The absurd factor is blamed, not the width it multiplies.
             ({"geometry": {"nodes_per_meter": 1e12}}, "/geometry/nodes_per_meter"),
             ({"geometry": {"height": "tall"}}, "/geometry/height"),
             ({"geometry": {"width": 1e300}}, "/geometry/width"),

@@ -95,9 +95,9 @@ class MainServer(unittest.TestCase):
                      "/api/v1/jobs/{id}/result.h5", "/api/v1/jobs/{id}/metrics",
                      "/api/v1/jobs/{id}/front", "/healthz", "/metrics", "/api/v1/schema/job.json"]:
             self.assertIn(path, doc["paths"])
-        # What holds on every path (issue 10): a 503 with Retry-After on every operation
+        # What holds on every path: a 503 with Retry-After on every operation
         # (storage errors, the connection cap); HEAD beside every GET is said once in the
-        # description, not as a row of its own (issue 24 item 8; test_api_details.py).
+        # description, not as a row of its own (test_api_details.py).
         # test_hostile.py checks every status its requests were answered against the document.
         self.assertIn("Every GET also answers HEAD", doc["info"]["description"])
         for path, operations in doc["paths"].items():
@@ -268,7 +268,7 @@ class MainServer(unittest.TestCase):
                                        float(group.attrs["sample_interval"]), places=9)
 
     def test_cache_hit_only_with_the_same_output_settings(self):
-        # Defect 7 (issue 10): output settings are not physics (same spec_sha256), but the
+        # Output settings are not physics (same spec_sha256), but the
         # file holds them; a job asking for another sampling must not get another job's file.
         physics = {"loading": {"shear_stress": 0.01015}}
         fine = self.run_tiny(name="out-fine", output={"interval": 0.05}, **physics)

@@ -1,4 +1,4 @@
-"""Keep, annotate, share (issue 24 item 2) over real HTTP on loopback, with the servers' real
+"""Keep, annotate, share over real HTTP on loopback, with the servers' real
 SQLite files and HDF5 result files: tags and a note edited after submission, archive and
 restore, delete with the result file (and what a cache hit shares), export of runs as one tar
 file and its import into a second server, byte for byte; tampered and hostile archives refused

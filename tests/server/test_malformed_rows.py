@@ -1,4 +1,4 @@
-"""A database row whose stored JSON does not parse (issue 22 item 12): before, one job with a
+"""A database row whose stored JSON does not parse: before, one job with a
 spec that is not JSON made `GET /jobs?limit=1000` and the CSV export answer 500 for everyone,
 and the start-up check did not notice. Now listings leave the row out and say so, the start-up
 log names it, and `slipfront check DATA_DIR` lists it.

@@ -1,4 +1,4 @@
-"""Result files that are not what the database says (issue 22 items 6, 13 and 15): a damaged
+"""Result files that are not what the database says: a damaged
 file (truncated, zeroed, bytes flipped, even with its mtime put back) answers as gone and is
 never reused by the cache; a FIFO or a directory in the file's place answers at once without
 stalling the server; no answer quotes a server path; no HDF5 complaint at exit.
@@ -61,7 +61,7 @@ class DamagedResults(unittest.TestCase):
         log = cls.server.read_log()
         cls.server.cleanup()
         assert code == 0, f"server exit code {code}"
-        # Issue 22 item 15: HDF5 complained at exit after the server had read corrupt files.
+        # HDF5 once complained at exit after the server had read corrupt files.
         assert "infinite loop closing library" not in log, log[-3000:]
 
     def run_job(self, name):

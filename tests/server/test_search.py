@@ -165,7 +165,7 @@ class SearchTest(unittest.TestCase):
         self.assertEqual(self.listing(limit=1000)["count"], before)
 
     def test_csv_cells_never_start_a_formula(self):
-        """Issue 22 item 15: text cells starting with =, +, -, @ are neutralised with a leading
+        """Text cells starting with =, +, -, @ are neutralised with a leading
         ' (a spreadsheet would run them); numbers, negative ones too, stay numbers."""
         names = ["=HYPERLINK(\"http://x\")", "+1+2", "-2+3", "@SUM(A1)"]
         for name in names:

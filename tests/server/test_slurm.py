@@ -1,7 +1,7 @@
 """The SLURM executor on a real, single-host SLURM (docs/cluster.md): munged, slurmctld and
 slurmd started on this machine by tests/server/slurm_cluster.py (no systemd), the server on
 an ephemeral loopback port with `--executor slurm`. Submit → progress → succeeded with
-metrics and a readable HDF5 file; no client text in the batch script (issue 22); cancel
+metrics and a readable HDF5 file; no client text in the batch script; cancel
 (scancel); a job cancelled outside slipfront; a SLURM time limit (TIMEOUT); a study whose
 runs go through SLURM; the server killed and restarted while a job is in SLURM (re-attached,
 not run again); a job SLURM lost and a node failure (NODE_FAIL), both queued again.
@@ -168,7 +168,7 @@ class SlurmExecutorTest(unittest.TestCase):
         self.assertIsNone(again["slurm_job_id"])
 
     def test_client_text_never_reaches_the_batch_script(self):
-        # Issue 22, item 1: the job's name went into a comment line of job.sh, so a newline
+        # The job's name once went into a comment line of job.sh, so a newline
         # in it ran commands on the compute node or added #SBATCH options.
         marks = tempfile.mkdtemp(prefix="slipfront-injected-")
         ran = os.path.join(marks, "ran")

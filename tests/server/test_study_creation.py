@@ -1,4 +1,4 @@
-"""Creating a study under faults (issue 22 items 4 and 5): SIGKILL while a 400-run study is
+"""Creating a study under faults: SIGKILL while a 400-run study is
 being created never leaves part of a study, a client's retry with the same Idempotency-Key
 never makes a second study, and `--queue-limit` holds when several studies are created at
 once.

@@ -1,4 +1,4 @@
-"""Clients that ask for large answers and never read them (issue 22 item 7): before, 40
+"""Clients that ask for large answers and never read them: before, 40
 connections asking for a 32 MB field slice took the server from 78 MB to 1.4 GB for the
 600 s write timeout. Answers held in memory and not yet read are now bounded over all
 connections (--max-unsent-bytes); past it a large answer is a 503, small ones still pass.

@@ -128,7 +128,7 @@ TEST(WorkerPool, SuccessFailureAndUserCancel) {
   f.pool.drain();
 }
 
-// Issue 22 item 11: a cancel accepted after the run's last step is kept (the job ends
+// A cancel accepted after the run's last step is kept (the job ends
 // cancelled, its file removed); once the worker has the run's end, a cancel is refused.
 TEST(WorkerPool, ACancelAcceptedAfterTheLastStepIsKept) {
   Fixture f;
@@ -188,7 +188,7 @@ struct WriteLock {
 
 } // namespace
 
-// Issue 10, defect 3: a queued job whose start hit a storage error left the in-memory queue
+// A queued job whose start hit a storage error left the in-memory queue
 // and never ran until a restart.
 TEST(WorkerPool, JobWhoseStartHitAStorageErrorStaysRunnable) {
   Fixture f;

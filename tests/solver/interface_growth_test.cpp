@@ -125,8 +125,8 @@ void print(const char* scheme, double n_d, const Growth& g) {
           scheme, n_d, g.rate, g.scaled, g.a_start, g.a_end, g.fit_begin, g.fit_end, g.mean_v);
 }
 
-// Below the strip, a second elastic half-space with the contrast of the bimaterial presets of
-// issue 21 (the same nu = 0.25, density x 1.00546, c_s x 1.18): the upper solid is the more
+// Below the strip, a second elastic half-space with the contrast of the bimaterial presets
+// (the same nu = 0.25, density x 1.00546, c_s x 1.18): the upper solid is the more
 // compliant one.
 SimulationParams on_lower_solid(SimulationParams p) {
   const double density = 2745.739 / 2730.834, shear_speed = 3091.6 / 2620.0;

@@ -1,4 +1,4 @@
-// Issue 22, item 2: a run that simulated nothing is never a result of a study. A job whose
+// A run that simulated nothing is never a result of a study. A job whose
 // time step was 1e-302 s once ended "succeeded" with 0 steps and outcome no_rupture, and a
 // convergence study of such runs reported them converged and L_c = 1e-4 (docs/studies.md).
 #include "api/study_analysis.hpp"

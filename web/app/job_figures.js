@@ -52,7 +52,7 @@ export function lowerWaveSpeeds(spec) {
 }
 
 // The x1 interval of the nucleation, or null when the run has none: the moving ellipse covers
-// 0 to sqrt(a^2 + b^2) (solver/nucleation.cpp), the overstressed patch [x1_min, x1_max].
+// 0 to sqrt(a^2 + b^2) (solver/interface/nucleation.cpp), the overstressed patch [x1_min, x1_max].
 export function nucleationPatch(spec) {
   const n = spec?.nucleation;
   if (!n || n.enabled === false) return null;

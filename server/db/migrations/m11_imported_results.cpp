@@ -1,7 +1,7 @@
 // Schema migration 10 -> 11 (server/db/migrations.hpp): who imported the result file a row
 // refers to (NULL: this server computed it). An imported run, and every cache hit of it, keeps
 // its importer here: such a result is a cache source for its importer only, never for another
-// user, since its archive may have been edited and re-signed (docs/server.md "Result cache").
+// user, since its archive may have been edited and re-signed (docs/server.md "Export and import").
 // Rows imported before: their importer is the submitter of the imported row of their file.
 #include "server/db/migrations/list.hpp"
 

@@ -14,7 +14,7 @@
 namespace slipfront::rate_state {
 namespace {
 
-// The SEM2DPACK example's values (docs/presets.md "rsf_slip_law_inplane").
+// The SEM2DPACK example's values (docs/presets.md, the preset `rsf_slip_law_inplane`).
 Parameters kaneko() {
   return {0.0125, 0.0172, 0.037, 0.6, 1e-6};
 }

@@ -14,7 +14,7 @@ wave e^{i k (x1 - v t)} (k = 1) in displacement potentials in both solids,
 and asks for frictionless contact: sigma12 = 0 on both sides, u2 and sigma22 continuous.
 The speed where the 4x4 determinant vanishes is printed (mpmath, 30 digits), for
   - identical solids (nu = 0.25): the Rayleigh speed sqrt(2 - 2/sqrt(3)) c_s (check);
-  - the bimaterial presets' solids of issue 21 (upper rho 2730.834 kg/m^3, c_p 4537.973,
+  - the bimaterial presets' solids (upper rho 2730.834 kg/m^3, c_p 4537.973,
     c_s 2620 m/s; lower 2745.739, 5354.808, 3091.6 m/s).
 Exits non-zero if the identical-solid root is not the Rayleigh speed.
 

@@ -2,7 +2,7 @@
 """FE against BI on the three scene presets, cut down to run in CI (docs/verification.md 25).
 
 Runs bench/preset_cross_method.py (each preset by both methods at the same element size)
-and checks issue 21's bars: station rupture times within 1 %, extents within 2 % of the
+and checks the cross-method bars: station rupture times within 1 %, extents within 2 % of the
 propagation distance. The cuts keep what is compared out of reach of what was cut:
 - bimaterial_prakash_clifton at dx = 0.1 m, width 200 m, 12 ms (the stations out to
   +-40 m; their rupture times are those of the full 600 m scene to the printed digits);

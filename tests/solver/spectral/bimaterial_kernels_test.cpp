@@ -32,7 +32,7 @@ Material from_speeds(double rho, double cp, double cs) {
   return {rho, 2 * mu * (1 + nu), nu};
 }
 
-// The bimaterial presets' solids (issue 21): upper (more compliant) and lower.
+// The bimaterial presets' solids: upper (more compliant) and lower.
 const Material upper_preset = from_speeds(2730.834, 4537.973, 2620.0);
 const Material lower_preset = from_speeds(2745.739, 5354.808, 3091.6);
 

@@ -257,7 +257,7 @@ TEST(SpectralTwoSolids, AStiffLowerSolidGivesTheRigidPlanesRun) {
           d10, d30, d10 / d30);
 }
 
-// The bimaterial_prakash_clifton scene of issue 21 (upper rho 2730.834 kg/m^3, c_p 4537.973,
+// The bimaterial_prakash_clifton scene (upper rho 2730.834 kg/m^3, c_p 4537.973,
 // c_s 2620 m/s; lower 2745.739, 5354.808, 3091.6 m/s; -130 MPa; mu = 0.7, L = 1 mm,
 // V* = 0.26 m/s; 100.1 MPa on |x1| <= 10 m, the patch as an extra shear load from t = 0) with
 // the background shear 90.5 MPa instead of 89.18: there the rupture arrests at about +50 m
