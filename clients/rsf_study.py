@@ -51,6 +51,9 @@ def parse_args(argv):
                    "temporary): a second run reuses the runs it holds")
     p.add_argument("--timeout", type=float, help="give up waiting after this many seconds")
     p.add_argument("--study-id", help="report on this existing study instead of creating one")
+    p.add_argument("--no-wait", action="store_true", help="with --study-id and --server: "
+                   "report the study as it stands now, even if it is still running (the report "
+                   "says so)")
     return p.parse_args(argv)
 
 
@@ -202,6 +205,11 @@ def write_report(args, api, study, wall, server):
         statement(study),
         "",
     ]
+    if study.get("status") != "finished":
+        progress = study.get("progress") or {}
+        lines += [f"**The search had not finished when this report was written** (status "
+                  f"{study.get('status')}, {progress.get('done')} of {progress.get('total')} runs "
+                  "final): what follows is its state then, not its answer.", ""]
     lines += report_mod.answer_lines(study)
     lines += ["", "## Each step in L", ""] + (search_steps(study) or ["(no steps)"])
     lines += ["", "## What each L needed", ""] + report_mod.n_d_table(study)
@@ -243,7 +251,10 @@ def main(argv=None):
         else:
             study = api.create_study(study_body(bi_base(api)))
             log(f"created study {study['id']}")
-        study = wait_study(api, study["id"], args.timeout)
+        if args.no_wait and args.study_id:
+            study = api.study(study["id"])
+        else:
+            study = wait_study(api, study["id"], args.timeout)
         wall = study_wall(study) or (time.time() - t_start)
         return write_report(args, api, study, wall, server)
     finally:
