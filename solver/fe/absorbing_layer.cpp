@@ -13,6 +13,18 @@ AbsorbingLayer::AbsorbingLayer(const Material& material, int nx, int ny, int row
   alpha_ = kLayerFrequencyShift * d0_;
   k11_ = build_stencils(q4_plane_strain_stiffness_part(material, StrainPart::along_x1));
   k22_ = build_stencils(q4_plane_strain_stiffness_part(material, StrainPart::along_x2));
+  for (int l = 0; l <= rows; ++l) { // d_above K_11^above + d_below K_11^below of each row
+    const int j = first_ + l;
+    const double a = element_damping(j), b = element_damping(j - 1);
+    NodeStencil row;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        const Block2 &up = k11_.bottom.b[r][c], &down = k11_.top.b[r][c];
+        row.b[r][c] = {a * up.xx + b * down.xx, a * up.xy + b * down.xy, a * up.yx + b * down.yx,
+                       a * up.yy + b * down.yy};
+      }
+    k11_rows_.push_back(row);
+  }
   zeta_ = VectorField(nx, rows + 1);
   phi_above_ = VectorField(nx, rows + 1);
   phi_below_ = VectorField(nx, rows + 1);
@@ -75,70 +87,60 @@ AbsorbingLayer::RowEnergy AbsorbingLayer::velocity_row(int j, const NodeStencil&
   // The directional stiffness of the elements above the node (the "bottom" stencil of a
   // node with elements above it only) and below it, each with its own d: s and 1/s are
   // constant in an element, so that the layer is the Galerkin form of the stretched equations.
+  // d_above K_11^above + d_below K_11^below is one stencil per row (k11_rows_).
   thread_local std::vector<double> scratch; // this thread's (several may step rows at once)
-  scratch.resize(8 * std::size_t(nx_));
-  double* f11x = scratch.data(); // d_above K_11^above zeta + d_below K_11^below zeta
-  double* f11y = f11x + nx_;
-  double* f22ax = f11y + nx_; // K_22^above u
-  double* f22ay = f22ax + nx_;
-  double* f22bx = f22ay + nx_; // K_22^below u
-  double* f22by = f22bx + nx_;
-  for (int i = 0; i < 6 * nx_; ++i)
-    scratch[i] = 0.0;
-  if (d_above > 0) {
-    for_each_node_force(k11_.bottom, z, z, zx0, zy0, zxp, zyp, nx_,
-                        [&](int i, double kx, double ky) {
-                          f11x[i] += d_above * kx;
-                          f11y[i] += d_above * ky;
-                        });
-    for_each_node_force(k22_.bottom, z, z, ux0, uy0, uxp, uyp, nx_,
-                        [&](int i, double kx, double ky) {
-                          f22ax[i] = kx;
-                          f22ay[i] = ky;
-                        });
-  }
-  if (d_below > 0) {
-    for_each_node_force(k11_.top, zxm, zym, zx0, zy0, z, z, nx_, [&](int i, double kx, double ky) {
-      f11x[i] += d_below * kx;
-      f11y[i] += d_below * ky;
-    });
-    for_each_node_force(k22_.top, uxm, uym, ux0, uy0, z, z, nx_, [&](int i, double kx, double ky) {
-      f22bx[i] = kx;
-      f22by[i] = ky;
-    });
+  scratch.resize(11 * std::size_t(nx_));
+  double* __restrict kux = scratch.data(); // K u
+  double* __restrict kuy = kux + nx_;
+  double* __restrict f11x = kuy + nx_; // sum_e d_e K_11^e zeta
+  double* __restrict f11y = f11x + nx_;
+  double* __restrict f22ax = f11y + nx_; // K_22^above u
+  double* __restrict f22ay = f22ax + nx_;
+  double* __restrict f22bx = f22ay + nx_; // K_22^below u
+  double* __restrict f22by = f22bx + nx_;
+  double* __restrict dis = f22by + nx_; // each node's energy terms
+  double* __restrict kin = dis + nx_;
+  double* __restrict str = kin + nx_;
+  stencil_force_row(stiffness, uxm, uym, ux0, uy0, uxp, uyp, kux, kuy, nx_);
+  stencil_force_row(k11_rows_[l], zxm, zym, zx0, zy0, zxp, zyp, f11x, f11y, nx_);
+  stencil_force_row(k22_.bottom, z, z, ux0, uy0, uxp, uyp, f22ax, f22ay, nx_);
+  stencil_force_row(k22_.top, uxm, uym, ux0, uy0, z, z, f22bx, f22by, nx_);
+  const double* __restrict ex = extra_x ? extra_x : z;
+  const double* __restrict ey = extra_y ? extra_y : z;
+  const double da = above.decay, ga = above.gain, db = below.decay, gb = below.gain;
+  const double mda = m * d * alpha, mdaa = m * d * alpha * alpha;
+  for (int i = 0; i < nx_; ++i) {
+    // phi of each side at t_n (kept at the half steps, advanced with K_22 u^n held).
+    const double pax_n = pax[i] * da + ga * f22ax[i], pay_n = pay[i] * da + ga * f22ay[i];
+    const double pbx_n = pbx[i] * db + gb * f22bx[i], pby_n = pby[i] * db + gb * f22by[i];
+    // The forces beyond K u: the other force, the layer's stiffness and memory terms (the
+    // velocity-proportional ones are in c_x, c_y).
+    const double gx = ex[i] + f11x[i] - pax_n - pbx_n + mdaa * zx0[i] - mda * ux0[i];
+    const double gy = ey[i] + f11y[i] - pay_n - pby_n + mdaa * zy0[i] - mda * uy0[i];
+    const double vx_new = (vx[i] * (1 - b_x) - dt_ / m * (kux[i] + gx)) / (1 + b_x);
+    const double vy_new = (vy[i] * (1 - b_y) - dt_ / m * (kuy[i] + gy)) / (1 + b_y);
+    const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
+    dis[i] = dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid + gx * vx_mid + gy * vy_mid);
+    kin[i] = vx_new * vx_new + vy_new * vy_new;
+    str[i] = kux[i] * (ux0[i] + dt_ * vx_new) + kuy[i] * (uy0[i] + dt_ * vy_new);
+    vx[i] = vx_new;
+    vy[i] = vy_new;
+    pax[i] = pax_n * da + ga * f22ax[i]; // at t_{n+1/2}
+    pay[i] = pay_n * da + ga * f22ay[i];
+    pbx[i] = pbx_n * db + gb * f22bx[i];
+    pby[i] = pby_n * db + gb * f22by[i];
   }
   RowEnergy out;
-  for_each_node_force(
-      stiffness, uxm, uym, ux0, uy0, uxp, uyp, nx_, [&](int i, double kx, double ky) {
-        // phi of each side at t_n (kept at the half steps, advanced with K_22 u^n held).
-        const double pax_n = pax[i] * above.decay + above.gain * f22ax[i];
-        const double pay_n = pay[i] * above.decay + above.gain * f22ay[i];
-        const double pbx_n = pbx[i] * below.decay + below.gain * f22bx[i];
-        const double pby_n = pby[i] * below.decay + below.gain * f22by[i];
-        // The forces beyond K u: the other force, the layer's stiffness and memory terms
-        // (the velocity-proportional ones are in c_x, c_y).
-        const double gx = (extra_x ? extra_x[i] : 0.0) + f11x[i] - pax_n - pbx_n +
-                          m * d * (alpha * alpha * zx0[i] - alpha * ux0[i]);
-        const double gy = (extra_y ? extra_y[i] : 0.0) + f11y[i] - pay_n - pby_n +
-                          m * d * (alpha * alpha * zy0[i] - alpha * uy0[i]);
-        const double vx_new = (vx[i] * (1 - b_x) - dt_ / m * (kx + gx)) / (1 + b_x);
-        const double vy_new = (vy[i] * (1 - b_y) - dt_ / m * (ky + gy)) / (1 + b_y);
-        const double vx_mid = 0.5 * (vx[i] + vx_new), vy_mid = 0.5 * (vy[i] + vy_new);
-        out.dissipated +=
-            dt_ * (c_x * vx_mid * vx_mid + c_y * vy_mid * vy_mid + gx * vx_mid + gy * vy_mid);
-        vx[i] = vx_new;
-        vy[i] = vy_new;
-        pax[i] = pax_n * above.decay + above.gain * f22ax[i]; // at t_{n+1/2}
-        pay[i] = pay_n * above.decay + above.gain * f22ay[i];
-        pbx[i] = pbx_n * below.decay + below.gain * f22bx[i];
-        pby[i] = pby_n * below.decay + below.gain * f22by[i];
-        if (energy) {
-          out.kinetic += vx_new * vx_new + vy_new * vy_new;
-          out.strain += kx * (ux0[i] + dt_ * vx_new) + ky * (uy0[i] + dt_ * vy_new);
-        }
-      });
-  out.kinetic *= 0.5 * m;
-  out.strain *= 0.5;
+  for (int i = 0; i < nx_; ++i)
+    out.dissipated += dis[i];
+  if (energy) {
+    for (int i = 0; i < nx_; ++i) {
+      out.kinetic += kin[i];
+      out.strain += str[i];
+    }
+    out.kinetic *= 0.5 * m;
+    out.strain *= 0.5;
+  }
   return out;
 }
 

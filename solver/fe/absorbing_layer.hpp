@@ -68,6 +68,7 @@ private:
   int nx_ = 0, ny_ = 0, rows_ = 0, first_ = 0;
   double d0_ = 0, alpha_ = 0, dt_ = 0;
   MeshStencils k11_, k22_;
+  std::vector<NodeStencil> k11_rows_; // per row: d_above K_11^above + d_below K_11^below
   // Rows first_ .. ny - 1, at index j - first_: zeta, and phi of the elements above and below.
   VectorField zeta_, phi_above_, phi_below_;
   std::vector<double> zero_row_;

@@ -121,6 +121,13 @@ void stencil_damped_velocity_update(
     double mass, double* __restrict dissipated, double* __restrict kinetic = nullptr,
     double* __restrict strain = nullptr);
 
+// (K u) of one row into fx, fy: for_each_node_force written so that it vectorises.
+void stencil_force_row(const NodeStencil& stencil, const double* __restrict uxm,
+                       const double* __restrict uym, const double* __restrict ux0,
+                       const double* __restrict uy0, const double* __restrict uxp,
+                       const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                       int nx);
+
 // K u over the whole mesh (not the fast path: used by the stable time step estimate and
 // by tests). u's ghosts must be current; result has the layout of u (ghosts not set).
 void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku);
