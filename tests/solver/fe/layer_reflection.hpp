@@ -3,7 +3,7 @@
 // on the discrete scheme (docs/verification.md "Perfectly matched layer"):
 //   - the packet is an exact plane wave of the discrete (Q4, lumped mass, leapfrog) scheme,
 //     its polarisation and frequency the eigenpair of the stencil's symbol, under a Gaussian
-//     envelope in x2 several vertical wavelengths wide, going up from inside the block;
+//     envelope in x2 (sigma two vertical wavelengths), going up from inside the block;
 //   - the block is one period of the wave along x1, tall enough that nothing reaches row 0
 //     before the measurement;
 //   - R = sqrt(E_back / E_in), E the energy in the rows below the top's first row, at the
