@@ -8,7 +8,8 @@ arrival time at x1 = 11 m, their differences from the full block against the con
 of docs/metrics.md (propagation distance 0.5 %, arrival time 0.1 %), and the energy error.
 
 usage: /usr/bin/python3 bench/truncation_study.py [--binary build/slipfront] [--nd 20 40]
-           [--heights 4 3 2 1] [--layer 20] [--threads 2] [--repeat 1]
+           [--heights 4 3 2 1] [--layer 20] [--tops pml absorbing] [--threads 2]
+           [--repeat 1] [--check]
 """
 import argparse
 import json
@@ -41,10 +42,13 @@ def main():
     ap.add_argument("--nd", type=float, nargs="+", default=[20, 40])
     ap.add_argument("--heights", type=float, nargs="+", default=[4, 3, 2, 1])
     ap.add_argument("--layer", type=int, default=20)
+    ap.add_argument("--tops", nargs="+", default=["pml"], help="truncated tops: pml, absorbing")
     ap.add_argument("--L", type=float, default=5e-5)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--repeat", type=int, default=1, help="runs per case; the fastest is kept")
     ap.add_argument("--json", help="write the rows here as JSON")
+    ap.add_argument("--check", action="store_true",
+                    help="exit 1 unless every truncated run is within the convergence rule and its energy balance closes")
     args = ap.parse_args()
 
     rows = []
@@ -54,7 +58,7 @@ def main():
     for nd in args.nd:
         base = {"geometry": {"nodes_per_meter": nd}, "friction": {"L": args.L}, "threads": args.threads,
                 "name": "truncation study"}
-        cases = [("traction", 20.0)] + [("pml", h) for h in args.heights]
+        cases = [("traction", 20.0)] + [(top, h) for top in args.tops for h in args.heights]
         ref = None
         for top, h in cases:
             spec = json.loads(json.dumps(base))
@@ -76,6 +80,11 @@ def main():
                   f"{ref['wall_time_s'] / m['wall_time_s']:.2f} | {m['propagation_distance']:.4f} | {dp:.3f} | "
                   f"{at if at is not None else float('nan'):.4f} | {dt:.3f} | {'yes' if ok else 'no'} | "
                   f"{m.get('energy_error', float('nan')):.1e} | {'yes' if m['warnings'] else ''} |", flush=True)
+    if args.check:
+        bad = [r for r in rows if not r["ok"] or not (r["energy_error"] is not None and r["energy_error"] < 1e-10)]
+        if bad:
+            print(f"outside the rule: {bad}", file=sys.stderr)
+            sys.exit(1)
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)

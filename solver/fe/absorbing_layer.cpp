@@ -3,6 +3,7 @@
 #include "solver/fe/element_stiffness.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace slipfront::fe {
 
@@ -25,6 +26,10 @@ AbsorbingLayer::AbsorbingLayer(const Material& material, int nx, int ny, int row
       }
     k11_rows_.push_back(row);
   }
+  // K_11 and K_22 of an isotropic element couple no components (the rows take half the work).
+  for (const NodeStencil* part : {&k11_.bottom, &k11_.top, &k22_.bottom, &k22_.top})
+    if (!has_no_cross_terms(*part))
+      throw std::logic_error("the directional stiffness of the layer couples x1 and x2");
   zeta_ = VectorField(nx, rows + 1);
   phi_above_ = VectorField(nx, rows + 1);
   phi_below_ = VectorField(nx, rows + 1);
@@ -60,6 +65,7 @@ double AbsorbingLayer::element_damping(int e) const {
 }
 
 AbsorbingLayer::RowEnergy AbsorbingLayer::velocity_row(int j, const NodeStencil& stiffness,
+                                                       const SymmetricStencil* symmetric,
                                                        const VectorField& u, VectorField& v,
                                                        const double* extra_x, const double* extra_y,
                                                        double mass, double dashpot_x,
@@ -101,10 +107,13 @@ AbsorbingLayer::RowEnergy AbsorbingLayer::velocity_row(int j, const NodeStencil&
   double* __restrict dis = f22by + nx_; // each node's energy terms
   double* __restrict kin = dis + nx_;
   double* __restrict str = kin + nx_;
-  stencil_force_row(stiffness, uxm, uym, ux0, uy0, uxp, uyp, kux, kuy, nx_);
-  stencil_force_row(k11_rows_[l], zxm, zym, zx0, zy0, zxp, zyp, f11x, f11y, nx_);
-  stencil_force_row(k22_.bottom, z, z, ux0, uy0, uxp, uyp, f22ax, f22ay, nx_);
-  stencil_force_row(k22_.top, uxm, uym, ux0, uy0, z, z, f22bx, f22by, nx_);
+  if (symmetric != nullptr)
+    symmetric_force_row(*symmetric, uxm, uym, ux0, uy0, uxp, uyp, kux, kuy, nx_);
+  else
+    stencil_force_row(stiffness, uxm, uym, ux0, uy0, uxp, uyp, kux, kuy, nx_);
+  uncoupled_force_row(k11_rows_[l], zxm, zym, zx0, zy0, zxp, zyp, f11x, f11y, nx_);
+  uncoupled_force_row(k22_.bottom, z, z, ux0, uy0, uxp, uyp, f22ax, f22ay, nx_);
+  uncoupled_force_row(k22_.top, uxm, uym, ux0, uy0, z, z, f22bx, f22by, nx_);
   const double* __restrict ex = extra_x ? extra_x : z;
   const double* __restrict ey = extra_y ? extra_y : z;
   const double da = above.decay, ga = above.gain, db = below.decay, gb = below.gain;

@@ -58,9 +58,11 @@ public:
   struct RowEnergy {
     double kinetic = 0, strain = 0, dissipated = 0;
   };
-  RowEnergy velocity_row(int j, const NodeStencil& stiffness, const VectorField& u, VectorField& v,
-                         const double* extra_x, const double* extra_y, double mass,
-                         double dashpot_x, double dashpot_y, bool energy);
+  // `symmetric`: the stiffness in its symmetric form, if it has one (else null).
+  RowEnergy velocity_row(int j, const NodeStencil& stiffness, const SymmetricStencil* symmetric,
+                         const VectorField& u, VectorField& v, const double* extra_x,
+                         const double* extra_y, double mass, double dashpot_x, double dashpot_y,
+                         bool energy);
   // zeta of row j >= first_row() after its u reached t_{n+1} (v is v^{n+1/2}).
   void advance_memory_row(int j, const VectorField& u, const VectorField& v);
 

@@ -271,9 +271,9 @@ void ElasticBlock::layer_row(BlockStepRecord& record, int j, std::vector<double>
   const double rho = material_.density;
   const double dashpot_x = far ? rho * material_.s_wave_speed() * dx_ : 0.0;
   const double dashpot_y = far ? rho * material_.p_wave_speed() * dx_ : 0.0;
-  const AbsorbingLayer::RowEnergy e =
-      layer_.velocity_row(j, stiffness, u_, v_, extra_x, extra_y, node_mass(j), dashpot_x,
-                          dashpot_y, record.compute_energy);
+  const AbsorbingLayer::RowEnergy e = layer_.velocity_row(
+      j, stiffness, !far && interior_symmetric_ ? &interior_form_ : nullptr, u_, v_, extra_x,
+      extra_y, node_mass(j), dashpot_x, dashpot_y, record.compute_energy);
   record.row_dissipated[j] = e.dissipated;
   if (record.compute_energy) {
     record.row_kinetic[j] = e.kinetic;

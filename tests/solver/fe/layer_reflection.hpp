@@ -4,7 +4,7 @@
 //   - the packet is an exact plane wave of the discrete (Q4, lumped mass, leapfrog) scheme,
 //     its polarisation and frequency the eigenpair of the stencil's symbol, under a Gaussian
 //     envelope in x2 (sigma two vertical wavelengths), going up from inside the block;
-//   - the block is one period of the wave along x1, tall enough that nothing reaches row 0
+//   - the block is a few periods of the wave along x1, tall enough that nothing reaches row 0
 //     before the measurement;
 //   - R = sqrt(E_back / E_in), E the energy in the rows below the top's first row, at the
 //     start and once every reflected mode (P and S) has come back out of the layer: the
@@ -43,11 +43,15 @@ inline Reflection measure_reflection(const ReflectionCase& c) {
   const double dx = 0.05, pi = std::acos(-1.0);
   const double k = 2 * pi / (c.wavelength * dx);
   const double theta = c.angle_deg * pi / 180;
+  // The period along x1 holds `periods` wavelengths of k1 and at least 40 elements, so that
+  // the angle that fits it is within a degree or so of the one asked for.
   int nx = 4;
   double k1 = 0;
   if (std::sin(theta) > 1e-12) {
-    nx = std::max(3, int(std::lround(2 * pi / (k * std::sin(theta)) / dx)));
-    k1 = 2 * pi / (nx * dx);
+    const double along = 2 * pi / (k * std::sin(theta)) / dx; // k1's wavelength in elements
+    const int periods = int(std::ceil(40.0 / along));
+    nx = std::max(3, int(std::lround(periods * along)));
+    k1 = 2 * pi * periods / (nx * dx);
   }
   const double k2 = std::sqrt(std::max(k * k - k1 * k1, 0.0));
 
