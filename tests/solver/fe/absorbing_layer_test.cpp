@@ -41,23 +41,25 @@ TEST(AbsorbingLayer, TractionTopReflectsEverything) {
 
 // At normal incidence the layer's reflection is that of the continuum's round trip (R0 = 1e-3
 // for P by design, 6e-6 for S) or its discrete floor (the profile constant in each element
-// row; measured 3e-4 at 20 elements a wavelength): below 1e-3 for both. With s taken at the
-// node for the stiffness too (not the Galerkin form of the stretch) it was 2e-2 and 6e-2.
+// row; measured 5e-5 and 3.5e-5 at 20 elements a wavelength): below 2e-4 for both. With s
+// taken at the node for the stiffness too (not the Galerkin form of the stretch) it was 2e-2
+// and 6e-2.
 TEST(AbsorbingLayer, NormalIncidenceMatchesTheLayersTheory) {
   for (const bool p_wave : {true, false}) {
     const Reflection r = reflect(0, 20, p_wave, TopBoundary::pml);
-    EXPECT_LT(r.measured, std::max(r.theory, 1e-3));
+    EXPECT_LT(r.measured, std::max(r.theory, 2e-4));
     EXPECT_LT(r.energy_error, 1e-10) << "the energy leaving is booked as dissipated";
   }
 }
 
 // Oblique incidence, where dashpots reflect (0.21 for P, 0.35 for S at 60 deg): the layer
-// takes nearly all of it, within its theory (3.3e-2 for P, 2.7e-3 for S) plus its floor.
+// takes nearly all of it, below its continuum theory (3.3e-2 for P, 2.7e-3 for S; measured
+// 5.0e-3 and 1.3e-3).
 TEST(AbsorbingLayer, ObliqueWavesAreAbsorbedBetterThanByDashpots) {
   for (const bool p_wave : {true, false}) {
     const Reflection layer = reflect(60, 20, p_wave, TopBoundary::pml);
     const Reflection dashpots = reflect(60, 20, p_wave, TopBoundary::absorbing);
-    EXPECT_LT(layer.measured, layer.theory + 5e-3);
+    EXPECT_LT(layer.measured, layer.theory);
     EXPECT_LT(layer.measured, 0.05 * dashpots.measured);
     EXPECT_LT(layer.energy_error, 1e-10);
   }

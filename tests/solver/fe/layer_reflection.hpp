@@ -1,9 +1,10 @@
 // The reflection coefficient of a block's top (traction, dashpots or the perfectly matched
 // layer) for a plane P or S wave packet at a given incidence angle and wavelength, measured
 // on the discrete scheme (docs/verification.md "Perfectly matched layer"):
-//   - the packet is an exact plane wave of the discrete (Q4, lumped mass, leapfrog) scheme,
-//     its polarisation and frequency the eigenpair of the stencil's symbol, under a Gaussian
-//     envelope in x2 (sigma two vertical wavelengths), going up from inside the block;
+//   - the packet is a sum of exact plane waves of the discrete (Q4, lumped mass, leapfrog)
+//     scheme, each with the polarisation and frequency of the eigenpair of the stencil's
+//     symbol, with Gaussian weights: a Gaussian envelope in x2 (sigma two vertical
+//     wavelengths), going up from inside the block;
 //   - the block is a few periods of the wave along x1, tall enough that nothing reaches row 0
 //     before the measurement;
 //   - R = sqrt(E_back / E_in), E the energy in the rows below the top's first row, at the
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <vector>
 
 namespace slipfront::fe::verification {
 
@@ -55,39 +57,44 @@ inline Reflection measure_reflection(const ReflectionCase& c) {
   }
   const double k2 = std::sqrt(std::max(k * k - k1 * k1, 0.0));
 
-  // The stencil's symbol at (k1, k2) and its eigenpair: omega^2 m and the polarisation.
+  // A plane wave of the discrete scheme at (k1, kv): the eigenpair of the stencil's symbol
+  // (omega^2 m and the polarisation) and the leapfrog's frequency.
   const MeshStencils stencils = build_stencils(q4_plane_strain_stiffness(material));
-  std::complex<double> sxx = 0, sxy = 0, syy = 0;
-  for (int dj = -1; dj <= 1; ++dj)
-    for (int di = -1; di <= 1; ++di) {
-      const Block2& b = stencils.interior.b[dj + 1][di + 1];
-      const std::complex<double> e = std::polar(1.0, (k1 * di + k2 * dj) * dx);
-      sxx += b.xx * e;
-      sxy += b.xy * e;
-      syy += b.yy * e;
-    }
-  const double a = sxx.real(), bxy = sxy.real(), d = syy.real();
-  const double mean = 0.5 * (a + d), half = std::sqrt(0.25 * (a - d) * (a - d) + bxy * bxy);
-  const double lambda = c.p_wave ? mean + half : mean - half;
-  double px = bxy, py = lambda - a; // eigenvector of [[a, b], [b, d]]
-  if (std::hypot(px, py) < 1e-14 * (std::abs(a) + std::abs(d))) {
-    px = lambda - d;
-    py = bxy;
-  }
-  if (std::hypot(px, py) < 1e-300) { // diagonal symbol: the axis of the eigenvalue
-    const bool x_axis = std::abs(lambda - a) < std::abs(lambda - d);
-    px = x_axis ? 1 : 0;
-    py = x_axis ? 0 : 1;
-  }
-  const double norm = std::hypot(px, py);
-  px /= norm;
-  py /= norm;
   const double m = material.density * dx * dx;
-  const double omega_semi = std::sqrt(lambda / m);
-
   ElasticBlock probe(material, nx, 3, dx, TopBoundary::traction, 0.0);
   const double dt = 0.5 * probe.stable_dt();
-  const double omega = 2.0 / dt * std::asin(0.5 * dt * omega_semi); // the leapfrog's
+  struct Mode {
+    double omega, px, py;
+  };
+  auto mode = [&](double kv) {
+    std::complex<double> sxx = 0, sxy = 0, syy = 0;
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const Block2& b = stencils.interior.b[dj + 1][di + 1];
+        const std::complex<double> e = std::polar(1.0, (k1 * di + kv * dj) * dx);
+        sxx += b.xx * e;
+        sxy += b.xy * e;
+        syy += b.yy * e;
+      }
+    const double a = sxx.real(), bxy = sxy.real(), d = syy.real();
+    const double mean = 0.5 * (a + d), half = std::sqrt(0.25 * (a - d) * (a - d) + bxy * bxy);
+    const double lambda = c.p_wave ? mean + half : mean - half;
+    double px = bxy, py = lambda - a; // eigenvector of [[a, b], [b, d]]
+    if (std::hypot(px, py) < 1e-14 * (std::abs(a) + std::abs(d))) {
+      px = lambda - d;
+      py = bxy;
+    }
+    if (std::hypot(px, py) < 1e-300) { // diagonal symbol: the axis of the eigenvalue
+      const bool x_axis = std::abs(lambda - a) < std::abs(lambda - d);
+      px = x_axis ? 1 : 0;
+      py = x_axis ? 0 : 1;
+    }
+    const double norm = std::hypot(px, py);
+    const double omega_semi = std::sqrt(lambda / m);
+    return Mode{2.0 / dt * std::asin(0.5 * dt * omega_semi), px / norm, py / norm};
+  };
+  const Mode centre = mode(k2);
+  const double omega = centre.omega;
 
   // Vertical group speeds of the modes that fit k1 at omega (continuum), for the timing.
   auto vertical_speed = [&](double speed) {
@@ -117,19 +124,45 @@ inline Reflection measure_reflection(const ReflectionCase& c) {
   block.set_skip_quiet(false);
   VectorField& u = block.displacement();
   VectorField& v = block.velocity();
+  // The packet as a sum of plane waves of the scheme, each with its own frequency and
+  // polarisation (vertical wavenumbers k2 + q dk, Gaussian weights: the envelope
+  // exp(-(y - y0)^2 / (2 sigma^2)) at t = 0); one frequency for all would start a downgoing
+  // wave of order 1 / (k2 sigma)^2 at oblique incidence, where omega is not linear in k2.
+  // The sum is periodic in y over 2 pi / dk = twice the block's height: no copy is inside.
   const double y0 = (entrance - D / dx) * dx;
+  const double dk = pi / (ny * dx);
+  const int modes = int(std::ceil(5.0 / (sigma * dk)));
+  std::vector<double> cx(ny, 0.0), sx(ny, 0.0), cy(ny, 0.0), sy(ny, 0.0);     // u at t = 0
+  std::vector<double> cxp(ny, 0.0), sxp(ny, 0.0), cyp(ny, 0.0), syp(ny, 0.0); // u at t = -dt
+  for (int q = -modes; q <= modes; ++q) {
+    const double kv = k2 + q * dk;
+    Mode w = mode(kv);
+    if (w.px * centre.px + w.py * centre.py < 0) { // one sign along the branch
+      w.px = -w.px;
+      w.py = -w.py;
+    }
+    const double weight = std::exp(-0.5 * (q * dk * sigma) * (q * dk * sigma));
+    for (int j = 0; j < ny; ++j) {
+      const double phase = kv * (j * dx - y0), back = phase + w.omega * dt;
+      cx[j] += weight * w.px * std::cos(phase);
+      sx[j] += weight * w.px * std::sin(phase);
+      cy[j] += weight * w.py * std::cos(phase);
+      sy[j] += weight * w.py * std::sin(phase);
+      cxp[j] += weight * w.px * std::cos(back);
+      sxp[j] += weight * w.px * std::sin(back);
+      cyp[j] += weight * w.py * std::cos(back);
+      syp[j] += weight * w.py * std::sin(back);
+    }
+  }
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const double x = i * dx, y = j * dx;
-      const double g = std::exp(-0.5 * (y - y0) * (y - y0) / (sigma * sigma));
-      const double back = y - y0 + v_in * dt; // the envelope one step earlier
-      const double g_prev = std::exp(-0.5 * back * back / (sigma * sigma));
-      const double phase = k1 * x + k2 * y;
-      u.x.at(i, j) = px * g * std::cos(phase);
-      u.y.at(i, j) = py * g * std::cos(phase);
-      // v^{-1/2} = (u^0 - u^{-1}) / dt with u^{-1} the wave at t = -dt.
-      v.x.at(i, j) = px * (g * std::cos(phase) - g_prev * std::cos(phase + omega * dt)) / dt;
-      v.y.at(i, j) = py * (g * std::cos(phase) - g_prev * std::cos(phase + omega * dt)) / dt;
+      // cos(k1 x + phase) = cos(k1 x) cos(phase) - sin(k1 x) sin(phase)
+      const double ck = std::cos(k1 * i * dx), sk = std::sin(k1 * i * dx);
+      u.x.at(i, j) = ck * cx[j] - sk * sx[j];
+      u.y.at(i, j) = ck * cy[j] - sk * sy[j];
+      // v^{-1/2} = (u^0 - u^{-1}) / dt with u^{-1} the packet at t = -dt.
+      v.x.at(i, j) = (u.x.at(i, j) - (ck * cxp[j] - sk * sxp[j])) / dt;
+      v.y.at(i, j) = (u.y.at(i, j) - (ck * cyp[j] - sk * syp[j])) / dt;
     }
   u.x.refresh_all_ghosts();
   u.y.refresh_all_ghosts();
