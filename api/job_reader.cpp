@@ -51,9 +51,18 @@ void read_geometry(ObjectReader& in, SimulationParams& params) {
   in.number("nodes_per_meter", params.geometry.nodes_per_meter, positive());
   if (method.supports.block_height) {
     in.choice("top_boundary", params.top,
-              {{"traction", TopBoundary::traction}, {"absorbing", TopBoundary::absorbing}});
+              {{"traction", TopBoundary::traction},
+               {"absorbing", TopBoundary::absorbing},
+               {"pml", TopBoundary::pml}});
+    in.integer("pml_elements", params.geometry.pml_elements, 2, 1000);
+    if (params.top != TopBoundary::pml) {
+      if (in.raw("pml_elements") != nullptr)
+        in.error("pml_elements", "is read only with top_boundary \"pml\"; remove the field");
+      in.drop_canonical("pml_elements"); // the hashes of jobs without a layer stay as they were
+    }
   } else {
     reject_for_method(in, "top_boundary", method, "the half-space has no top; remove the field");
+    reject_for_method(in, "pml_elements", method, "the half-space has no top; remove the field");
   }
 }
 

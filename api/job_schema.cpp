@@ -47,7 +47,13 @@ const std::map<std::string, Words>& fixed_words() {
        {"1/m", "n_d: interface nodes per metre; element size dx = 1/n_d. width · n_d (and "
                "height · n_d) must be whole numbers of elements, 3 to 1e7 along x1"}},
       {"/geometry/top_boundary",
-       {"", "the top keeps the remote traction, or absorbs waves (Lysmer–Kuhlemeyer dashpots)"}},
+       {"", "the top keeps the remote traction, or absorbs waves: `\"absorbing\"` "
+            "(Lysmer–Kuhlemeyer dashpots) or `\"pml\"` (a perfectly matched layer of "
+            "pml_elements rows above the height, ended by the dashpots; docs/physics.md "
+            "\"Perfectly matched layer\")"}},
+      {"/geometry/pml_elements",
+       {"", "top_boundary `\"pml\"` only: the layer's thickness in elements (its rows are "
+            "added above the height)"}},
       {"/lower/solid",
        {"", "what lies below the interface (docs/physics.md \"Two solids\"): the rigid plane of "
             "the paper, or a second elastic solid (FE: a block below the interface; "

@@ -11,9 +11,10 @@ namespace slipfront {
 
 struct MeshSize {
   int nx; // nodes along x1 (periodic: width / dx elements, as many nodes)
-  int ny; // nodes along x2: height / dx elements + 1
+  int ny; // nodes along x2: height / dx elements + 1 (+ the layer's rows, below)
   double dx;
-  double height;
+  double height;      // of the elastic region, without the layer
+  int layer_rows = 0; // top_boundary "pml": the rows of the layer above the height
 };
 
 // Height for "auto" of a block of P-wave speed c_p: the smallest h with 2 h / c_p >= duration
@@ -35,10 +36,16 @@ inline MeshSize block_mesh_size(const SimulationParams& p, double height) {
   return m;
 }
 
-// The upper block (x2 >= 0).
+// The upper block (x2 >= 0), with its perfectly matched layer above the height, if any.
 inline MeshSize mesh_size(const SimulationParams& p) {
   const Geometry& g = p.geometry;
-  return block_mesh_size(p, g.auto_height ? auto_height(p, p.material.p_wave_speed()) : g.height);
+  MeshSize m =
+      block_mesh_size(p, g.auto_height ? auto_height(p, p.material.p_wave_speed()) : g.height);
+  if (p.top == TopBoundary::pml) {
+    m.layer_rows = g.pml_elements;
+    m.ny += g.pml_elements;
+  }
+  return m;
 }
 
 // The lower block (x2 <= 0) of an elastic lower solid (params.lower).

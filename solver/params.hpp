@@ -43,12 +43,15 @@ struct Geometry {
   bool auto_height = false; // "height": "auto": smallest h free of top reflections (mesh_size.hpp)
   double x_min = -10.0;
   double nodes_per_meter = 40.0; // n_d; the element size is 1/n_d
+  int pml_elements = 20;         // top_boundary "pml": the layer's thickness in elements
 };
 
 // Top boundary condition of the perturbation field.
 enum class TopBoundary {
   traction,  // keeps the remote traction (free surface for the perturbation)
   absorbing, // Lysmer-Kuhlemeyer dashpots: sigma.n = -rho c v (normal c_p, tangential c_s)
+  pml,       // a perfectly matched layer of Geometry::pml_elements rows above the height,
+             // ended by the dashpots (solver/fe/absorbing_layer.hpp, docs/physics.md)
 };
 
 // Remote uniform load (the initial, uniform, stuck state).

@@ -29,8 +29,9 @@ void BlockStepRecord::reset(int rows, bool energy) {
 }
 
 ElasticBlock::ElasticBlock(const Material& material, int nx, int ny, double dx, TopBoundary far,
-                           double mesh_damping)
+                           double mesh_damping, int layer_rows)
     : material_(material), nx_(nx), ny_(ny), dx_(dx), far_(far) {
+  if (far == TopBoundary::pml) layer_ = AbsorbingLayer(material, nx, ny, layer_rows, dx);
   stencils_ = build_stencils(q4_plane_strain_stiffness(material));
   interior_symmetric_ = symmetric_form(stencils_.interior, interior_form_);
   damping_a_ = mesh_damping * dx_ / material.s_wave_speed();
@@ -141,9 +142,12 @@ void ElasticBlock::finish_trip() {
 ColumnRange ElasticBlock::sweep_columns(int j) const {
   // The interface row is always swept whole (its loads change everywhere), and so is the
   // absorbing far row once anything may reach it.
+  // The rows of the perfectly matched layer are swept whole once reached: their memory
+  // fields may hold values where u and v are zero.
   if (!skip_quiet_ || j == 0) return ColumnRange{0, nx_};
   const ColumnRange grown = grown_column_range(columns_, j, nx_);
   if (j == ny_ - 1 && absorbing_far() && !grown.empty()) return ColumnRange{0, nx_};
+  if (layer_.damps_row(j) && (!grown.empty() || j < active_rows_)) return ColumnRange{0, nx_};
   return grown;
 }
 
@@ -171,7 +175,7 @@ void ElasticBlock::row_step(BlockStepRecord& record, int r, std::vector<double>&
   const ColumnRange cols = sweep_columns(r);
   next_columns_[r] = cols;
   record.swept += cols.size();
-  const bool bulk = damping_a_ == 0 && !(r == ny_ - 1 && absorbing_far());
+  const bool bulk = damping_a_ == 0 && !(r == ny_ - 1 && absorbing_far()) && !layer_.damps_row(r);
   if (bulk) {
     bulk_row_step(record, r, cols, scratch);
     return;
@@ -183,7 +187,9 @@ void ElasticBlock::row_step(BlockStepRecord& record, int r, std::vector<double>&
 
 void ElasticBlock::velocity_row(BlockStepRecord& record, int j, ColumnRange cols,
                                 std::vector<double>& scratch) {
-  if (j == ny_ - 1 && absorbing_far()) {
+  if (layer_.damps_row(j)) {
+    layer_row(record, j, scratch);
+  } else if (j == ny_ - 1 && absorbing_far()) {
     if (damping_a_ > 0) damping_force_row(stencils_.top, j, kdx_far_.data(), kdy_far_.data());
     absorbing_far_row(record);
   } else { // a damped bulk row
@@ -249,6 +255,30 @@ void ElasticBlock::finish_displacement_row(int j) {
   }
   // Without skipping the ranges are not read: do not scan the row for its zeros.
   columns_[j] = skip_quiet_ ? trim_column_range(u_, v_, j, next_columns_[j]) : ColumnRange{0, nx_};
+  layer_.advance_memory_row(j, u_, v_);
+}
+
+void ElasticBlock::layer_row(BlockStepRecord& record, int j, std::vector<double>& scratch) {
+  const bool far = j == ny_ - 1;
+  const NodeStencil& stiffness = far ? stencils_.top : stencils_.interior;
+  double* extra_x = nullptr;
+  double* extra_y = nullptr;
+  if (damping_a_ > 0) { // the mesh damping's force a K v^{n-1/2} of the row
+    extra_x = scratch.data();
+    extra_y = scratch.data() + nx_;
+    damping_force_row(stiffness, j, extra_x, extra_y);
+  }
+  const double rho = material_.density;
+  const double dashpot_x = far ? rho * material_.s_wave_speed() * dx_ : 0.0;
+  const double dashpot_y = far ? rho * material_.p_wave_speed() * dx_ : 0.0;
+  const AbsorbingLayer::RowEnergy e = layer_.velocity_row(
+      j, stiffness, !far && interior_symmetric_ ? &interior_form_ : nullptr, u_, v_, extra_x,
+      extra_y, node_mass(j), dashpot_x, dashpot_y, record.compute_energy);
+  record.row_dissipated[j] = e.dissipated;
+  if (record.compute_energy) {
+    record.row_kinetic[j] = e.kinetic;
+    record.row_strain[j] = e.strain;
+  }
 }
 
 void ElasticBlock::update_displacement_row(int j) {

@@ -11,6 +11,7 @@
 // (begin_interface_row) and writes the row's velocities.
 #pragma once
 
+#include "solver/fe/absorbing_layer.hpp"
 #include "solver/fe/nodal_field.hpp"
 #include "solver/fe/quiet_columns.hpp"
 #include "solver/fe/stencil.hpp"
@@ -30,13 +31,18 @@ struct BlockStepRecord {
 
 class ElasticBlock {
 public:
-  // `far`: the boundary condition of row ny - 1; `mesh_damping`: zeta of params.fe.
+  // `far`: the boundary condition of row ny - 1; `mesh_damping`: zeta of params.fe;
+  // `layer_rows`: with far = pml, the rows of the perfectly matched layer at the top of the
+  // ny rows (the elastic region is the ny - layer_rows rows below).
   ElasticBlock(const Material& material, int nx, int ny, double dx, TopBoundary far,
-               double mesh_damping);
+               double mesh_damping, int layer_rows = 0);
 
   // The block's own stable step (damped if the damping is on), and the step the run takes.
   double stable_dt() const { return stable_dt_; }
-  void set_time_step(double dt) { dt_ = dt; }
+  void set_time_step(double dt) {
+    dt_ = dt;
+    layer_.set_time_step(dt);
+  }
 
   // Row step r >= 1 of a step (solver/fe/level_pipeline.hpp): v of row r from u of rows
   // r-1, r, r+1 (if r < ny), then u of row r-1 from its new v. Nothing beyond r = ny.
@@ -56,7 +62,8 @@ public:
   int nx() const { return nx_; }
   int ny() const { return ny_; }
   double dx() const { return dx_; }
-  double height() const { return (ny_ - 1) * dx_; }
+  double height() const { return (ny_ - 1 - layer_.rows()) * dx_; } // without the layer
+  const AbsorbingLayer& layer() const { return layer_; }
   const Material& material() const { return material_; }
   TopBoundary far_boundary() const { return far_; }
   bool damped() const { return damping_a_ > 0; }
@@ -96,7 +103,9 @@ private:
   // Row j's kinetic and strain energy from its per-node terms, summed in node order.
   void store_row_energy(BlockStepRecord& record, int j, const double* kin, const double* str,
                         int count) const;
-  bool absorbing_far() const { return far_ == TopBoundary::absorbing; }
+  // Dashpots on the far row: the absorbing top, and the end of the perfectly matched layer.
+  bool absorbing_far() const { return far_ == TopBoundary::absorbing || far_ == TopBoundary::pml; }
+  void layer_row(BlockStepRecord& record, int j, std::vector<double>& scratch);
 
   Material material_;
   int nx_, ny_;
@@ -118,6 +127,7 @@ private:
   bool skip_quiet_ = true;
   std::vector<ColumnRange> columns_;      // per row: u and v are exact zeros outside
   std::vector<ColumnRange> next_columns_; // per row: the columns its current step sweeps
+  AbsorbingLayer layer_;                  // rows 0 without the perfectly matched layer
 };
 
 } // namespace slipfront::fe

@@ -5,6 +5,11 @@
 namespace slipfront::fe {
 
 ElementStiffness q4_plane_strain_stiffness(const Material& material) {
+  return q4_plane_strain_stiffness_part(material, StrainPart::both);
+}
+
+ElementStiffness q4_plane_strain_stiffness_part(const Material& material, StrainPart part) {
+  const bool with_d1 = part != StrainPart::along_x2, with_d2 = part != StrainPart::along_x1;
   // Plane-strain elasticity matrix D (Voigt order xx, yy, xy with engineering shear).
   const double lambda = material.lame_lambda();
   const double mu = material.shear_modulus();
@@ -21,8 +26,8 @@ ElementStiffness q4_plane_strain_stiffness(const Material& material) {
     for (double eta : {-g, g}) {
       double B[3][8] = {};
       for (int a = 0; a < 4; ++a) {
-        const double dN_dx = 0.25 * xi_a[a] * (1 + eta_a[a] * eta);
-        const double dN_dy = 0.25 * eta_a[a] * (1 + xi_a[a] * xi);
+        const double dN_dx = with_d1 ? 0.25 * xi_a[a] * (1 + eta_a[a] * eta) : 0.0;
+        const double dN_dy = with_d2 ? 0.25 * eta_a[a] * (1 + xi_a[a] * xi) : 0.0;
         B[0][2 * a] = dN_dx;     // eps_xx
         B[1][2 * a + 1] = dN_dy; // eps_yy
         B[2][2 * a] = dN_dy;     // gamma_xy

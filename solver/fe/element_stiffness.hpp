@@ -23,4 +23,10 @@ inline constexpr std::array<std::array<int, 2>, 4> kQ4NodeOffset = {
 
 ElementStiffness q4_plane_strain_stiffness(const Material& material);
 
+// One directional part of it, K_aa = ∫ B_a^T D B_a, where B_a keeps only the derivatives
+// along x_a (the stretched-coordinate split of the perfectly matched layer,
+// solver/fe/absorbing_layer.hpp): along_x1 is K_11, along_x2 is K_22; both is K.
+enum class StrainPart { both, along_x1, along_x2 };
+ElementStiffness q4_plane_strain_stiffness_part(const Material& material, StrainPart part);
+
 } // namespace slipfront::fe

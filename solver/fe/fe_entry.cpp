@@ -1,5 +1,6 @@
 // The finite-element method's entry in the registry of methods (solver/methods.hpp): the
 // paper's explicit Q4 elements of a block of height h, on the rigid plane or on a lower block.
+#include "solver/fe/absorbing_layer.hpp"
 #include "solver/fe/finite_element_method.hpp"
 #include "solver/mesh_size.hpp"
 
@@ -14,11 +15,27 @@ namespace {
 constexpr const char* discretisation = "Q4 2x2 Gauss, lumped mass, central differences";
 
 const char* boundary_name(TopBoundary boundary) {
-  return boundary == TopBoundary::absorbing ? "absorbing" : "traction";
+  switch (boundary) {
+  case TopBoundary::absorbing:
+    return "absorbing";
+  case TopBoundary::pml:
+    return "pml";
+  case TopBoundary::traction:
+    break;
+  }
+  return "traction";
 }
 
 std::string describe(const SimulationParams& params) {
   std::string text = std::string(discretisation) + "; top boundary: " + boundary_name(params.top);
+  if (params.top == TopBoundary::pml) {
+    char layer[200];
+    std::snprintf(layer, sizeof layer,
+                  " (a perfectly matched layer of %d elements above the height, quadratic "
+                  "profile, design reflection %g, ended by dashpots)",
+                  params.geometry.pml_elements, kLayerDesignReflection);
+    text += layer;
+  }
   if (params.lower.elastic())
     text += std::string("; lower solid: elastic block (split-node interface), bottom "
                         "boundary: ") +
@@ -37,12 +54,15 @@ std::string mesh_summary(const SimulationParams& params) {
   const Geometry& g = params.geometry;
   const double height = mesh_size(params).height;
   char mesh[200];
+  const int layer_rows = mesh_size(params).layer_rows;
   std::snprintf(mesh, sizeof mesh, "%ld x %ld nodes, dx = %g m, height = %g m%s",
                 std::lround(g.width * g.nodes_per_meter),
-                std::lround(height * g.nodes_per_meter) + 1, 1.0 / g.nodes_per_meter, height,
-                g.auto_height ? " (auto)" : "");
+                std::lround(height * g.nodes_per_meter) + 1 + layer_rows, 1.0 / g.nodes_per_meter,
+                height, g.auto_height ? " (auto)" : "");
   std::ostringstream out;
   out << "mesh: " << mesh << '\n';
+  if (layer_rows > 0)
+    out << "perfectly matched layer: " << layer_rows << " rows above the height\n";
   if (params.lower.elastic()) {
     const MeshSize m = lower_mesh_size(params);
     out << "lower block: " << m.nx << " x " << m.ny << " nodes, height = " << m.height << " m"

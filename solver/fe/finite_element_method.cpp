@@ -155,13 +155,16 @@ std::vector<std::string> reflection_warning(const ElasticBlock& block, const cha
   const double c_p = block.material().p_wave_speed();
   const double reflection_time = 2.0 * block.height() / c_p;
   if (!(simulated_time > reflection_time)) return {};
-  const bool absorbing = block.far_boundary() == TopBoundary::absorbing;
+  const bool absorbing = block.far_boundary() != TopBoundary::traction;
+  const char* absorber = block.far_boundary() == TopBoundary::pml
+                             ? " (the perfectly matched layer at the "
+                             : " (the absorbing ";
   char msg[320];
   std::snprintf(
       msg, sizeof msg,
       "h = %.4g m is small for this run: a P wave reflected by the %s reaches the interface "
       "at t = 2h/c_p = %.4g s, before the run ended at %.4g s%s%s%s",
-      block.height(), where, reflection_time, simulated_time, absorbing ? " (the absorbing " : "",
+      block.height(), where, reflection_time, simulated_time, absorbing ? absorber : "",
       absorbing ? boundary : "", absorbing ? " weakens, but does not remove, the reflection)" : "");
   return {msg};
 }

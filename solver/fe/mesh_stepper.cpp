@@ -11,7 +11,8 @@ namespace {
 
 ElasticBlock upper_block(const SimulationParams& params) {
   const MeshSize m = mesh_size(params);
-  return ElasticBlock(params.material, m.nx, m.ny, m.dx, params.top, params.fe.mesh_damping);
+  return ElasticBlock(params.material, m.nx, m.ny, m.dx, params.top, params.fe.mesh_damping,
+                      m.layer_rows);
 }
 
 // The lower solid's block in its mirrored frame: the far row is the bottom.

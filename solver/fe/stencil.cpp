@@ -226,6 +226,64 @@ void stencil_velocity_update(const NodeStencil& stencil, const double* __restric
   });
 }
 
+void stencil_force_row(const NodeStencil& stencil, const double* __restrict uxm,
+                       const double* __restrict uym, const double* __restrict ux0,
+                       const double* __restrict uy0, const double* __restrict uxp,
+                       const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                       int nx) {
+  const StencilCoefficients k(stencil);
+  for (int i = 0; i < nx; ++i) {
+    double kx = 0, ky = 0;
+    for (int c = 0; c < 3; ++c) { // columns i-1, i, i+1 of the rows below, same, above
+      kx += k.xx[0][c] * uxm[i + c - 1] + k.xy[0][c] * uym[i + c - 1] +
+            k.xx[1][c] * ux0[i + c - 1] + k.xy[1][c] * uy0[i + c - 1] +
+            k.xx[2][c] * uxp[i + c - 1] + k.xy[2][c] * uyp[i + c - 1];
+      ky += k.yx[0][c] * uxm[i + c - 1] + k.yy[0][c] * uym[i + c - 1] +
+            k.yx[1][c] * ux0[i + c - 1] + k.yy[1][c] * uy0[i + c - 1] +
+            k.yx[2][c] * uxp[i + c - 1] + k.yy[2][c] * uyp[i + c - 1];
+    }
+    fx[i] = kx;
+    fy[i] = ky;
+  }
+}
+
+void symmetric_force_row(const SymmetricStencil& k, const double* __restrict uxm,
+                         const double* __restrict uym, const double* __restrict ux0,
+                         const double* __restrict uy0, const double* __restrict uxp,
+                         const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                         int nx) {
+  const SymmetricStencil c = k;
+  for (int i = 0; i < nx; ++i) {
+    const NodeForce f = symmetric_node_force(c, uxm, uym, ux0, uy0, uxp, uyp, i);
+    fx[i] = f.x;
+    fy[i] = f.y;
+  }
+}
+
+bool has_no_cross_terms(const NodeStencil& stencil) {
+  for (const auto& row : stencil.b)
+    for (const Block2& blk : row)
+      if (blk.xy != 0 || blk.yx != 0) return false;
+  return true;
+}
+
+void uncoupled_force_row(const NodeStencil& stencil, const double* __restrict uxm,
+                         const double* __restrict uym, const double* __restrict ux0,
+                         const double* __restrict uy0, const double* __restrict uxp,
+                         const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                         int nx) {
+  const StencilCoefficients k(stencil);
+  for (int i = 0; i < nx; ++i) {
+    double kx = 0, ky = 0;
+    for (int c = 0; c < 3; ++c) {
+      kx += k.xx[0][c] * uxm[i + c - 1] + k.xx[1][c] * ux0[i + c - 1] + k.xx[2][c] * uxp[i + c - 1];
+      ky += k.yy[0][c] * uym[i + c - 1] + k.yy[1][c] * uy0[i + c - 1] + k.yy[2][c] * uyp[i + c - 1];
+    }
+    fx[i] = kx;
+    fy[i] = ky;
+  }
+}
+
 void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku) {
   const int nx = u.x.nx(), ny = u.x.ny();
   const std::vector<double> zero(nx + 2, 0.0);

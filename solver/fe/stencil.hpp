@@ -121,6 +121,29 @@ void stencil_damped_velocity_update(
     double mass, double* __restrict dissipated, double* __restrict kinetic = nullptr,
     double* __restrict strain = nullptr);
 
+// (K u) of one row into fx, fy: for_each_node_force written so that it vectorises.
+void stencil_force_row(const NodeStencil& stencil, const double* __restrict uxm,
+                       const double* __restrict uym, const double* __restrict ux0,
+                       const double* __restrict uy0, const double* __restrict uxp,
+                       const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                       int nx);
+
+// The same with the symmetric form given.
+void symmetric_force_row(const SymmetricStencil& k, const double* __restrict uxm,
+                         const double* __restrict uym, const double* __restrict ux0,
+                         const double* __restrict uy0, const double* __restrict uxp,
+                         const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                         int nx);
+
+// The same for a stencil without xy and yx terms (the directional parts K_11 and K_22 of the
+// perfectly matched layer: has_no_cross_terms), half the arithmetic.
+bool has_no_cross_terms(const NodeStencil& stencil);
+void uncoupled_force_row(const NodeStencil& stencil, const double* __restrict uxm,
+                         const double* __restrict uym, const double* __restrict ux0,
+                         const double* __restrict uy0, const double* __restrict uxp,
+                         const double* __restrict uyp, double* __restrict fx, double* __restrict fy,
+                         int nx);
+
 // K u over the whole mesh (not the fast path: used by the stable time step estimate and
 // by tests). u's ghosts must be current; result has the layout of u (ghosts not set).
 void apply_stiffness(const MeshStencils& stencils, const VectorField& u, VectorField& Ku);

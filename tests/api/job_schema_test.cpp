@@ -60,6 +60,7 @@ nlohmann::json context_for(const JobField& field) {
   const std::string& p = field.pointer;
   const std::string name = p.substr(p.rfind('/') + 1);
   choose_for(job, p);
+  if (p == "/geometry/pml_elements") job["geometry"]["top_boundary"] = "pml";
   if (name == "p_wave_speed" || name == "s_wave_speed") { // of `material` or `lower`
     const Material paper;                                 // the default material in its other form
     const std::string section = p.substr(1, p.rfind('/') - 1);
@@ -121,9 +122,10 @@ TEST(JobSchema, MethodSpecificFieldsAreMarked) {
     if (!f.read_by("spectral_bi")) fe_only.insert(f.pointer);
     if (!f.read_by("fe")) bi_only.insert(f.pointer);
   }
-  EXPECT_EQ(fe_only, (std::set<std::string>{"/fe/mesh_damping", "/geometry/height",
-                                            "/geometry/top_boundary", "/lower/bottom_boundary",
-                                            "/lower/height", "/time/safety_factor"}));
+  EXPECT_EQ(fe_only,
+            (std::set<std::string>{"/fe/mesh_damping", "/geometry/height", "/geometry/pml_elements",
+                                   "/geometry/top_boundary", "/lower/bottom_boundary",
+                                   "/lower/height", "/time/safety_factor"}));
   EXPECT_EQ(bi_only,
             (std::set<std::string>{"/spectral_bi/corrector_passes", "/spectral_bi/memory_periods",
                                    "/spectral_bi/time_step_factor"}));

@@ -397,6 +397,25 @@ TEST(JobValidationMethod, FieldsTheMethodDoesNotUseAreErrorsNamingTheField) {
                       "only with \"method\": \"fe\"");
 }
 
+// The perfectly matched layer's thickness is read with its top only, in [2, 1000] elements;
+// the half-space has no top. A job without the layer keeps its canonical form (and hashes).
+TEST(JobValidationMethod, PmlElementsAreReadWithThePmlTopOnly) {
+  expect_single_error({{"geometry", {{"pml_elements", 10}}}}, "/geometry/pml_elements",
+                      "only with top_boundary \"pml\"");
+  expect_single_error({{"geometry", {{"top_boundary", "pml"}, {"pml_elements", 1}}}},
+                      "/geometry/pml_elements", "[2, 1000]");
+  expect_single_error({{"method", "spectral_bi"}, {"geometry", {{"pml_elements", 10}}}},
+                      "/geometry/pml_elements", "not used by method \"spectral_bi\"");
+  const ParseResult ok = parse_job({{"geometry", {{"top_boundary", "pml"}, {"pml_elements", 12}}}});
+  ASSERT_TRUE(ok.ok());
+  EXPECT_EQ(ok.spec->params.top, slipfront::TopBoundary::pml);
+  EXPECT_EQ(ok.spec->params.geometry.pml_elements, 12);
+  EXPECT_EQ(ok.spec->canonical["geometry"]["pml_elements"], 12);
+  const ParseResult plain = parse_job({{"geometry", {{"top_boundary", "absorbing"}}}});
+  ASSERT_TRUE(plain.ok());
+  EXPECT_FALSE(plain.spec->canonical["geometry"].contains("pml_elements"));
+}
+
 TEST(JobValidationMethod, FeMeshDampingIsRangeChecked) {
   const ParseResult ok = parse_job({{"fe", {{"mesh_damping", 0.5}}}});
   ASSERT_TRUE(ok.ok());

@@ -60,11 +60,14 @@ void expect_skipping_changes_no_bit(const Variant& variant) {
   EXPECT_GT(skipping.energy().kinetic, 0.0); // the rupture is running
   // The waves have not crossed the 40 m period in 600 steps (c_p dt / dx < 1).
   EXPECT_GT(narrow_rows, 0);
-  verification::measure(
-      "quiet skipping (n_d=10, damping %g, top %s, h %g m, 600 steps): "
-      "row-steps partly swept = %ld, nodes swept = %.3f of all",
-      variant.mesh_damping, variant.top == TopBoundary::absorbing ? "absorbing" : "traction",
-      variant.height, narrow_rows, double(swept_nodes) / (600.0 * nx * skipping.ny()));
+  verification::measure("quiet skipping (n_d=10, damping %g, top %s, h %g m, 600 steps): "
+                        "row-steps partly swept = %ld, nodes swept = %.3f of all",
+                        variant.mesh_damping,
+                        variant.top == TopBoundary::absorbing ? "absorbing"
+                        : variant.top == TopBoundary::pml     ? "pml"
+                                                              : "traction",
+                        variant.height, narrow_rows,
+                        double(swept_nodes) / (600.0 * nx * skipping.ny()));
 }
 
 TEST(QuietSkipping, ChangesNoBitOnThePaperScene) {
@@ -74,6 +77,13 @@ TEST(QuietSkipping, ChangesNoBitOnThePaperScene) {
 TEST(QuietSkipping, ChangesNoBitWithMeshDampingAndAbsorbingTop) {
   // A low block: the waves reach the absorbing top within the run.
   expect_skipping_changes_no_bit({0.1, TopBoundary::absorbing, 3.0});
+}
+
+// The perfectly matched layer (20 rows above h = 2 m): its rows hold memory fields beside u
+// and v; with the mesh damping too.
+TEST(QuietSkipping, ChangesNoBitWithThePerfectlyMatchedLayer) {
+  expect_skipping_changes_no_bit({0.0, TopBoundary::pml, 2.0});
+  expect_skipping_changes_no_bit({0.1, TopBoundary::pml, 2.0});
 }
 
 TEST(QuietSkipping, ChangesNoBitWithATractionTopTheWavesReach) {
