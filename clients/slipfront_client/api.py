@@ -198,9 +198,15 @@ class Api:
 
     # Keep, annotate, share (docs/server.md): the owner's changes after submission.
 
-    def annotate(self, job_id, tags=None, note=None):
-        """PATCH /jobs/{id}: new tags (a list) and/or a new note; the job as it is now."""
-        body = {k: v for k, v in (("tags", tags), ("note", note)) if v is not None}
+    def annotate(self, job_id, tags=None, note=None, add=None, remove=None):
+        """PATCH /jobs/{id}: `tags` replaces every tag (a list), `add` and `remove` change
+        some (not with `tags`), and/or a new note; the job as it is now."""
+        body = {k: v for k, v in (("tags", tags), ("tags_add", add), ("tags_remove", remove),
+                                  ("note", note)) if v is not None}
+        return self.patch_job(job_id, body)
+
+    def patch_job(self, job_id, body):
+        """PATCH /jobs/{id} with `body` ({"tags"} or {"tags_add", "tags_remove"}, "note")."""
         return self.request("PATCH", f"{API}/jobs/{job_id}", json_body=body,
                             idempotent=True).json()
 

@@ -4,6 +4,7 @@
 // (`WHERE status = ...`) so the transitions of job.hpp hold even when a cancel races a worker.
 #pragma once
 
+#include "api/run_annotations.hpp"
 #include "server/core/job.hpp"
 #include "server/core/job_filter.hpp"
 #include "server/core/run_record.hpp"
@@ -95,8 +96,11 @@ public:
 
   // What an owner keeps with a run after submission (job_store_keep.cpp, docs/server.md
   // "Keep, annotate, share"). Each returns false for an unknown job.
-  bool annotate(const std::string& id, const std::optional<std::vector<std::string>>& tags,
-                const std::optional<std::string>& note);
+  // The tags are changed from those stored, under the write lock: two changes at once both
+  // hold. Returns nullopt for an unknown job, else what the change gave (an error: nothing
+  // changed).
+  std::optional<api::TagsAfter> annotate(const std::string& id, const api::TagChange& tags,
+                                         const std::optional<std::string>& note);
   // archived_at "" restores the run (listed again).
   bool set_archived(const std::string& id, const std::string& archived_at);
   struct Removal {

@@ -10,9 +10,7 @@ const char* keep_paths = R"json({
   "/api/v1/jobs/{id}": {
     "patch": {"summary": "Change a run's tags and note after submission (its owner; 422 naming the field, nothing changed)", "security": [{"bearer": []}],
       "parameters": [{"$ref": "#/components/parameters/id"}],
-      "requestBody": {"required": true, "content": {"application/json": {"schema": {"type": "object", "additionalProperties": false, "minProperties": 1,
-        "properties": {"tags": {"type": "array", "maxItems": 32, "items": {"type": "string", "minLength": 1, "maxLength": 64}, "description": "replace the tags (no control characters)"},
-          "note": {"type": "string", "maxLength": 4096, "description": "free text; newlines and tabs allowed, other control characters not; \"\" clears it"}}}}}},
+      "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Annotations"}}}},
       "responses": {"200": {"$ref": "#/components/responses/Job"}, "400": {"$ref": "#/components/responses/Problem"},
         "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
         "404": {"$ref": "#/components/responses/Problem"}, "422": {"$ref": "#/components/responses/Problem"}}},
@@ -69,9 +67,18 @@ const char* keep_job_fields = R"json({
   "archived_at": {"type": "string", "nullable": true, "description": "when it was archived; null = listed"},
   "imported_from": {"type": "object", "nullable": true, "description": "an imported run: {server: {host, code_version}, id, submitted_by, exported_at}"}
 })json";
+
+const char* annotations_schema =
+    R"json({"type": "object", "additionalProperties": false, "minProperties": 1,
+  "description": "tags replaced (tags) or added and removed (tags_add, tags_remove; not with tags), and/or the note",
+  "properties": {"tags": {"type": "array", "maxItems": 32, "items": {"type": "string", "minLength": 1, "maxLength": 64}, "description": "replace every tag (no control characters)"},
+    "tags_add": {"type": "array", "maxItems": 32, "items": {"type": "string", "minLength": 1, "maxLength": 64}, "description": "tags added to those kept (each once; at most 32 in all)"},
+    "tags_remove": {"type": "array", "maxItems": 32, "items": {"type": "string", "minLength": 1, "maxLength": 64}, "description": "tags removed (one not there is no error)"},
+    "note": {"type": "string", "maxLength": 4096, "description": "free text; newlines and tabs allowed, other control characters not; \"\" clears it"}}})json";
 } // namespace
 
 void add_keep_share_paths(nlohmann::json& doc) {
+  doc["components"]["schemas"]["Annotations"] = nlohmann::json::parse(annotations_schema);
   const nlohmann::json paths = nlohmann::json::parse(keep_paths);
   for (const auto& [path, operations] : paths.items())
     doc["paths"][path].update(operations);

@@ -234,7 +234,7 @@ RunToImport read_run(const json& entry, const std::map<std::string, std::string_
   auto annotations = api::parse_annotations(kept);
   if (!annotations.ok())
     in.refuse(annotations.errors.front().pointer.substr(1), annotations.errors.front().reason);
-  job.tags = annotations.annotations.tags.value_or(std::vector<std::string>());
+  job.tags = annotations.annotations.tags.replace.value_or(std::vector<std::string>());
   job.note = annotations.annotations.note.value_or("");
   job.created_at = in.time("created_at", true);
   job.started_at = in.time("started_at", false);

@@ -77,10 +77,12 @@ struct KeepResult {
     forbidden, // a token file is configured and the run is another user's
     not_final, // delete: the run is queued or running (cancel it first)
     in_study,  // delete: a study holds the run (study_id); archive it instead
+    invalid,   // the change cannot be made (error: its field and reason); nothing changed
   } kind = Kind::not_found;
   std::optional<Job> job; // done: the run as it is now (delete: as it was)
   std::string study_id;
   bool result_deleted = false; // delete: its result file went with it (no other run shares it)
+  std::optional<api::FieldError> error; // invalid
 };
 
 // A finished run read from an archive and checked (server/http/run_archive.hpp), to be stored
@@ -164,8 +166,7 @@ public:
   std::optional<nlohmann::json> front(const std::string& id) { return store_.front(id); }
 
   // Owner-only changes after submission (docs/server.md "Keep, annotate, share").
-  KeepResult annotate(const std::string& id, const std::string& user,
-                      const std::optional<std::vector<std::string>>& tags,
+  KeepResult annotate(const std::string& id, const std::string& user, const api::TagChange& tags,
                       const std::optional<std::string>& note);
   KeepResult set_archived(const std::string& id, const std::string& user, bool archived);
   // Deletes a finished run; its result file too once no other run (a cache hit) refers to it.

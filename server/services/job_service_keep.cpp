@@ -14,23 +14,27 @@ using Kind = KeepResult::Kind;
 } // namespace
 
 KeepResult JobService::annotate(const std::string& id, const std::string& user,
-                                const std::optional<std::vector<std::string>>& tags,
+                                const api::TagChange& tags,
                                 const std::optional<std::string>& note) {
   auto job = store_.get(id);
   if (!job) return {};
-  if (options_.auth_enabled && job->submitted_by != user) return {Kind::forbidden, job, {}, false};
-  if (!store_.annotate(id, tags, note)) return {};
-  return {Kind::done, get(id), {}, false};
+  if (options_.auth_enabled && job->submitted_by != user)
+    return {Kind::forbidden, job, {}, false, {}};
+  const auto after = store_.annotate(id, tags, note);
+  if (!after) return {};
+  if (after->error) return {Kind::invalid, job, {}, false, after->error};
+  return {Kind::done, get(id), {}, false, {}};
 }
 
 KeepResult JobService::set_archived(const std::string& id, const std::string& user, bool archived) {
   auto job = store_.get(id);
   if (!job) return {};
-  if (options_.auth_enabled && job->submitted_by != user) return {Kind::forbidden, job, {}, false};
+  if (options_.auth_enabled && job->submitted_by != user)
+    return {Kind::forbidden, job, {}, false, {}};
   // Archiving an archived run keeps its first archive time.
-  if (archived != job->archived_at.empty()) return {Kind::done, get(id), {}, false};
+  if (archived != job->archived_at.empty()) return {Kind::done, get(id), {}, false, {}};
   if (!store_.set_archived(id, archived ? now_iso8601() : std::string())) return {};
-  return {Kind::done, get(id), {}, false};
+  return {Kind::done, get(id), {}, false, {}};
 }
 
 KeepResult JobService::remove(const std::string& id, const std::string& user) {
@@ -39,16 +43,17 @@ KeepResult JobService::remove(const std::string& id, const std::string& user) {
   std::lock_guard lock(submit_mutex_);
   auto job = store_.get(id);
   if (!job) return {};
-  if (options_.auth_enabled && job->submitted_by != user) return {Kind::forbidden, job, {}, false};
+  if (options_.auth_enabled && job->submitted_by != user)
+    return {Kind::forbidden, job, {}, false, {}};
   const JobStore::Removal removal = store_.remove(id);
   using Removed = JobStore::Removal::Kind;
   switch (removal.kind) {
   case Removed::not_found:
     return {};
   case Removed::not_final:
-    return {Kind::not_final, job, {}, false};
+    return {Kind::not_final, job, {}, false, {}};
   case Removed::in_study:
-    return {Kind::in_study, job, removal.study_id, false};
+    return {Kind::in_study, job, removal.study_id, false, {}};
   case Removed::removed:
     break;
   }
@@ -70,7 +75,7 @@ KeepResult JobService::remove(const std::string& id, const std::string& user) {
   log_info("job " + id + " deleted by " + user +
            (result_deleted ? " with its result file"
                            : (job->result.path.empty() ? "" : "; its result file is shared")));
-  return {Kind::done, job, {}, result_deleted};
+  return {Kind::done, job, {}, result_deleted, {}};
 }
 
 } // namespace slipfront::server

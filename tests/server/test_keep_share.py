@@ -115,6 +115,58 @@ class KeepAndShare(unittest.TestCase):
         self.assertEqual(r.json()["tags"], ["fig-2", "keep"])
         self.assertEqual(r.json()["note"], "")
 
+    def test_tags_added_and_removed_keep_the_others(self):
+        job = self.run_job(tiny("tags-add-remove", tags=["kammer2014", "L=5e-5", "nd=40"]))
+        r = self.patch(job["id"], {"tags_add": ["fig-2", "nd=40"], "tags_remove": ["L=5e-5"]})
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(r.json()["tags"], ["kammer2014", "nd=40", "fig-2"])
+        got = self.server.get(f"{JOBS}/{job['id']}").json()
+        self.assertEqual(got["tags"], ["kammer2014", "nd=40", "fig-2"])
+        # Removing a tag the run does not have, or adding one it has: no error, no change.
+        r = self.patch(job["id"], {"tags_remove": ["never-there"], "tags_add": ["fig-2"]})
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(r.json()["tags"], ["kammer2014", "nd=40", "fig-2"])
+        # Replacing every tag stays possible, with "tags" alone.
+        r = self.patch(job["id"], {"tags": ["only"]})
+        self.assertEqual(r.json()["tags"], ["only"])
+        self.assertEqual(self.server.get(JOBS, params={"tag": "only"}).json()["jobs"][0]["id"],
+                         job["id"])
+
+    def test_tag_changes_at_once_all_hold(self):
+        """Eight clients each add three tags at the same time: the store changes the tags it
+        holds under its write lock, so none of the 24 is lost to another's change."""
+        import concurrent.futures
+        job = self.run_job(tiny("tags-at-once", tags=["base"]))
+
+        def add(i):
+            return self.patch(job["id"], {"tags_add": [f"c{i}-{k}" for k in range(3)]}).status_code
+
+        with concurrent.futures.ThreadPoolExecutor(8) as pool:
+            codes = list(pool.map(add, range(8)))
+        self.assertEqual(codes, [200] * 8)
+        tags = self.server.get(f"{JOBS}/{job['id']}").json()["tags"]
+        self.assertEqual(sorted(tags), sorted(["base"] + [f"c{i}-{k}" for i in range(8)
+                                                         for k in range(3)]))
+
+    def test_invalid_tag_changes_name_the_field_and_change_nothing(self):
+        job = self.run_job(tiny("refused-tag-changes", tags=["kept"]))
+        cases = [
+            ({"tags": ["a"], "tags_add": ["b"]}, "/tags_add"),
+            ({"tags": ["a"], "tags_remove": ["kept"]}, "/tags_remove"),
+            ({"tags_add": ["x"], "tags_remove": ["y", "x"]}, "/tags_remove/1"),
+            ({"tags_add": ["ok", "x" * 65]}, "/tags_add/1"),
+            ({"tags_remove": "kept"}, "/tags_remove"),
+            ({"tags_add": [f"t{i}" for i in range(32)]}, "/tags_add"),  # 33 with "kept"
+        ]
+        for body, pointer in cases:
+            r = self.patch(job["id"], body)
+            self.assertEqual(r.status_code, 422, f"{body}: {r.text}")
+            self.assertIn(pointer, [e["pointer"] for e in r.json()["errors"]], r.text)
+            self.assertEqual(self.server.get(f"{JOBS}/{job['id']}").json()["tags"], ["kept"],
+                             f"{body} changed the tags")
+        r = self.patch(job["id"], {"tags_add": [f"t{i}" for i in range(32)]})
+        self.assertIn("33 tags", r.text)
+
     def test_invalid_changes_name_the_field_and_change_nothing(self):
         job = self.run_job(tiny("refused-changes", tags=["kept"]))
         cases = [

@@ -65,10 +65,27 @@ class WebKeep(BrowserCase):
         tags.clear()
         tags.send_keys("x" * 65)
         self.css("#keep-save")[0].click()
-        self.wait(lambda d: "/tags/0" in self.css("#keep-message")[0].text, message="the refusal")
+        self.wait(lambda d: "/tags_add/0" in self.css("#keep-message")[0].text,
+                  message="the refusal")
         self.assertEqual(self.job(job["id"])["tags"], ["fig-2", "keep"])
         self.assert_no_console_errors("the run page", expected=("422",))
         self.shot("job-keep")
+
+    def test_a_tag_added_elsewhere_meanwhile_stays(self):
+        """The page sends the tags added and removed, not the whole list: a tag another
+        client added while the page was open is kept when the page saves."""
+        job = self.run_job("web tags meanwhile")
+        self.open_job(job["id"])
+        r = self.server.session.patch(self.server.url(f"/api/v1/jobs/{job['id']}"),
+                                      json={"tags_add": ["from-cli"]}, timeout=10)
+        self.assertEqual(r.status_code, 200, r.text)
+        tags = self.css("#keep-tags")[0]
+        tags.clear()
+        tags.send_keys("fig-3")  # "draft" removed, "fig-3" added
+        self.css("#keep-save")[0].click()
+        self.wait(lambda d: self.job(job["id"])["tags"] == ["from-cli", "fig-3"],
+                  message="draft removed, fig-3 added, from-cli kept")
+        self.assert_no_console_errors("the run page")
 
     def test_archive_restore_and_delete(self):
         job = self.run_job("web archive")

@@ -9,6 +9,15 @@ export function parseTags(text) {
   return text.split(',').map((t) => t.trim()).filter(Boolean);
 }
 
+// The PATCH members that turn the tags shown when the page was drawn into those typed: only
+// the tags added and removed, so a tag another client added meanwhile stays.
+export function tagChange(shown, typed) {
+  return {
+    tags_add: typed.filter((t) => !shown.includes(t)),
+    tags_remove: shown.filter((t) => !typed.includes(t)),
+  };
+}
+
 // Fills `card` for `job`; onChange(job) after a change the server took, onDeleted() after a delete.
 export function keepCard(card, job, onChange, onDeleted) {
   const tags = h('input', { id: 'keep-tags', type: 'text', size: 40, value: (job.tags || []).join(', '), placeholder: 'comma-separated, e.g. fig-2, keep' });
@@ -27,7 +36,7 @@ export function keepCard(card, job, onChange, onDeleted) {
     } catch (e) { show(e); }
   };
   const base = `/api/v1/jobs/${job.id}`;
-  const save = () => act('PATCH', base, { tags: parseTags(tags.value), note: note.value }, (updated) => {
+  const save = () => act('PATCH', base, { ...tagChange(job.tags || [], parseTags(tags.value)), note: note.value }, (updated) => {
     onChange(updated);
     const saved = document.getElementById('keep-message');
     if (saved) { saved.textContent = 'saved'; saved.className = 'ok'; }
