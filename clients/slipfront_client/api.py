@@ -234,11 +234,14 @@ class Api:
                 size += len(chunk)
         return size
 
-    def import_archive(self, path):
-        """POST /imports with the tar file at `path`: {imported: [{id, original_id, url}]}."""
+    def import_archive(self, path, again=False):
+        """POST /imports with the tar file at `path`: {imported: [{id, original_id, url}],
+        skipped: [{original_id, id, url, reason, detail}], count}. A run already on the
+        server is skipped (listed with the run it is), unless `again`."""
         with open(path, "rb") as f:
             data = f.read()
-        return self.request("POST", f"{API}/imports", data=data, ok=(201,),
+        return self.request("POST", f"{API}/imports", data=data, ok=(200, 201),
+                            params={"again": "true"} if again else None,
                             headers={"Content-Type": "application/x-tar"}).json()
 
     def list_jobs(self, filters=None, limit=None, page_size=100):

@@ -50,6 +50,9 @@ def add_parsers(sub, common):
                        help="store the runs of an export archive on this server (every "
                             "checksum verified first)")
     p.add_argument("archive", help="a .tar file written by export-runs")
+    p.add_argument("--again", action="store_true",
+                   help="store the runs already on the server too, under new ids (a copy of "
+                        "your own); by default they are skipped")
     p.set_defaults(func=cmd_import)
 
 
@@ -161,11 +164,13 @@ def cmd_export(args, ctx):
 def cmd_import(args, ctx):
     if not os.path.isfile(args.archive):
         raise UsageError(f"{args.archive}: no such file")
-    result = ctx.api().import_archive(args.archive)
+    result = ctx.api().import_archive(args.archive, again=args.again)
     if args.json:
         print_json(result)
     else:
         for run in result["imported"]:
             same = "" if run["id"] == run["original_id"] else f" (was {run['original_id']})"
             print(f"{run['id']}{same}")
+        for run in result.get("skipped", []):
+            print(f"{run['id']} skipped, already here: {run['detail']}")
     return 0

@@ -222,8 +222,20 @@ Response export_archive(ServerContext& ctx, RequestContext& rc, bool ids_in_body
 Response import_archive(ServerContext& ctx, RequestContext& rc) {
   if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
+  // ?again=true stores the runs already here too, under new ids (a copy of one's own).
+  bool again = false;
+  for (const auto& [name, value] : rc.query) {
+    if (name == "again" && (value == "true" || value == "false"))
+      again = value == "true";
+    else
+      return problem_response(
+          req, http::status::bad_request, "invalid query parameters",
+          {{"/query/" + api::cut_text(name, 64),
+            name == "again" ? "must be true or false"
+                            : "unknown parameter (POST /imports takes again)"}});
+  }
   try {
-    const ImportResult imported = import_run_archive(req.body(), ctx.service, rc.user);
+    const ImportResult imported = import_run_archive(req.body(), ctx.service, rc.user, again);
     if (imported.kind == ImportResult::Kind::no_space)
       return unavailable_response(req, imported.reason + "; nothing was stored, retry later",
                                   ctx.retry_after_s);
@@ -239,9 +251,20 @@ Response import_archive(ServerContext& ctx, RequestContext& rc) {
       warnings.push_back(imported.warnings[i]);
     if (imported.warnings.size() > 20)
       warnings.push_back("and " + std::to_string(imported.warnings.size() - 20) + " more");
-    return json_response(
-        req, http::status::created,
-        {{"imported", runs}, {"count", imported.ids.size()}, {"warnings", warnings}});
+    // The runs already here, not stored again: each with the run here that it is.
+    nlohmann::json skipped = nlohmann::json::array();
+    for (const auto& run : imported.skipped)
+      skipped.push_back({{"original_id", run.original_id},
+                         {"id", run.id},
+                         {"url", api_prefix + "/jobs/" + run.id},
+                         {"reason", run.reason},
+                         {"detail", run.detail}});
+    // 201 when a run was stored; 200 when every run was already here (nothing created).
+    return json_response(req, imported.ids.empty() ? http::status::ok : http::status::created,
+                         {{"imported", runs},
+                          {"count", imported.ids.size()},
+                          {"skipped", skipped},
+                          {"warnings", warnings}});
   } catch (const ArchiveRefusal& e) {
     // A member name comes from the client: a long one is cut, as other echoed values are.
     const std::string where = api::cut_text(e.where(), 300);

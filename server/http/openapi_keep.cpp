@@ -52,11 +52,11 @@ const char* keep_paths = R"json({
         "422": {"description": "Not {\"ids\": [1 to 1000 strings]}, or the archive is larger than --max-export-bytes", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   },
   "/api/v1/imports": {
-    "post": {"summary": "Store the runs of an export archive: every member checked against the manifest before anything is stored; runs keep their ids when free here", "security": [{"bearer": []}],
+    "post": {"summary": "Store the runs of an export archive: every member checked against the manifest before anything is stored; runs keep their ids when free here; a run already here is skipped (listed in skipped), unless again=true", "security": [{"bearer": []}],
+      "parameters": [{"name": "again", "in": "query", "schema": {"type": "boolean", "default": false}, "description": "store the runs already here too, under new ids"}],
       "requestBody": {"required": true, "content": {"application/x-tar": {"schema": {"type": "string", "format": "binary"}}}},
-      "responses": {"201": {"description": "Imported", "content": {"application/json": {"schema": {"type": "object", "properties": {
-          "imported": {"type": "array", "items": {"type": "object", "properties": {"id": {"type": "string"}, "original_id": {"type": "string"}, "url": {"type": "string"}}}},
-          "count": {"type": "integer"}, "warnings": {"type": "array", "items": {"type": "string"}, "description": "what was left out: metric names this server does not write (one line per run)"}}}}}},
+      "responses": {"201": {"description": "Imported (a run already here is skipped, not stored again)", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/ImportAnswer"}}}},
+        "200": {"description": "Every run of the archive was already here: nothing stored, each listed in skipped", "content": {"application/json": {"schema": {"$ref": "#/components/schemas/ImportAnswer"}}}},
         "401": {"$ref": "#/components/responses/Problem"}, "413": {"$ref": "#/components/responses/Problem"},
         "422": {"description": "Refused, nothing stored: the title names the member (a checksum that does not match, an unsafe name, a link, a truncated archive)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   }
@@ -67,6 +67,15 @@ const char* keep_job_fields = R"json({
   "archived_at": {"type": "string", "nullable": true, "description": "when it was archived; null = listed"},
   "imported_from": {"type": "object", "nullable": true, "description": "an imported run: {server: {host, code_version}, id, submitted_by, exported_at}"}
 })json";
+
+const char* import_answer_schema = R"json({"type": "object", "properties": {
+  "imported": {"type": "array", "items": {"type": "object", "properties": {"id": {"type": "string"}, "original_id": {"type": "string"}, "url": {"type": "string"}}}},
+  "count": {"type": "integer", "description": "runs stored"},
+  "skipped": {"type": "array", "description": "runs already here, not stored again", "items": {"type": "object", "properties": {
+    "original_id": {"type": "string"}, "id": {"type": "string", "description": "the run here that it is"}, "url": {"type": "string"},
+    "reason": {"type": "string", "enum": ["same_origin", "same_result"], "description": "same_origin: the same run of the same server (followed through earlier imports) with the same spec; same_result: a succeeded run here with the same spec and result file (SHA-256)"},
+    "detail": {"type": "string"}}}},
+  "warnings": {"type": "array", "items": {"type": "string"}, "description": "what was left out: metric names this server does not write (one line per run)"}}})json";
 
 const char* annotations_schema =
     R"json({"type": "object", "additionalProperties": false, "minProperties": 1,
@@ -79,6 +88,7 @@ const char* annotations_schema =
 
 void add_keep_share_paths(nlohmann::json& doc) {
   doc["components"]["schemas"]["Annotations"] = nlohmann::json::parse(annotations_schema);
+  doc["components"]["schemas"]["ImportAnswer"] = nlohmann::json::parse(import_answer_schema);
   const nlohmann::json paths = nlohmann::json::parse(keep_paths);
   for (const auto& [path, operations] : paths.items())
     doc["paths"][path].update(operations);

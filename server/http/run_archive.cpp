@@ -354,7 +354,7 @@ std::map<std::string, json> check_files(const json& manifest,
 } // namespace
 
 ImportResult import_run_archive(std::string_view archive, JobService& service,
-                                const std::string& user) {
+                                const std::string& user, bool again) {
   std::vector<TarMember> members;
   try {
     members = read_tar(archive, {2 * max_archive_runs + 1});
@@ -398,7 +398,7 @@ ImportResult import_run_archive(std::string_view archive, JobService& service,
       throw ArchiveRefusal("manifest.json#/runs", "run " + pending.back().job.id + " given twice");
   }
   // Everything checked: store, all runs or none.
-  ImportResult result = service.import_runs(std::move(pending), user);
+  ImportResult result = service.import_runs(std::move(pending), user, again);
   result.warnings = std::move(warnings);
   return result;
 }

@@ -54,7 +54,8 @@ void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs
 // none (JobService::import_runs): each keeps its id if it is free here, else gets a new one,
 // and records where it came from (`imported_from`). Throws ArchiveRefusal naming what does
 // not hold, StorageError when the disk refuses a write.
+// A run already here is skipped unless `again` (JobService::import_runs).
 ImportResult import_run_archive(std::string_view archive, JobService& service,
-                                const std::string& user);
+                                const std::string& user, bool again = false);
 
 } // namespace slipfront::server

@@ -101,6 +101,14 @@ struct ImportResult {
     refused,  // 422: a result file is not what its run says (`where`: its member)
   } kind = Kind::imported;
   std::vector<std::pair<std::string, std::string>> ids; // (id here, id in the archive)
+  // A run already here is not stored again (docs/server.md "Export and import").
+  struct Skipped {
+    std::string original_id; // in the archive
+    std::string id;          // the run here that it is
+    std::string reason;      // "same_origin" or "same_result"
+    std::string detail;      // in words
+  };
+  std::vector<Skipped> skipped;
   std::string where;
   std::string reason;
   std::vector<std::string> warnings; // what was left out of the runs (their metrics' names)
@@ -176,7 +184,12 @@ public:
   // HDF5 API and checked against docs/hdf5-layout.md and the spec of its run before anything
   // is stored (refused otherwise). Throws StorageError when the disk refuses a write (nothing
   // stays).
-  ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user);
+  // A run already here is skipped, not stored again: one of the same origin (the server and id
+  // that first computed it, followed through earlier imports) and spec, or one that succeeded
+  // with the same result file (SHA-256) and spec.
+  // `again`: store them all, those already here too (under new ids).
+  ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user,
+                           bool again = false);
   // At start-up, before the server answers: removes the files of imports and deletes a
   // crash interrupted, and every other file of results/ no row refers to.
   StrayResults recover_result_files();
@@ -217,6 +230,8 @@ private:
   std::recursive_mutex submit_mutex_;
   std::mutex import_mutex_; // one import at a time
   // `wanted` if neither a job, a result file nor `chosen` has it, else a new id.
+  // The run here that `run` already is, and why; nullopt when there is none.
+  std::optional<ImportResult::Skipped> already_here(const RunToImport& run);
   std::string free_import_id(const std::string& wanted, const std::set<std::string>& chosen);
   std::optional<std::vector<Pending>> batch_; // inside submit_together(): queued at its commit
   std::function<void(const std::string& id)> on_cancelled_;

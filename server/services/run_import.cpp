@@ -15,6 +15,7 @@
 #include "server/core/clock.hpp"
 #include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
+#include "server/core/job_filter.hpp"
 #include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
 #include "server/core/storage_error.hpp"
@@ -101,7 +102,62 @@ std::optional<std::string> not_the_result_of(const Job& job, const std::string& 
   return std::nullopt;
 }
 
+// Where a run was first computed: the server's host and the run's id there, followed through
+// the earlier imports a run's `imported_from` records; a run computed here is (`host`, `id`).
+struct RunOrigin {
+  std::string host, id;
+  bool operator==(const RunOrigin&) const = default;
+};
+
+RunOrigin origin_of(const nlohmann::json& imported_from, const std::string& host,
+                    const std::string& id) {
+  if (!imported_from.is_object()) return {host, id};
+  const nlohmann::json* first = &imported_from;
+  // An archive's earlier imports are at most 16 kB of JSON: the walk is bounded by it.
+  while (first->contains("imported_from") && (*first)["imported_from"].is_object())
+    first = &(*first)["imported_from"];
+  const nlohmann::json& server = first->value("server", nlohmann::json());
+  const nlohmann::json& from = first->value("id", nlohmann::json());
+  return {server.is_object() && server.value("host", nlohmann::json()).is_string()
+              ? server["host"].get<std::string>()
+              : std::string(),
+          from.is_string() ? from.get<std::string>() : std::string()};
+}
+
 } // namespace
+
+std::optional<ImportResult::Skipped> JobService::already_here(const RunToImport& run) {
+  const Job& incoming = run.job;
+  const RunOrigin origin = origin_of(incoming.imported_from, "", incoming.id);
+  const std::string here = host_name();
+  // Both ways need the same spec: its hash is indexed, and recomputed here for both runs.
+  JobFilter filter;
+  filter.spec_sha256 = incoming.spec_sha256;
+  filter.archived = ArchivedRuns::include;
+  filter.limit = 1000;
+  std::optional<ImportResult::Skipped> same_result;
+  for (;;) {
+    JobPage page = store_.list(filter);
+    for (const Job& job : page.jobs) {
+      if (!is_final(job.status)) continue;
+      if (origin_of(job.imported_from, here, job.id) == origin && !origin.id.empty())
+        return ImportResult::Skipped{incoming.id, job.id, "same_origin",
+                                     "the run " + origin.id + " of " +
+                                         (origin.host.empty() ? "its server" : origin.host) +
+                                         " is already here as job " + job.id};
+      if (!same_result && incoming.status == JobStatus::succeeded &&
+          job.status == JobStatus::succeeded && !job.result.sha256.empty() &&
+          job.result.sha256 == incoming.result.sha256)
+        same_result = ImportResult::Skipped{
+            incoming.id, job.id, "same_result",
+            "job " + job.id + " has the same spec and the same result file (SHA-256 " +
+                job.result.sha256 + ")"};
+    }
+    if (!page.next_cursor) break;
+    filter.before_seq = page.next_cursor;
+  }
+  return same_result;
+}
 
 std::string JobService::free_import_id(const std::string& wanted,
                                        const std::set<std::string>& chosen) {
@@ -116,10 +172,21 @@ std::string JobService::free_import_id(const std::string& wanted,
   return id;
 }
 
-ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::string& user) {
+ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::string& user,
+                                     bool again) {
   // One import at a time: the ids chosen here stay free until its rows are in.
   std::lock_guard import_lock(import_mutex_);
   ImportResult out;
+  // A run already here is not stored again: the answer says which one it is.
+  std::vector<RunToImport> fresh;
+  for (auto& run : runs) {
+    if (auto skipped = again ? std::nullopt : already_here(run))
+      out.skipped.push_back(std::move(*skipped));
+    else
+      fresh.push_back(std::move(run));
+  }
+  runs = std::move(fresh);
+  if (runs.empty()) return out;
   std::uint64_t result_bytes = 0;
   for (const auto& run : runs)
     result_bytes += run.result.size();

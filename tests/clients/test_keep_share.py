@@ -10,6 +10,7 @@ import hashlib
 import json
 import os
 import shutil
+import socket
 import sys
 import tarfile
 import tempfile
@@ -131,6 +132,22 @@ class ClientKeepShare(unittest.TestCase):
             self.assertEqual(hashlib.sha256(theirs).hexdigest(),
                              hashlib.sha256(mine).hexdigest())
             self.assertEqual(self.job(copy, self.other)["imported_from"]["id"], original)
+        # The same archive again: nothing stored, each run said to be there already.
+        count = requests.get(f"{self.other.base}/api/v1/jobs", timeout=10).json()["count"]
+        r = self.client("import-runs", archive, server=self.other)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(r.stdout.splitlines()),
+                         sorted(f"{imported[i]} skipped, already here: the run {i} of "
+                                f"{socket.gethostname()} is already here as job {imported[i]}"
+                                for i in (first, second)))
+        self.assertEqual(requests.get(f"{self.other.base}/api/v1/jobs", timeout=10)
+                         .json()["count"], count)
+        # --again stores copies under new ids.
+        r = self.client("import-runs", archive, "--again", "--json", server=self.other)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        copies = json.loads(r.stdout)
+        self.assertEqual((copies["count"], copies["skipped"]), (2, []))
+        self.assertFalse({run["id"] for run in copies["imported"]} & {first, second})
         # A damaged archive: refused (exit 2) naming the member, nothing stored.
         with open(archive, "rb") as f:
             data = bytearray(f.read())
