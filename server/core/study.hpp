@@ -31,7 +31,9 @@ struct StudyRecord {
   int runs_done = 0, runs_total = 0;
   double L_c = api::not_available;
   double spectral_critical_length = api::not_available;
-  nlohmann::json result; // the stored analysis (null until the first step)
+  nlohmann::json result;   // the stored analysis (null until the first step)
+  std::string note;        // its owner's free text (PATCH /studies/{id})
+  std::string archived_at; // "" = listed; else hidden from GET /studies until asked for
 };
 
 // One run of a study with what the jobs table knows of it.

@@ -37,7 +37,7 @@ struct CacheRequester {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 12;
+  static constexpr int schema_version = 13;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).

@@ -22,6 +22,34 @@ const char* keep_paths = R"json({
         "404": {"$ref": "#/components/responses/Problem"},
         "409": {"description": "Queued or running (cancel it first), or a run of a study (archive it instead)", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   },
+  "/api/v1/studies/{id}": {
+    "patch": {"summary": "Change a study's tags and note (its owner; 422 naming the field, nothing changed)", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "requestBody": {"required": true, "content": {"application/json": {"schema": {"$ref": "#/components/schemas/Annotations"}}}},
+      "responses": {"200": {"$ref": "#/components/responses/Study"}, "400": {"$ref": "#/components/responses/Problem"},
+        "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"}, "422": {"$ref": "#/components/responses/Problem"}}},
+    "delete": {"summary": "Delete a study that is over with its runs and their result files (kept while a run elsewhere shares one); its owner", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"description": "Deleted", "content": {"application/json": {"schema": {"type": "object", "properties": {
+          "id": {"type": "string"}, "deleted": {"type": "boolean"}, "deleted_jobs": {"type": "array", "items": {"type": "string"}, "description": "its runs, gone with it"},
+          "results_deleted": {"type": "integer", "description": "result files removed (a file another run shares stays)"}}}}}},
+        "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"}, "403": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"},
+        "409": {"description": "Running (cancel it first), or cancelled with a run still stopping", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
+  },
+  "/api/v1/studies/{id}/archive": {
+    "post": {"summary": "Hide a study from GET /studies (never deleted; ?archived=include shows it); its owner", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"$ref": "#/components/responses/Study"}, "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+        "403": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
+  },
+  "/api/v1/studies/{id}/restore": {
+    "post": {"summary": "List an archived study again; its owner", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"$ref": "#/components/responses/Study"}, "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+        "403": {"$ref": "#/components/responses/Problem"}, "404": {"$ref": "#/components/responses/Problem"}}}
+  },
   "/api/v1/jobs/{id}/archive": {
     "post": {"summary": "Hide a run from listings and exports (never deleted; ?archived=include shows it); its owner", "security": [{"bearer": []}],
       "parameters": [{"$ref": "#/components/parameters/id"}],
@@ -93,6 +121,13 @@ void add_keep_share_paths(nlohmann::json& doc) {
   for (const auto& [path, operations] : paths.items())
     doc["paths"][path].update(operations);
   doc["components"]["schemas"]["Job"]["properties"].update(nlohmann::json::parse(keep_job_fields));
+  doc["components"]["schemas"]["Study"]["properties"].update(
+      {{"tags", {{"type", "array"}, {"items", {{"type", "string"}}}}},
+       {"note", {{"type", "string"}, {"description", "free text its owner keeps with it (PATCH)"}}},
+       {"archived_at",
+        {{"type", "string"},
+         {"nullable", true},
+         {"description", "when it was archived; null = listed"}}}});
 }
 
 } // namespace slipfront::server

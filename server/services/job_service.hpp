@@ -177,6 +177,16 @@ public:
   KeepResult annotate(const std::string& id, const std::string& user, const api::TagChange& tags,
                       const std::optional<std::string>& note);
   KeepResult set_archived(const std::string& id, const std::string& user, bool archived);
+  // Deletes rows by `remove_rows` under the submission lock (no submission picks one of their
+  // files as a cache hit meanwhile): one transaction that returns the result files no row
+  // refers to any more and the intent to remove them; then removes those files and forgets
+  // the intent. Returns how many files went. `what` names the change in the log.
+  struct RowsRemoved {
+    std::vector<std::string> orphaned_results;
+    std::int64_t intent = 0;
+  };
+  std::size_t remove_rows_and_files(const std::function<RowsRemoved()>& remove_rows,
+                                    const std::string& what);
   // Deletes a finished run; its result file too once no other run (a cache hit) refers to it.
   KeepResult remove(const std::string& id, const std::string& user);
   // Stores the runs of an archive for `user`, all of them or none (services/run_import.cpp):

@@ -37,15 +37,43 @@ KeepResult JobService::set_archived(const std::string& id, const std::string& us
   return {Kind::done, get(id), {}, false, {}};
 }
 
-KeepResult JobService::remove(const std::string& id, const std::string& user) {
-  // Under the submission lock: no submission can pick this run's file as a cache hit between
-  // the row's deletion and the file's.
+std::size_t JobService::remove_rows_and_files(const std::function<RowsRemoved()>& remove_rows,
+                                              const std::string& what) {
   std::lock_guard lock(submit_mutex_);
+  const RowsRemoved removed = remove_rows();
+  std::size_t gone = 0;
+  bool all_gone = true;
+  for (const auto& result : removed.orphaned_results) {
+    std::error_code ec;
+    if (std::filesystem::remove(result_files_.absolute_path({result, 0, ""}), ec)) ++gone;
+    if (ec) {
+      all_gone = false;
+      log_error(what + ": the result file " + result +
+                " stays until the next start: " + ec.message());
+    }
+  }
+  if (removed.intent != 0 && all_gone) try {
+      store_.forget_file_intent(removed.intent);
+    } catch (const std::exception& e) { // harmless: the next start finds the files gone
+      log_error(what + ": its intent stays until the next start: " + e.what());
+    }
+  return gone;
+}
+
+KeepResult JobService::remove(const std::string& id, const std::string& user) {
   auto job = store_.get(id);
   if (!job) return {};
   if (options_.auth_enabled && job->submitted_by != user)
     return {Kind::forbidden, job, {}, false, {}};
-  const JobStore::Removal removal = store_.remove(id);
+  JobStore::Removal removal;
+  const std::size_t gone = remove_rows_and_files(
+      [&] {
+        removal = store_.remove(id);
+        if (removal.kind != JobStore::Removal::Kind::removed) return RowsRemoved{};
+        if (removal.orphaned_result.empty()) return RowsRemoved{};
+        return RowsRemoved{{removal.orphaned_result}, removal.intent};
+      },
+      "job " + id + " deleted");
   using Removed = JobStore::Removal::Kind;
   switch (removal.kind) {
   case Removed::not_found:
@@ -57,21 +85,7 @@ KeepResult JobService::remove(const std::string& id, const std::string& user) {
   case Removed::removed:
     break;
   }
-  bool result_deleted = false;
-  if (!removal.orphaned_result.empty()) {
-    std::error_code ec;
-    const std::string path = result_files_.absolute_path({removal.orphaned_result, 0, ""});
-    result_deleted = std::filesystem::remove(path, ec);
-    if (ec)
-      log_error("job " + id +
-                " deleted, but its result file stays until the next start: " + ec.message());
-    else
-      try {
-        store_.forget_file_intent(removal.intent);
-      } catch (const std::exception& e) { // harmless: the next start finds the file gone
-        log_error("job " + id + " deleted; its intent stays until the next start: " + e.what());
-      }
-  }
+  const bool result_deleted = gone > 0;
   log_info("job " + id + " deleted by " + user +
            (result_deleted ? " with its result file"
                            : (job->result.path.empty() ? "" : "; its result file is shared")));
