@@ -292,9 +292,12 @@ class Api:
         ID/result.h5) as full URLs on the server asked, for a table read elsewhere."""
         return RESULT_PATH.sub(lambda m: m.group(1) + self.base_url + m.group(2), text)
 
-    def list_studies(self, status=None, limit=None, page_size=100):
-        """Yield study summaries newest first (all of them, or `limit`)."""
+    def list_studies(self, status=None, limit=None, page_size=100, archived=None):
+        """Yield study summaries newest first (all of them, or `limit`); archived ones only
+        with `archived` "include" or "only"."""
         params = {"status": status} if status else {}
+        if archived:
+            params["archived"] = archived
         count = 0
         while True:
             want = page_size if limit is None else min(page_size, limit - count)
@@ -337,6 +340,20 @@ class Api:
 
     def study(self, study_id):
         return self.get_json(f"{API}/studies/{study_id}")
+
+    def patch_study(self, study_id, body):
+        """PATCH /studies/{id}: {"tags"} or {"tags_add", "tags_remove"}, and/or "note"; the
+        study as it is now."""
+        return self.request("PATCH", f"{API}/studies/{study_id}", json_body=body,
+                            idempotent=True).json()
+
+    def archive_study(self, study_id, archived=True):
+        action = "archive" if archived else "restore"
+        return self.request("POST", f"{API}/studies/{study_id}/{action}", idempotent=True).json()
+
+    def delete_study(self, study_id):
+        """DELETE /studies/{id}: {id, deleted, deleted_jobs, results_deleted}."""
+        return self.request("DELETE", f"{API}/studies/{study_id}").json()
 
     def cancel_study(self, study_id):
         response = self.request("POST", f"{API}/studies/{study_id}/cancel", ok=(200, 202),

@@ -103,6 +103,42 @@ class ClientKeepShare(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(self.server.data_dir, "results",
                                                      job_id + ".h5")))
 
+    def test_study_tag_note_archive_restore_delete(self):
+        base = {"geometry": {"width": 12, "x_min": -1, "height": 4},
+                "probe": {"arrival_x1": 3, "spectrum_x1": 2}, "time": {"duration": 3}}
+        r = requests.post(f"{self.server.base}/api/v1/studies", timeout=30,
+                          json={"name": "client study", "tags": ["draft"], "base": base,
+                                "grid": {"L": [6.9e-4], "n_d": [5]}})
+        self.assertEqual(r.status_code, 201, r.text)
+        study_id = r.json()["id"]
+        self.assertEqual(self.client("study", "wait", study_id).returncode, 0)
+        url = f"{self.server.base}/api/v1/studies/{study_id}"
+        r = self.client("study", "tag", study_id, "fig-3", "--remove", "draft")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.strip(), f"{study_id} tags=fig-3")
+        self.assertEqual(requests.get(url, timeout=10).json()["tags"], ["fig-3"])
+        r = self.client("study", "note", study_id, "the L sweep")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(requests.get(url, timeout=10).json()["note"], "the L sweep")
+        self.assertEqual(self.client("study", "archive", study_id).returncode, 0)
+        listed = self.client("study", "list", "--json")
+        self.assertNotIn(study_id, [s["id"] for s in json.loads(listed.stdout)])
+        listed = self.client("study", "list", "--archived", "only", "--json")
+        self.assertEqual([s["id"] for s in json.loads(listed.stdout)], [study_id])
+        self.assertEqual(self.client("study", "restore", study_id).returncode, 0)
+        self.assertIsNone(requests.get(url, timeout=10).json()["archived_at"])
+        job_id = requests.get(url, timeout=10).json()["runs"][0]["job_id"]
+        r = self.client("study", "delete", study_id, stdin="n\n")
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(requests.get(url, timeout=10).status_code, 200)
+        r = self.client("study", "delete", study_id, "--yes")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.strip(), f"{study_id} deleted with 1 run(s) and 1 result file(s)")
+        self.assertEqual(requests.get(url, timeout=10).status_code, 404)
+        self.assertEqual(self.job(job_id).get("status"), 404)
+        r = self.client("study", "delete", study_id, "--yes")
+        self.assertNotEqual(r.returncode, 0)
+
     def test_export_runs_then_import_runs(self):
         first = self.submit("client-export-1", 6.3e-4)
         second = self.submit("client-export-2", 6.5e-4)
