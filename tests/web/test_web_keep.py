@@ -116,6 +116,55 @@ class WebKeep(BrowserCase):
         self.wait(lambda d: d.current_url.endswith("#/jobs"), message="back to the jobs")
         self.assert_no_console_errors("archive and delete")
 
+    def test_a_study_kept_on_its_page(self):
+        """The study page's Keep card: tags and note saved, archive hides the study from the
+        studies list until "show archived", delete (after a confirmation) removes the study
+        with its runs."""
+        body = {"name": "web kept study", "tags": ["draft"], "grid": {"L": [6.9e-4], "n_d": [5]},
+                "base": {"geometry": {"width": 12, "x_min": -1, "height": 4},
+                         "probe": {"arrival_x1": 3, "spectrum_x1": 2}, "time": {"duration": 3}}}
+        r = self.server.post("/api/v1/studies", json=body)
+        self.assertEqual(r.status_code, 201, r.text)
+        study_id = r.json()["id"]
+        study = lambda: self.server.get(f"/api/v1/studies/{study_id}").json()  # noqa: E731
+        self.wait(lambda d: study()["status"] == "finished", timeout=120, message="finished")
+        job_id = study()["runs"][0]["job_id"]
+        self.open(f"/#/studies/{study_id}")
+        self.wait(lambda d: self.css("#study-keep #keep-save"), message="the study's Keep card")
+        self.assertEqual(self.css("#keep-tags")[0].get_attribute("value"), "draft")
+        tags, note = self.css("#keep-tags")[0], self.css("#keep-note")[0]
+        tags.clear()
+        tags.send_keys("fig-3, kammer2014")
+        note.send_keys("the L sweep of Fig. 3")
+        self.css("#keep-save")[0].click()
+        self.wait(lambda d: study()["tags"] == ["fig-3", "kammer2014"], message="saved tags")
+        self.assertEqual(study()["note"], "the L sweep of Fig. 3")
+        self.shot_card("#study-keep", "web-study-keep")
+        self.css("#keep-archive")[0].click()
+        self.wait(lambda d: self.css("#keep-archived"), message="archived")
+        self.assertIsNotNone(study()["archived_at"])
+        self.open("/#/studies")
+        rows = lambda: self.js("return [...document.querySelectorAll('#studies-table tbody tr[data-id]')]"  # noqa: E731
+                               ".map(r => r.dataset.id)")
+        self.wait(lambda d: self.css("#studies-table tbody tr"), message="the studies list")
+        self.assertNotIn(study_id, rows())
+        self.css("#study-archived")[0].click()
+        self.wait(lambda d: study_id in rows(), message="archived studies shown")
+        self.assertIn("archived", self.css(f"#studies-table tr[data-id='{study_id}']")[0].text)
+        self.open(f"/#/studies/{study_id}")
+        self.wait(lambda d: self.css("#study-keep #keep-delete"), message="the delete button")
+        self.css("#keep-delete")[0].click()
+        self.driver.switch_to.alert.dismiss()
+        self.assertEqual(self.server.get(f"/api/v1/studies/{study_id}").status_code, 200)
+        self.css("#keep-delete")[0].click()
+        self.driver.switch_to.alert.accept()
+        self.wait(lambda d: self.server.get(f"/api/v1/studies/{study_id}").status_code == 404,
+                  message="deleted")
+        self.assertEqual(self.server.get(f"/api/v1/jobs/{job_id}").status_code, 404)
+        self.wait(lambda d: d.current_url.endswith("#/studies"), message="back to the studies")
+        self.assert_no_console_errors("the study page")
+        self.shot("study-keep")
+
 
 if __name__ == "__main__":
     run()
