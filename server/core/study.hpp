@@ -54,6 +54,13 @@ struct StudyRunRow {
   std::string scene_hash, cached_from, result_path, submitted_by, study_id, error;
 };
 
+// A study read from an archive and checked (server/http/run_archive.hpp), to be stored with
+// its runs (JobService::import_runs): its record and its runs by their ids in the archive.
+struct StudyToImport {
+  StudyRecord study;
+  std::vector<StudyRunRow> runs;
+};
+
 // Wall time of what was computed: for a reused (cached) run, the original run's.
 api::StudyRun to_study_run(const StudyRunRow& row);
 

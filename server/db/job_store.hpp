@@ -128,8 +128,10 @@ public:
   ResultReferences result_references();
   // Inserts finished runs from an archive (status, result and metrics as given) under their
   // ids and forgets the intent `intent` (0: none), all in one transaction; false (and
-  // nothing changed) if one of the ids is taken.
-  bool insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent);
+  // nothing changed) if one of the ids is taken. `also` (if given) writes more rows in the
+  // same transaction (the study of a study's archive).
+  bool insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent,
+                       const std::function<void(Database&)>& also = {});
 
   std::string path() const { return db_.path(); }
 

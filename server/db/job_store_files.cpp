@@ -30,7 +30,8 @@ ResultReferences JobStore::result_references() {
   return db_.read([](Database& db) { return read_result_references(db); });
 }
 
-bool JobStore::insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent) {
+bool JobStore::insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent,
+                               const std::function<void(Database&)>& also) {
   auto db = db_.lock();
   Transaction tx(*db);
   auto taken = db->prepare("SELECT 1 FROM jobs WHERE id = ?1");
@@ -44,6 +45,7 @@ bool JobStore::insert_finished(const std::vector<FinishedRun>& runs, std::int64_
     insert.run();
     if (!run.record.metrics.is_null()) write_metrics(*db, run.job.id, run.record);
   }
+  if (also) also(*db);
   if (intent != 0) delete_file_intent(*db, intent);
   tx.commit();
   return true;

@@ -231,6 +231,60 @@ std::string StudyStore::study_of_job(const std::string& job_id) {
   });
 }
 
+bool study_exists(Database& db, const std::string& id) {
+  auto s = db.prepare("SELECT 1 FROM studies WHERE id = ?1");
+  s.bind(1, id);
+  return s.step();
+}
+
+void insert_imported_study(Database& db, const StudyRecord& st,
+                           const std::vector<StudyRunRow>& runs) {
+  db.prepare("INSERT INTO studies (id, name, tags, kind, base_spec, request, scene_hash, "
+             "submitted_by, priority, fresh, created_at, updated_at, finished_at, status, "
+             "runs_done, runs_total, L_c, spectral_critical_length, result, note) VALUES (?1, "
+             "?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, "
+             "?19, ?20)")
+      .bind(1, st.id)
+      .bind(2, st.name)
+      .bind(3, json(st.tags).dump())
+      .bind(4, st.kind)
+      .bind(5, st.base.dump())
+      .bind(6, st.request.dump())
+      .bind(7, st.scene_hash)
+      .bind(8, st.submitted_by)
+      .bind(9, std::int64_t{st.priority})
+      .bind(10, std::int64_t{st.fresh ? 1 : 0})
+      .bind(11, st.created_at)
+      .bind(12, text_or_null(st.updated_at))
+      .bind(13, text_or_null(st.finished_at))
+      .bind(14, std::string(api::to_string(st.status)))
+      .bind(15, std::int64_t{st.runs_done})
+      .bind(16, std::int64_t{st.runs_total})
+      .bind(17, st.L_c)
+      .bind(18, st.spectral_critical_length)
+      .bind(19, st.result.dump(-1, ' ', false, json::error_handler_t::replace))
+      .bind(20, st.note)
+      .run();
+  auto s = db.prepare("INSERT OR IGNORE INTO study_runs (study_id, job_id, regime, L, n_d, "
+                      "convergence_status, partner_n_d, propagation_distance_change, "
+                      "arrival_time_change, reason) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, "
+                      "?10)");
+  for (const auto& r : runs) {
+    s.bind(1, st.id)
+        .bind(2, r.job_id)
+        .bind(3, r.regime)
+        .bind(4, r.L)
+        .bind(5, r.n_d)
+        .bind(6, r.convergence_status)
+        .bind(7, r.partner_n_d)
+        .bind(8, r.propagation_distance_change)
+        .bind(9, r.arrival_time_change)
+        .bind(10, r.reason)
+        .run();
+    s.reset();
+  }
+}
+
 std::optional<api::TagsAfter> StudyStore::annotate(const std::string& id,
                                                    const api::TagChange& tags,
                                                    const std::optional<std::string>& note) {
@@ -267,11 +321,11 @@ StudyStore::Removal StudyStore::remove(const std::string& id) {
   study.bind(1, id);
   if (!study.step()) return {};
   if (study.text(0) == "running") return {Kind::running, {}, {}, 0};
-  // Its runs: those it submitted and those it lists, but not one another study also lists.
+  // Its runs: those it submitted (or an import stored for it), but not one another study also
+  // lists. A run it only lists (one already here when it was imported) stays, unlisted.
   auto runs = db->prepare(
-      "SELECT j.id, j.status, j.result_path FROM jobs j WHERE (j.study_id = ?1 OR j.id IN "
-      "(SELECT job_id FROM study_runs WHERE study_id = ?1)) AND NOT EXISTS (SELECT 1 FROM "
-      "study_runs o WHERE o.job_id = j.id AND o.study_id != ?1)");
+      "SELECT j.id, j.status, j.result_path FROM jobs j WHERE j.study_id = ?1 AND NOT EXISTS "
+      "(SELECT 1 FROM study_runs o WHERE o.job_id = j.id AND o.study_id != ?1)");
   runs.bind(1, id);
   Removal removal{Kind::removed, {}, {}, 0};
   std::set<std::string> paths;

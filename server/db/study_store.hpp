@@ -16,6 +16,12 @@
 
 namespace slipfront::server {
 
+// For an import, on the caller's connection (inside its transaction): whether a study has the
+// id, and the study stored as its archive gave it, listing its runs by `runs[i].job_id`.
+bool study_exists(Database& db, const std::string& id);
+void insert_imported_study(Database& db, const StudyRecord& study,
+                           const std::vector<StudyRunRow>& runs);
+
 class StudyStore {
 public:
   explicit StudyStore(JobStore& jobs) : db_(jobs.db()) {}
@@ -60,7 +66,8 @@ public:
   // Deletes a study that is over (finished or cancelled, every run final) with its runs and
   // their metrics, in one transaction that also records the intent to remove the result files
   // no other row refers to (forget it once they are gone; start-up removes them otherwise).
-  // A run another study also holds stays.
+  // Its runs are those it submitted (jobs.study_id); a run another study also lists stays, and
+  // so does a run it only lists (already here when the study was imported).
   Removal remove(const std::string& id);
 
   // Stores the statuses of `runs` (by job id) and the study's summary in one transaction.

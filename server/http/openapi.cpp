@@ -372,6 +372,7 @@ const std::map<std::string, std::string>& path_tags() {
       {"/api/v1/studies/{id}", "studies"},
       {"/api/v1/studies/{id}/cancel", "studies"},
       {"/api/v1/studies/{id}/archive", "studies"},
+      {"/api/v1/studies/{id}/export", "studies"},
       {"/api/v1/studies/{id}/restore", "studies"},
       {"/api/v1/studies/{id}/speed-accuracy", "studies"},
       {"/api/v1/convergence-map", "studies"},

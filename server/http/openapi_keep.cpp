@@ -38,6 +38,16 @@ const char* keep_paths = R"json({
         "404": {"$ref": "#/components/responses/Problem"},
         "409": {"description": "Running (cancel it first), or cancelled with a run still stopping", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}}}}
   },
+  "/api/v1/studies/{id}/export": {
+    "get": {"summary": "A study that is over with its runs as one archive: study.json (the study, its runs' places) beside the members of a run archive; POST /imports stores it (a token on a server with a token file)", "security": [{"bearer": []}],
+      "parameters": [{"$ref": "#/components/parameters/id"}],
+      "responses": {"200": {"description": "The archive", "content": {"application/x-tar": {}}},
+        "400": {"$ref": "#/components/responses/Problem"}, "401": {"$ref": "#/components/responses/Problem"},
+        "404": {"$ref": "#/components/responses/Problem"},
+        "409": {"description": "The study runs, or a run's result file is missing or damaged", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+        "422": {"description": "More runs than an archive holds, or larger than --max-export-bytes", "content": {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}},
+        "503": {"$ref": "#/components/responses/Unavailable"}}}
+  },
   "/api/v1/studies/{id}/archive": {
     "post": {"summary": "Hide a study from GET /studies (never deleted; ?archived=include shows it); its owner", "security": [{"bearer": []}],
       "parameters": [{"$ref": "#/components/parameters/id"}],
@@ -103,6 +113,8 @@ const char* import_answer_schema = R"json({"type": "object", "properties": {
     "original_id": {"type": "string"}, "id": {"type": "string", "description": "the run here that it is"}, "url": {"type": "string"},
     "reason": {"type": "string", "enum": ["same_origin", "same_result"], "description": "same_origin: the same run of the same server (followed through earlier imports) with the same spec; same_result: a succeeded run here with the same spec and result file (SHA-256)"},
     "detail": {"type": "string"}}}},
+  "study": {"type": "object", "description": "a study's archive: the study here (its id is the archive's when free), or skipped: a study of its id was here already", "properties": {
+    "id": {"type": "string"}, "original_id": {"type": "string"}, "url": {"type": "string"}, "skipped": {"type": "boolean"}}},
   "warnings": {"type": "array", "items": {"type": "string"}, "description": "what was left out: metric names this server does not write (one line per run)"}}})json";
 
 const char* annotations_schema =

@@ -4,6 +4,7 @@
 
 #include "api/cost_estimate.hpp"
 #include "api/job_spec.hpp"
+#include "server/core/study.hpp"
 #include "server/db/job_store.hpp"
 #include "server/run/job_queue.hpp"
 #include "server/run/running_jobs.hpp"
@@ -109,6 +110,13 @@ struct ImportResult {
     std::string detail;      // in words
   };
   std::vector<Skipped> skipped;
+  // A study's archive: the study here (its id, the archive's; `skipped` when a study of that
+  // id was here already: not stored again).
+  struct ImportedStudy {
+    std::string id, original_id;
+    bool skipped = false;
+  };
+  std::optional<ImportedStudy> study;
   std::string where;
   std::string reason;
   std::vector<std::string> warnings; // what was left out of the runs (their metrics' names)
@@ -198,8 +206,10 @@ public:
   // that first computed it, followed through earlier imports) and spec, or one that succeeded
   // with the same result file (SHA-256) and spec.
   // `again`: store them all, those already here too (under new ids).
+  // With `study`, the study is stored in the same transaction as its runs, listing each by
+  // its id here (a run skipped as already here is listed as that run).
   ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user,
-                           bool again = false);
+                           bool again = false, std::optional<StudyToImport> study = std::nullopt);
   // At start-up, before the server answers: removes the files of imports and deletes a
   // crash interrupted, and every other file of results/ no row refers to.
   StrayResults recover_result_files();

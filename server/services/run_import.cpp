@@ -19,6 +19,7 @@
 #include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
 #include "server/core/storage_error.hpp"
+#include "server/db/study_store.hpp"
 #include "server/services/job_service.hpp"
 
 #include <fcntl.h>
@@ -27,7 +28,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <system_error>
@@ -173,20 +176,38 @@ std::string JobService::free_import_id(const std::string& wanted,
 }
 
 ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::string& user,
-                                     bool again) {
+                                     bool again, std::optional<StudyToImport> study) {
   // One import at a time: the ids chosen here stay free until its rows are in.
   std::lock_guard import_lock(import_mutex_);
   ImportResult out;
   // A run already here is not stored again: the answer says which one it is.
   std::vector<RunToImport> fresh;
+  std::map<std::string, std::string> here; // the archive's run ids -> the ids here
   for (auto& run : runs) {
-    if (auto skipped = again ? std::nullopt : already_here(run))
+    if (auto skipped = again ? std::nullopt : already_here(run)) {
+      here[skipped->original_id] = skipped->id;
       out.skipped.push_back(std::move(*skipped));
-    else
+    } else {
       fresh.push_back(std::move(run));
+    }
   }
   runs = std::move(fresh);
-  if (runs.empty()) return out;
+  // A study's archive: its study, unless one of its id is here (then not stored again).
+  if (study) {
+    out.study = ImportResult::ImportedStudy{study->study.id, study->study.id, false};
+    const bool taken =
+        store_.db().with_db([&](Database& db) { return study_exists(db, study->study.id); });
+    if (taken && !again) {
+      out.study->skipped = true;
+      study.reset();
+    } else if (taken) {
+      std::string id = new_job_id();
+      while (store_.db().with_db([&](Database& db) { return study_exists(db, id); }))
+        id = new_job_id();
+      out.study->id = study->study.id = id;
+    }
+  }
+  if (runs.empty() && !study) return out;
   std::uint64_t result_bytes = 0;
   for (const auto& run : runs)
     result_bytes += run.result.size();
@@ -204,8 +225,10 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
     run.job.id = free_import_id(run.job.id, chosen);
     chosen.insert(run.job.id);
     out.ids.back().first = run.job.id;
+    here[out.ids.back().second] = run.job.id;
     run.job.submitted_by = user;
-    run.job.result_imported_by = user; // a cache source for this user only
+    run.job.result_imported_by = user;             // a cache source for this user only
+    if (study) run.job.study_id = study->study.id; // its runs go with it
     run.job.result.path =
         run.job.status == JobStatus::succeeded ? result_relative_path(run.job.id) : std::string();
     run.record.result = run.job.result;
@@ -238,10 +261,25 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
     std::vector<JobStore::FinishedRun> rows;
     for (auto& run : runs)
       rows.push_back({std::move(run.job), std::move(run.record)});
+    // The study lists its runs by their ids here; its stored analysis names them too.
+    std::function<void(Database&)> also;
+    if (study) {
+      study->study.submitted_by = user;
+      std::string result = study->study.result.dump();
+      for (const auto& [original, id] : here)
+        if (original != id)
+          for (auto at = result.find(original); at != std::string::npos;
+               at = result.find(original, at + id.size()))
+            result.replace(at, original.size(), id);
+      study->study.result = nlohmann::json::parse(result);
+      for (auto& row : study->runs)
+        row.job_id = here.at(row.job_id);
+      also = [&study](Database& db) { insert_imported_study(db, study->study, study->runs); };
+    }
     bool stored = false;
     {
       std::lock_guard lock(submit_mutex_);
-      stored = store_.insert_finished(rows, intent);
+      stored = store_.insert_finished(rows, intent, also);
     }
     if (!stored) throw std::runtime_error("an imported run's id was taken meanwhile");
   } catch (...) {

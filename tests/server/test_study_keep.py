@@ -175,6 +175,118 @@ class StudyKeep(unittest.TestCase):
         self.assertEqual(self.server.get(f"/api/v1/jobs/{job_id}").status_code, 404)
 
 
+class StudyArchive(unittest.TestCase):
+    """A study that is over, exported with its runs as one archive and imported into a second
+    server: the study, its runs and their files, listed as they were; imported twice, stored
+    once; refused while it runs; a damaged study.json refused naming it, nothing stored."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.server = Server(BINARY, args=["--workers", "1"]).start()
+        cls.other = Server(BINARY, args=["--workers", "1"]).start()
+
+    @classmethod
+    def tearDownClass(cls):
+        codes = [s.terminate() for s in (cls.server, cls.other)]
+        for s in (cls.server, cls.other):
+            s.cleanup()
+        assert codes == [0, 0], codes
+
+    def counts(self, server):
+        jobs = server.get("/api/v1/jobs", params={"archived": "include"}).json()["count"]
+        studies = server.get(STUDIES, params={"archived": "include"}).json()["count"]
+        return jobs, studies
+
+    def test_a_study_moves_with_its_runs_once(self):
+        r = self.server.post(STUDIES, headers=JSON, data=json.dumps(
+            grid("moved study", 7.1e-4, tags=["fig-3"], n_d=(5, 6))))
+        self.assertEqual(r.status_code, 201, r.text)
+        study = wait_study(self.server, r.json()["id"], timeout=120)
+        self.server.session.patch(self.server.url(f"{STUDIES}/{study['id']}"), headers=JSON,
+                                  data=json.dumps({"note": "moved with its runs"}), timeout=10)
+        r = self.server.get(f"{STUDIES}/{study['id']}/export", timeout=60)
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(r.headers["Content-Type"], "application/x-tar")
+        archive = r.content
+        import io
+        import tarfile
+        with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+            names = set(tar.getnames())
+            manifest = json.loads(tar.extractfile("manifest.json").read())
+        self.assertEqual(manifest["study"], "study.json")
+        self.assertIn("study.json", names)
+        job_ids = sorted(run["job_id"] for run in study["runs"])
+        self.assertEqual(sorted(run["id"] for run in manifest["runs"]), job_ids)
+
+        r = self.other.post("/api/v1/imports", data=archive, timeout=60)
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertEqual(r.json()["study"], {"id": study["id"], "original_id": study["id"],
+                                             "url": f"{STUDIES}/{study['id']}",
+                                             "skipped": False})
+        self.assertEqual(r.json()["count"], 2)
+        there = self.other.get(f"{STUDIES}/{study['id']}").json()
+        for key in ("name", "kind", "status", "L_c", "request", "scene_hash", "progress"):
+            self.assertEqual(there[key], study[key], key)
+        self.assertEqual((there["tags"], there["note"]), (["fig-3"], "moved with its runs"))
+        self.assertEqual([(x["job_id"], x["n_d"], x["convergence"]) for x in there["runs"]],
+                         [(x["job_id"], x["n_d"], x["convergence"]) for x in study["runs"]])
+        for job_id in job_ids:
+            job = self.other.get(f"/api/v1/jobs/{job_id}").json()
+            self.assertEqual(job["study_id"], study["id"])
+            self.assertEqual(job["imported_from"]["id"], job_id)
+            self.assertEqual(self.other.get(job["result"]["url"]).status_code, 200)
+        # Twice: nothing stored, the study and its runs said to be there already.
+        before = self.counts(self.other)
+        r = self.other.post("/api/v1/imports", data=archive, timeout=60)
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertTrue(r.json()["study"]["skipped"])
+        self.assertEqual(sorted(s["id"] for s in r.json()["skipped"]), job_ids)
+        self.assertEqual(self.counts(self.other), before)
+        # The imported study is kept like any: deleted with its runs and their files.
+        r = self.other.session.delete(self.other.url(f"{STUDIES}/{study['id']}"), timeout=30)
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(sorted(r.json()["deleted_jobs"]), job_ids)
+        self.assertEqual(r.json()["results_deleted"], 2)
+        self.assertEqual(os.listdir(os.path.join(self.other.data_dir, "results")), [])
+
+    def test_a_running_study_and_a_damaged_study_json_are_refused(self):
+        r = self.server.post(STUDIES, headers=JSON, data=json.dumps(long_study("not yet")))
+        self.assertEqual(r.status_code, 201, r.text)
+        study_id = r.json()["id"]
+        r = self.server.get(f"{STUDIES}/{study_id}/export", timeout=60)
+        self.assertEqual(r.status_code, 409, r.text)
+        self.assertIn("is running", r.json()["detail"])
+        self.server.post(f"{STUDIES}/{study_id}/cancel")
+        self.assertEqual(self.server.get(f"{STUDIES}/{'0' * 32}/export").status_code, 404)
+        # A study.json whose run is not in the archive, re-signed: refused naming it.
+        r = self.server.post(STUDIES, headers=JSON, data=json.dumps(grid("damaged", 7.3e-4)))
+        study = wait_study(self.server, r.json()["id"], timeout=120)
+        archive = self.server.get(f"{STUDIES}/{study['id']}/export", timeout=60).content
+        import hashlib
+        import io
+        import tarfile
+        with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+            files = {m.name: tar.extractfile(m).read() for m in tar.getmembers()}
+        doc = json.loads(files["study.json"])
+        doc["runs"][0]["job_id"] = "f" * 32
+        files["study.json"] = json.dumps(doc).encode()
+        manifest = json.loads(files["manifest.json"])
+        for f in manifest["files"]:
+            f["size"] = len(files[f["name"]])
+            f["sha256"] = hashlib.sha256(files[f["name"]]).hexdigest()
+        files["manifest.json"] = json.dumps(manifest).encode()
+        out = io.BytesIO()
+        with tarfile.open(fileobj=out, mode="w", format=tarfile.USTAR_FORMAT) as tar:
+            for name, data in files.items():
+                info = tarfile.TarInfo(name)
+                info.size = len(data)
+                tar.addfile(info, io.BytesIO(data))
+        before = self.counts(self.other)
+        r = self.other.post("/api/v1/imports", data=out.getvalue(), timeout=60)
+        self.assertEqual(r.status_code, 422, r.text)
+        self.assertIn("study.json#/runs/0/job_id", r.json()["detail"])
+        self.assertEqual(self.counts(self.other), before)
+
 class StudyOwners(unittest.TestCase):
     """With a token file, only a study's owner changes or deletes it; without a token, 401."""
 
