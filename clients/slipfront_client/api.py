@@ -351,6 +351,17 @@ class Api:
         action = "archive" if archived else "restore"
         return self.request("POST", f"{API}/studies/{study_id}/{action}", idempotent=True).json()
 
+    def export_study(self, study_id, path):
+        """GET /studies/{id}/export: the study with its runs as one tar archive, streamed into
+        the file `path` (import it with import_archive)."""
+        response = self.request("GET", f"{API}/studies/{study_id}/export", stream=True)
+        size = 0
+        with open(path, "wb") as f:
+            for chunk in response.iter_content(1 << 20):
+                f.write(chunk)
+                size += len(chunk)
+        return size
+
     def delete_study(self, study_id):
         """DELETE /studies/{id}: {id, deleted, deleted_jobs, results_deleted}."""
         return self.request("DELETE", f"{API}/studies/{study_id}").json()

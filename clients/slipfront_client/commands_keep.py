@@ -173,4 +173,8 @@ def cmd_import(args, ctx):
             print(f"{run['id']}{same}")
         for run in result.get("skipped", []):
             print(f"{run['id']} skipped, already here: {run['detail']}")
+        study = result.get("study")
+        if study:
+            print(f"study {study['id']} " + ("skipped, already here" if study["skipped"]
+                                             else "imported with its runs"))
     return 0

@@ -18,11 +18,12 @@ def floats(text, option):
 def add_parsers(sub, common):
     p = sub.add_parser("study", parents=[common],
                        help="studies: create, list, wait, show, cancel, tag, note, archive, "
-                            "restore, delete",
+                            "restore, export, delete",
                        description="Studies over L x n_d (needs the server's studies API).")
     ssub = p.add_subparsers(
         dest="study_command",
-        metavar="create|list|wait|show|cancel|tag|note|archive|restore|delete", required=True)
+        metavar="create|list|wait|show|cancel|tag|note|archive|restore|export|delete",
+        required=True)
 
     ls = ssub.add_parser("list", parents=[common], help="list studies, newest first")
     ls.add_argument("--status", choices=["running", "finished", "cancelled"])
@@ -90,6 +91,13 @@ def add_parsers(sub, common):
     r = ssub.add_parser("restore", parents=[common], help="list an archived study again")
     r.add_argument("id")
     r.set_defaults(func=cmd_archive, archived=False)
+
+    e = ssub.add_parser("export", parents=[common],
+                        help="write a study that is over with its runs as one tar archive "
+                             "(import-runs stores it on a server)")
+    e.add_argument("id")
+    e.add_argument("-o", "--output", required=True, help="the .tar file to write")
+    e.set_defaults(func=cmd_export)
 
     d = ssub.add_parser("delete", parents=[common],
                         help="delete a study that is over with its runs and their result files "
@@ -317,4 +325,21 @@ def cmd_delete(args, ctx):
     else:
         print(f"{result['id']} deleted with {len(result['deleted_jobs'])} run(s) and "
               f"{result['results_deleted']} result file(s)")
+    return 0
+
+
+def cmd_export(args, ctx):
+    import os
+    if os.path.exists(args.output):
+        raise UsageError(f"{args.output} exists; choose another --output or remove it")
+    partial = args.output + ".part"
+    try:
+        size = ctx.api().export_study(args.id, partial)
+        os.replace(partial, args.output)
+    finally:
+        if os.path.exists(partial):
+            os.remove(partial)
+    if not args.quiet:
+        log(f"{args.output}: {size} bytes")
+    print(args.output)
     return 0

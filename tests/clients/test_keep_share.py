@@ -128,6 +128,20 @@ class ClientKeepShare(unittest.TestCase):
         self.assertEqual(self.client("study", "restore", study_id).returncode, 0)
         self.assertIsNone(requests.get(url, timeout=10).json()["archived_at"])
         job_id = requests.get(url, timeout=10).json()["runs"][0]["job_id"]
+        # Export with its run; imported on the second server, and a second time: stored once.
+        archive = os.path.join(self.tmp, "study.tar")
+        r = self.client("study", "export", study_id, "-o", archive)
+        self.assertEqual((r.returncode, r.stdout.strip()), (0, archive), r.stderr)
+        r = self.client("import-runs", archive, server=self.other)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.strip().splitlines(),
+                         [job_id, f"study {study_id} imported with its runs"])
+        there = requests.get(f"{self.other.base}/api/v1/studies/{study_id}", timeout=10).json()
+        self.assertEqual((there["tags"], there["note"], [x["job_id"] for x in there["runs"]]),
+                         (["fig-3"], "the L sweep", [job_id]))
+        r = self.client("import-runs", archive, server=self.other)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(f"study {study_id} skipped, already here", r.stdout)
         r = self.client("study", "delete", study_id, stdin="n\n")
         self.assertEqual(r.returncode, 2)
         self.assertEqual(requests.get(url, timeout=10).status_code, 200)
