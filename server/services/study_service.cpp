@@ -14,6 +14,7 @@
 #include "api/study_analysis.hpp"
 #include "solver/interface/ill_posedness.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -350,6 +351,21 @@ std::optional<StudyView> StudyService::view(const std::string& id) {
       view.cross_method = scenes->method_first
                               ? cross_method(scenes->method, mine, scenes->other, theirs)
                               : cross_method(scenes->other, theirs, scenes->method, mine);
+      // Only the study's own L (an L search's plain-Coulomb runs have none): the scene's other
+      // L are other studies' runs, shown on their pages and on the shared map.
+      std::set<double> own;
+      for (const auto& run : view.runs)
+        if (run.regime != "coulomb") own.insert(run.L);
+      json kept = json::array();
+      for (const auto& row : *view.cross_method) {
+        if (!row.is_object()) continue;
+        const json& L = row.value("L", json());
+        if (L.is_number() && std::any_of(own.begin(), own.end(), [&](double l) {
+              return std::abs(l - L.get<double>()) <= 1e-12 * std::abs(l);
+            }))
+          kept.push_back(row);
+      }
+      view.cross_method = std::move(kept);
     }
   }
   return view;

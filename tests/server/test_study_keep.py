@@ -151,6 +151,18 @@ class StudyKeep(unittest.TestCase):
         self.assertEqual(got.status_code, 200, "the hit lost the file it shares")
         self.assertEqual(len(got.content), run["result"]["size"])
 
+    def test_the_cross_method_table_holds_the_studys_own_L(self):
+        """Two studies of one scene at other L: each study's cross-method table lists its own
+        L only (before: every L the scene had in the database)."""
+        first = self.finished(grid("cross first", 7.5e-4))
+        second = self.finished(grid("cross second", 7.7e-4))
+        self.assertEqual(first["scene_hash"], second["scene_hash"])
+        for study, L in ((first, 7.5e-4), (second, 7.7e-4)):
+            rows = self.study(study["id"])["cross_method"]
+            self.assertEqual([row["L"] for row in rows], [L], study["name"])
+        scene = self.server.get("/api/v1/convergence-map", params={"study": first["id"]}).json()
+        self.assertGreaterEqual(scene["count"], 2, "the shared map still has both")
+
     def test_a_running_study_is_not_deleted_until_cancelled_and_stopped(self):
         study = self.create(long_study("running study"))
         url = self.server.url(f"{STUDIES}/{study['id']}")
