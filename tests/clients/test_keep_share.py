@@ -103,6 +103,18 @@ class ClientKeepShare(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(self.server.data_dir, "results",
                                                      job_id + ".h5")))
 
+    def test_list_shows_a_cache_hits_original_wall_time_marked_cached(self):
+        first = self.submit("client-original", 7.9e-4)
+        second = self.submit("client-reused", 7.9e-4)  # the same physics: a cache hit
+        hit = self.job(second)
+        self.assertEqual(hit["cached_from"], first)
+        r = self.client("list", "--name", "client-reused")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        original = hit["metrics"]["wall_time_s"]
+        self.assertIn(f"{original:.4g} (cached)", r.stdout)
+        r = self.client("list", "--name", "client-original")
+        self.assertNotIn("cached", r.stdout)
+
     def test_study_tag_note_archive_restore_delete(self):
         base = {"geometry": {"width": 12, "x_min": -1, "height": 4},
                 "probe": {"arrival_x1": 3, "spectrum_x1": 2}, "time": {"duration": 3}}

@@ -87,6 +87,20 @@ class WebKeep(BrowserCase):
                   message="draft removed, fig-3 added, from-cli kept")
         self.assert_no_console_errors("the run page")
 
+    def test_a_cache_hit_shows_the_original_runs_wall_time_marked_cached(self):
+        first = self.run_job("web original")
+        r = self.server.submit({**TINY, "name": "web reused", "tags": ["draft"]})
+        self.assertEqual((r.status_code, r.json()["cache"]), (201, "hit"), r.text)
+        hit = r.json()
+        self.open("/#/jobs")
+        self.wait(lambda d: hit["id"] in self.listed_ids(), message="the jobs list")
+        row = lambda i: self.css(f"#jobs-table tr[data-id='{i}']")[0].text  # noqa: E731
+        self.assertIn("cached", row(hit["id"]))
+        if not first.get("cached_from"):  # the original ran here: its own time, not "cached"
+            self.assertNotIn("cached", row(first["id"]))
+        self.assertIsNotNone(self.job(hit["id"])["metrics"]["wall_time_s"])
+        self.assert_no_console_errors("the jobs list")
+
     def test_archive_restore_and_delete(self):
         job = self.run_job("web archive")
         visible = self.run_job("web listed")
