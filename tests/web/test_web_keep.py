@@ -153,6 +153,16 @@ class WebKeep(BrowserCase):
         self.css("#keep-save")[0].click()
         self.wait(lambda d: study()["tags"] == ["fig-3", "kammer2014"], message="saved tags")
         self.assertEqual(study()["note"], "the L sweep of Fig. 3")
+        # Export: the archive of the study with its run, of the size the API's export has
+        # (its members are the same; only the export time inside differs, in the same width).
+        self.css("#study-export")[0].click()
+        self.wait(lambda d: self.css("#study-export-link"), message="the archive")
+        link = self.css("#study-export-link")[0]
+        self.assertEqual(link.get_attribute("download"), f"slipfront-study-{study_id}.tar")
+        r = self.server.get(f"/api/v1/studies/{study_id}/export", timeout=60)
+        self.assertEqual(r.status_code, 200, r.text[:300])
+        self.assertIn(b'"study": "study.json"', r.content)
+        self.assertEqual(link.text, f"slipfront-study-{study_id}.tar ({len(r.content)} bytes)")
         self.shot_card("#study-keep", "web-study-keep")
         self.css("#keep-archive")[0].click()
         self.wait(lambda d: self.css("#keep-archived"), message="archived")

@@ -2,7 +2,7 @@
 // plane, the L_c verdict with its reason, the speed–accuracy chart and the shared map of the
 // scene (every run of the group with the same physics but L and n_d).
 import { h, fill, fmt, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
-import { get, getJSON, post } from './api.js';
+import { download, get, getJSON, post } from './api.js';
 import { convergenceGrid, mapIsFinal, statusBadge } from './convergence_grid.js';
 import { METRICS, drawSpeedChart } from './speed_chart.js';
 import { searchSection } from './study_search.js';
@@ -127,6 +127,26 @@ export async function studyPage(view, page, id) {
       deleteQuestion: `Delete this study with its ${study.runs?.length ?? 0} run(s) and their result files? This cannot be undone.`,
       final: study.status !== 'running',
     });
+    // The study with its runs as one archive (GET /studies/{id}/export), for another server's
+    // import (POST /imports) or a paper's record.
+    if (study.status === 'running') return;
+    const out = h('span', { id: 'study-export-message' });
+    const exportArchive = async () => {
+      out.textContent = 'writing the archive…'; out.className = 'muted';
+      try {
+        const blob = await download(`/api/v1/studies/${study.id}/export`);
+        const name = `slipfront-study-${study.id}.tar`;
+        const link = h('a', { id: 'study-export-link', href: URL.createObjectURL(blob), download: name, text: `${name} (${blob.size} bytes)` });
+        fill(out, 'saved as ', link);
+        out.className = 'ok';
+        link.click();
+      } catch (e) {
+        out.textContent = e.status === 401 ? `${e.message} — enter your token at the top` : e.message;
+        out.className = 'error';
+      }
+    };
+    keep.append(h('div', { class: 'actions' },
+      h('button', { id: 'study-export', onclick: exportArchive, text: 'Export with its runs (tar)' }), out));
   };
 
   const renderSpeed = async () => {
