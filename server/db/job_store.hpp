@@ -93,6 +93,18 @@ public:
   // Rows whose stored JSON does not parse (slipfront check, the start-up log).
   std::vector<MalformedRow> malformed_rows();
   std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
+  // The finished runs an imported run may already be (JobService::already_here): of the spec
+  // `spec_sha256`, and either the id `origin_id`, or an import whose provenance names it, or a
+  // success with the result file `result_sha256` ("" = none). Few columns, indexed by spec.
+  struct ImportCandidate {
+    std::string id;
+    JobStatus status = JobStatus::succeeded;
+    nlohmann::json imported_from;
+    std::string result_sha256;
+  };
+  std::vector<ImportCandidate> import_candidates(const std::string& spec_sha256,
+                                                 const std::string& origin_id,
+                                                 const std::string& result_sha256);
 
   // What an owner keeps with a run after submission (job_store_keep.cpp, docs/server.md
   // "Keep, annotate, share"). Each returns false for an unknown job.

@@ -15,7 +15,6 @@
 #include "server/core/clock.hpp"
 #include "server/core/disk_space.hpp"
 #include "server/core/file_descriptor.hpp"
-#include "server/core/job_filter.hpp"
 #include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
 #include "server/core/storage_error.hpp"
@@ -132,32 +131,25 @@ RunOrigin origin_of(const nlohmann::json& imported_from, const std::string& host
 std::optional<ImportResult::Skipped> JobService::already_here(const RunToImport& run) {
   const Job& incoming = run.job;
   const RunOrigin origin = origin_of(incoming.imported_from, "", incoming.id);
+  if (origin.id.empty()) return std::nullopt;
   const std::string here = host_name();
+  const std::string result =
+      incoming.status == JobStatus::succeeded ? incoming.result.sha256 : std::string();
   // Both ways need the same spec: its hash is indexed, and recomputed here for both runs.
-  JobFilter filter;
-  filter.spec_sha256 = incoming.spec_sha256;
-  filter.archived = ArchivedRuns::include;
-  filter.limit = 1000;
   std::optional<ImportResult::Skipped> same_result;
-  for (;;) {
-    JobPage page = store_.list(filter);
-    for (const Job& job : page.jobs) {
-      if (!is_final(job.status)) continue;
-      if (origin_of(job.imported_from, here, job.id) == origin && !origin.id.empty())
-        return ImportResult::Skipped{incoming.id, job.id, "same_origin",
-                                     "the run " + origin.id + " of " +
-                                         (origin.host.empty() ? "its server" : origin.host) +
-                                         " is already here as job " + job.id};
-      if (!same_result && incoming.status == JobStatus::succeeded &&
-          job.status == JobStatus::succeeded && !job.result.sha256.empty() &&
-          job.result.sha256 == incoming.result.sha256)
-        same_result = ImportResult::Skipped{
-            incoming.id, job.id, "same_result",
-            "job " + job.id + " has the same spec and the same result file (SHA-256 " +
-                job.result.sha256 + ")"};
-    }
-    if (!page.next_cursor) break;
-    filter.before_seq = page.next_cursor;
+  for (const auto& job : store_.import_candidates(incoming.spec_sha256, origin.id, result)) {
+    if (origin_of(job.imported_from, here, job.id) == origin)
+      return ImportResult::Skipped{incoming.id, job.id, "same_origin",
+                                   "the run " + origin.id + " of " +
+                                       (origin.host.empty() ? "its server" : origin.host) +
+                                       " is already here as job " + job.id};
+    if (!same_result && !result.empty() && job.status == JobStatus::succeeded &&
+        job.result_sha256 == result)
+      same_result = ImportResult::Skipped{incoming.id, job.id, "same_result",
+                                          "job " + job.id +
+                                              " has the same spec and the same result file "
+                                              "(SHA-256 " +
+                                              result + ")"};
   }
   return same_result;
 }
