@@ -202,6 +202,7 @@ void ServerApp::start() {
   add_station_routes(router_, *context_);
   add_ops_routes(router_, *context_);
   add_study_routes(router_, *context_);
+  add_study_keep_routes(router_, *context_);
   add_preset_routes(router_);
   add_length_fit_routes(router_);
   {

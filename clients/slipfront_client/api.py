@@ -198,9 +198,15 @@ class Api:
 
     # Keep, annotate, share (docs/server.md): the owner's changes after submission.
 
-    def annotate(self, job_id, tags=None, note=None):
-        """PATCH /jobs/{id}: new tags (a list) and/or a new note; the job as it is now."""
-        body = {k: v for k, v in (("tags", tags), ("note", note)) if v is not None}
+    def annotate(self, job_id, tags=None, note=None, add=None, remove=None):
+        """PATCH /jobs/{id}: `tags` replaces every tag (a list), `add` and `remove` change
+        some (not with `tags`), and/or a new note; the job as it is now."""
+        body = {k: v for k, v in (("tags", tags), ("tags_add", add), ("tags_remove", remove),
+                                  ("note", note)) if v is not None}
+        return self.patch_job(job_id, body)
+
+    def patch_job(self, job_id, body):
+        """PATCH /jobs/{id} with `body` ({"tags"} or {"tags_add", "tags_remove"}, "note")."""
         return self.request("PATCH", f"{API}/jobs/{job_id}", json_body=body,
                             idempotent=True).json()
 
@@ -228,11 +234,14 @@ class Api:
                 size += len(chunk)
         return size
 
-    def import_archive(self, path):
-        """POST /imports with the tar file at `path`: {imported: [{id, original_id, url}]}."""
+    def import_archive(self, path, again=False):
+        """POST /imports with the tar file at `path`: {imported: [{id, original_id, url}],
+        skipped: [{original_id, id, url, reason, detail}], count}. A run already on the
+        server is skipped (listed with the run it is), unless `again`."""
         with open(path, "rb") as f:
             data = f.read()
-        return self.request("POST", f"{API}/imports", data=data, ok=(201,),
+        return self.request("POST", f"{API}/imports", data=data, ok=(200, 201),
+                            params={"again": "true"} if again else None,
                             headers={"Content-Type": "application/x-tar"}).json()
 
     def list_jobs(self, filters=None, limit=None, page_size=100):
@@ -283,9 +292,12 @@ class Api:
         ID/result.h5) as full URLs on the server asked, for a table read elsewhere."""
         return RESULT_PATH.sub(lambda m: m.group(1) + self.base_url + m.group(2), text)
 
-    def list_studies(self, status=None, limit=None, page_size=100):
-        """Yield study summaries newest first (all of them, or `limit`)."""
+    def list_studies(self, status=None, limit=None, page_size=100, archived=None):
+        """Yield study summaries newest first (all of them, or `limit`); archived ones only
+        with `archived` "include" or "only"."""
         params = {"status": status} if status else {}
+        if archived:
+            params["archived"] = archived
         count = 0
         while True:
             want = page_size if limit is None else min(page_size, limit - count)
@@ -328,6 +340,31 @@ class Api:
 
     def study(self, study_id):
         return self.get_json(f"{API}/studies/{study_id}")
+
+    def patch_study(self, study_id, body):
+        """PATCH /studies/{id}: {"tags"} or {"tags_add", "tags_remove"}, and/or "note"; the
+        study as it is now."""
+        return self.request("PATCH", f"{API}/studies/{study_id}", json_body=body,
+                            idempotent=True).json()
+
+    def archive_study(self, study_id, archived=True):
+        action = "archive" if archived else "restore"
+        return self.request("POST", f"{API}/studies/{study_id}/{action}", idempotent=True).json()
+
+    def export_study(self, study_id, path):
+        """GET /studies/{id}/export: the study with its runs as one tar archive, streamed into
+        the file `path` (import it with import_archive)."""
+        response = self.request("GET", f"{API}/studies/{study_id}/export", stream=True)
+        size = 0
+        with open(path, "wb") as f:
+            for chunk in response.iter_content(1 << 20):
+                f.write(chunk)
+                size += len(chunk)
+        return size
+
+    def delete_study(self, study_id):
+        """DELETE /studies/{id}: {id, deleted, deleted_jobs, results_deleted}."""
+        return self.request("DELETE", f"{API}/studies/{study_id}").json()
 
     def cancel_study(self, study_id):
         response = self.request("POST", f"{API}/studies/{study_id}/cancel", ok=(200, 202),

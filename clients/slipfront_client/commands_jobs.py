@@ -220,13 +220,22 @@ def cmd_status(args, ctx):
     return 0
 
 
+def wall_time_shown(job):
+    """A run's wall time; a cache hit ran nothing (its own is 0 s): the original run's solver
+    wall time (its metrics), marked cached."""
+    if not job.get("cached_from"):
+        return job.get("wall_time_s")
+    original = (job.get("metrics") or {}).get("wall_time_s")
+    return f"{original:.4g} (cached)" if isinstance(original, (int, float)) else "cached"
+
+
 LIST_COLUMNS = [
     ("id", lambda j: j.get("id")),
     ("status", lambda j: j.get("status")),
     ("L", lambda j: ((j.get("spec") or {}).get("friction") or {}).get("L")),
     ("n_d", lambda j: ((j.get("spec") or {}).get("geometry") or {}).get("nodes_per_meter")),
     ("outcome", lambda j: (j.get("metrics") or {}).get("outcome")),
-    ("wall_s", lambda j: j.get("wall_time_s")),
+    ("wall_s", lambda j: wall_time_shown(j)),
     ("name", lambda j: j.get("name")),
 ]
 

@@ -8,9 +8,10 @@ from .output import log, print_json
 
 
 def add_parsers(sub, common):
-    p = sub.add_parser("tag", parents=[common], help="set a job's tags (after submission)")
-    p.add_argument("id")
-    p.add_argument("tags", nargs="*", help="the new tags (none: clear them)")
+    p = sub.add_parser("tag", parents=[common],
+                       help="add or remove a job's tags (after submission); --set replaces "
+                            "them all")
+    add_tag_arguments(p)
     p.set_defaults(func=cmd_tag)
 
     p = sub.add_parser("note", parents=[common], help="set a job's note ('' clears it)")
@@ -49,7 +50,40 @@ def add_parsers(sub, common):
                        help="store the runs of an export archive on this server (every "
                             "checksum verified first)")
     p.add_argument("archive", help="a .tar file written by export-runs")
+    p.add_argument("--again", action="store_true",
+                   help="store the runs already on the server too, under new ids (a copy of "
+                        "your own); by default they are skipped")
     p.set_defaults(func=cmd_import)
+
+
+def add_tag_arguments(p):
+    """The arguments of `tag` (and `study tag`): ID, tags to add, --add/--remove, --set."""
+    p.add_argument("id")
+    p.add_argument("tags", nargs="*", help="tags to add (the others are kept)")
+    p.add_argument("--add", action="extend", nargs="+", default=[], metavar="TAG",
+                   help="tags to add (repeatable)")
+    p.add_argument("--remove", action="extend", nargs="+", default=[], metavar="TAG",
+                   help="tags to remove (repeatable; one not there is no error)")
+    p.add_argument("--set", nargs="*", metavar="TAG",
+                   help="replace every tag by these (none: clear them)")
+
+
+def tag_change(args):
+    """The PATCH body's tag members for `tag` (and `study tag`); None when nothing changes."""
+    if args.set is not None:
+        if args.tags or args.add or args.remove:
+            raise UsageError("--set replaces every tag: give the tags after it, without other "
+                             "tags, --add or --remove")
+        return {"tags": list(args.set)}
+    add = list(args.tags) + list(args.add)
+    if not add and not args.remove:
+        return None
+    change = {}
+    if add:
+        change["tags_add"] = add
+    if args.remove:
+        change["tags_remove"] = list(args.remove)
+    return change
 
 
 def show(job, args):
@@ -64,7 +98,11 @@ def show(job, args):
 
 
 def cmd_tag(args, ctx):
-    return show(ctx.api().annotate(args.id, tags=list(args.tags)), args)
+    change = tag_change(args)
+    api = ctx.api()
+    if change is None:  # nothing to change: the tags as they are
+        return show(api.job(args.id), args)
+    return show(api.patch_job(args.id, change), args)
 
 
 def cmd_note(args, ctx):
@@ -126,11 +164,17 @@ def cmd_export(args, ctx):
 def cmd_import(args, ctx):
     if not os.path.isfile(args.archive):
         raise UsageError(f"{args.archive}: no such file")
-    result = ctx.api().import_archive(args.archive)
+    result = ctx.api().import_archive(args.archive, again=args.again)
     if args.json:
         print_json(result)
     else:
         for run in result["imported"]:
             same = "" if run["id"] == run["original_id"] else f" (was {run['original_id']})"
             print(f"{run['id']}{same}")
+        for run in result.get("skipped", []):
+            print(f"{run['id']} skipped, already here: {run['detail']}")
+        study = result.get("study")
+        if study:
+            print(f"study {study['id']} " + ("skipped, already here" if study["skipped"]
+                                             else "imported with its runs"))
     return 0

@@ -1,6 +1,6 @@
 """`study create|wait|show|cancel`: a grid of runs over L × n_d (docs/studies-api.md)."""
 
-from . import jobspec, methods, studies
+from . import commands_keep, jobspec, methods, studies
 from .errors import ServerError, UsageError
 from .output import log, print_json, table
 
@@ -16,13 +16,19 @@ def floats(text, option):
 
 
 def add_parsers(sub, common):
-    p = sub.add_parser("study", parents=[common], help="studies: create, list, wait, show, cancel",
+    p = sub.add_parser("study", parents=[common],
+                       help="studies: create, list, wait, show, cancel, tag, note, archive, "
+                            "restore, export, delete",
                        description="Studies over L x n_d (needs the server's studies API).")
-    ssub = p.add_subparsers(dest="study_command", metavar="create|list|wait|show|cancel",
-                            required=True)
+    ssub = p.add_subparsers(
+        dest="study_command",
+        metavar="create|list|wait|show|cancel|tag|note|archive|restore|export|delete",
+        required=True)
 
     ls = ssub.add_parser("list", parents=[common], help="list studies, newest first")
     ls.add_argument("--status", choices=["running", "finished", "cancelled"])
+    ls.add_argument("--archived", choices=["exclude", "include", "only"],
+                    help="archived studies: left out (default), listed too, or alone")
     ls.add_argument("--limit", type=int, default=50, help="at most this many (0 = all)")
     ls.set_defaults(func=cmd_list)
 
@@ -66,6 +72,39 @@ def add_parsers(sub, common):
                         help="cancel a study: no further runs, its queued/running runs cancelled")
     x.add_argument("id")
     x.set_defaults(func=cmd_cancel)
+
+    t = ssub.add_parser("tag", parents=[common],
+                        help="add or remove a study's tags; --set replaces them all")
+    commands_keep.add_tag_arguments(t)
+    t.set_defaults(func=cmd_tag)
+
+    n = ssub.add_parser("note", parents=[common], help="set a study's note ('' clears it)")
+    n.add_argument("id")
+    n.add_argument("text", help="the note; '-' reads it from standard input")
+    n.set_defaults(func=cmd_note)
+
+    a = ssub.add_parser("archive", parents=[common],
+                        help="hide a study from `study list` (never deleted)")
+    a.add_argument("id")
+    a.set_defaults(func=cmd_archive, archived=True)
+
+    r = ssub.add_parser("restore", parents=[common], help="list an archived study again")
+    r.add_argument("id")
+    r.set_defaults(func=cmd_archive, archived=False)
+
+    e = ssub.add_parser("export", parents=[common],
+                        help="write a study that is over with its runs as one tar archive "
+                             "(import-runs stores it on a server)")
+    e.add_argument("id")
+    e.add_argument("-o", "--output", required=True, help="the .tar file to write")
+    e.set_defaults(func=cmd_export)
+
+    d = ssub.add_parser("delete", parents=[common],
+                        help="delete a study that is over with its runs and their result files "
+                             "(owner only)")
+    d.add_argument("id")
+    d.add_argument("--yes", action="store_true", help="do not ask for confirmation")
+    d.set_defaults(func=cmd_delete)
 
 
 def add_accuracy_parser(sub, common):
@@ -203,7 +242,8 @@ STUDY_COLUMNS = [
 def cmd_list(args, ctx):
     if args.limit < 0:
         raise UsageError("--limit must be >= 0")
-    found = list(ctx.api().list_studies(status=args.status, limit=args.limit or None))
+    found = list(ctx.api().list_studies(status=args.status, limit=args.limit or None,
+                                        archived=args.archived))
     if args.json:
         print_json(found)
     else:
@@ -237,4 +277,69 @@ def cmd_cancel(args, ctx):
         stopping = study.get("cancel_requested_jobs", [])
         print(f"{study['id']} {study['status']}: {len(cancelled)} queued run(s) cancelled, "
               f"{len(stopping)} running run(s) stopping")
+    return 0
+
+
+def show_kept(study, args):
+    if args.json:
+        print_json(study)
+    else:
+        archived = " (archived)" if study.get("archived_at") else ""
+        print(f"{study['id']} tags={','.join(study.get('tags') or []) or '-'}{archived}")
+        if study.get("note"):
+            print(study["note"])
+    return 0
+
+
+def cmd_tag(args, ctx):
+    change = commands_keep.tag_change(args)
+    api = ctx.api()
+    if change is None:  # nothing to change: the tags as they are
+        return show_kept(api.study(args.id), args)
+    return show_kept(api.patch_study(args.id, change), args)
+
+
+def cmd_note(args, ctx):
+    text = args.text
+    if text == "-":
+        import sys
+        text = sys.stdin.read()
+    return show_kept(ctx.api().patch_study(args.id, {"note": text}), args)
+
+
+def cmd_archive(args, ctx):
+    return show_kept(ctx.api().archive_study(args.id, args.archived), args)
+
+
+def cmd_delete(args, ctx):
+    if not args.yes:
+        try:
+            answer = input(f"delete study {args.id} with its runs and their result files? [y/N] ")
+        except EOFError:  # no terminal and no --yes: not deleted
+            answer = ""
+        if answer.strip().lower() not in ("y", "yes"):
+            raise UsageError("not deleted")
+    result = ctx.api().delete_study(args.id)
+    if args.json:
+        print_json(result)
+    else:
+        print(f"{result['id']} deleted with {len(result['deleted_jobs'])} run(s) and "
+              f"{result['results_deleted']} result file(s)")
+    return 0
+
+
+def cmd_export(args, ctx):
+    import os
+    if os.path.exists(args.output):
+        raise UsageError(f"{args.output} exists; choose another --output or remove it")
+    partial = args.output + ".part"
+    try:
+        size = ctx.api().export_study(args.id, partial)
+        os.replace(partial, args.output)
+    finally:
+        if os.path.exists(partial):
+            os.remove(partial)
+    if not args.quiet:
+        log(f"{args.output}: {size} bytes")
+    print(args.output)
     return 0

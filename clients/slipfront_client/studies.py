@@ -149,7 +149,8 @@ def summary_lines(study):
     for r in runs_of(study):
         m = r.get("metrics") or {}
         ch = (r.get("convergence") or {}).get("changes") or {} if isinstance(r.get("convergence"), dict) else {}
-        L = _value(r, "L", ("friction", "L"))
+        # An L search's plain-Coulomb runs have no L of their own (their spec keeps the base's).
+        L = "coulomb" if r.get("regime") == "coulomb" else _value(r, "L", ("friction", "L"))
         n_d = _value(r, "n_d", ("geometry", "nodes_per_meter"))
         conv = r.get("convergence")
         if isinstance(conv, dict):
@@ -165,7 +166,14 @@ def summary_lines(study):
         return lines + accuracy_summary(study.get("accuracy"))
     converged = (study.get("convergence_map") or {}).get("converged_n_d") or {}
     for L, n_d in converged.items():
-        lines.append(f"L = {L}: converged from n_d = {_fmt(n_d)}")
+        if n_d is not None:
+            lines.append(f"L = {L}: converged from n_d = {_fmt(n_d)}")
+            continue
+        tried = [_value(r, "n_d", ("geometry", "nodes_per_meter")) for r in runs_of(study)
+                 if r.get("regime") != "coulomb" and _same_L(r.get("L"), L)]
+        finest = max((n for n in tried if n is not None), default=None)
+        lines.append(f"L = {L}: not converged" + (f" (no two successive meshes agree up to "
+                                                  f"n_d = {_fmt(finest)})" if finest else ""))
     labels = {"L_c": "L_c by the rule over every L run",
               "spectral_critical_length": "spectral estimate (an order of magnitude from the "
                                           "filter law, not the rule's answer)"}
@@ -243,6 +251,14 @@ def cross_method_summary(rows):
                  else f" ({row.get('reason') or 'one side missing'})")
         lines.append(text)
     return lines
+
+
+def _same_L(value, key):
+    """Whether a run's L is the map's key (its text, as the server writes it)."""
+    try:
+        return value is not None and abs(float(value) - float(key)) <= 1e-12 * abs(float(key))
+    except (TypeError, ValueError):
+        return False
 
 
 def _fmt(value):

@@ -31,7 +31,9 @@ struct StudyRecord {
   int runs_done = 0, runs_total = 0;
   double L_c = api::not_available;
   double spectral_critical_length = api::not_available;
-  nlohmann::json result; // the stored analysis (null until the first step)
+  nlohmann::json result;   // the stored analysis (null until the first step)
+  std::string note;        // its owner's free text (PATCH /studies/{id})
+  std::string archived_at; // "" = listed; else hidden from GET /studies until asked for
 };
 
 // One run of a study with what the jobs table knows of it.
@@ -50,6 +52,13 @@ struct StudyRunRow {
   double wall_time_s = 0.0;
   double memory_estimate_bytes = 0.0;
   std::string scene_hash, cached_from, result_path, submitted_by, study_id, error;
+};
+
+// A study read from an archive and checked (server/http/run_archive.hpp), to be stored with
+// its runs (JobService::import_runs): its record and its runs by their ids in the archive.
+struct StudyToImport {
+  StudyRecord study;
+  std::vector<StudyRunRow> runs;
 };
 
 // Wall time of what was computed: for a reused (cached) run, the original run's.

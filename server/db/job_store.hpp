@@ -4,6 +4,7 @@
 // (`WHERE status = ...`) so the transitions of job.hpp hold even when a cancel races a worker.
 #pragma once
 
+#include "api/run_annotations.hpp"
 #include "server/core/job.hpp"
 #include "server/core/job_filter.hpp"
 #include "server/core/run_record.hpp"
@@ -36,7 +37,7 @@ struct CacheRequester {
 
 class JobStore {
 public:
-  static constexpr int schema_version = 12;
+  static constexpr int schema_version = 13;
 
   // Opens the database (StoreDb: refuses an empty or, unless `integrity_check` is false, a
   // damaged file; brings the schema up to date).
@@ -92,11 +93,26 @@ public:
   // Rows whose stored JSON does not parse (slipfront check, the start-up log).
   std::vector<MalformedRow> malformed_rows();
   std::optional<nlohmann::json> front(const std::string& id); // null json if none stored
+  // The finished runs an imported run may already be (JobService::already_here): of the spec
+  // `spec_sha256`, and either the id `origin_id`, or an import whose provenance names it, or a
+  // success with the result file `result_sha256` ("" = none). Few columns, indexed by spec.
+  struct ImportCandidate {
+    std::string id;
+    JobStatus status = JobStatus::succeeded;
+    nlohmann::json imported_from;
+    std::string result_sha256;
+  };
+  std::vector<ImportCandidate> import_candidates(const std::string& spec_sha256,
+                                                 const std::string& origin_id,
+                                                 const std::string& result_sha256);
 
   // What an owner keeps with a run after submission (job_store_keep.cpp, docs/server.md
   // "Keep, annotate, share"). Each returns false for an unknown job.
-  bool annotate(const std::string& id, const std::optional<std::vector<std::string>>& tags,
-                const std::optional<std::string>& note);
+  // The tags are changed from those stored, under the write lock: two changes at once both
+  // hold. Returns nullopt for an unknown job, else what the change gave (an error: nothing
+  // changed).
+  std::optional<api::TagsAfter> annotate(const std::string& id, const api::TagChange& tags,
+                                         const std::optional<std::string>& note);
   // archived_at "" restores the run (listed again).
   bool set_archived(const std::string& id, const std::string& archived_at);
   struct Removal {
@@ -124,8 +140,10 @@ public:
   ResultReferences result_references();
   // Inserts finished runs from an archive (status, result and metrics as given) under their
   // ids and forgets the intent `intent` (0: none), all in one transaction; false (and
-  // nothing changed) if one of the ids is taken.
-  bool insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent);
+  // nothing changed) if one of the ids is taken. `also` (if given) writes more rows in the
+  // same transaction (the study of a study's archive).
+  bool insert_finished(const std::vector<FinishedRun>& runs, std::int64_t intent,
+                       const std::function<void(Database&)>& also = {});
 
   std::string path() const { return db_.path(); }
 

@@ -6,16 +6,21 @@
 
 namespace slipfront::server {
 
-bool JobStore::annotate(const std::string& id, const std::optional<std::vector<std::string>>& tags,
-                        const std::optional<std::string>& note) {
+std::optional<api::TagsAfter> JobStore::annotate(const std::string& id, const api::TagChange& tags,
+                                                 const std::optional<std::string>& note) {
   auto db = db_.lock();
-  auto s = db->prepare("UPDATE jobs SET tags = COALESCE(?2, tags), note = COALESCE(?3, note) "
-                       "WHERE id = ?1");
-  s.bind(1, id)
-      .bind(2, tags ? std::optional<std::string>(nlohmann::json(*tags).dump()) : std::nullopt)
-      .bind(3, note)
-      .run();
-  return s.changes() == 1;
+  Transaction tx(*db);
+  auto row = db->prepare("SELECT tags FROM jobs WHERE id = ?1");
+  row.bind(1, id);
+  if (!row.step()) return std::nullopt;
+  const auto stored =
+      parse_stored_json(row.text(0), "tags of job " + id).get<std::vector<std::string>>();
+  api::TagsAfter after = api::apply_tag_change(stored, tags);
+  if (after.error) return after;
+  auto s = db->prepare("UPDATE jobs SET tags = ?2, note = COALESCE(?3, note) WHERE id = ?1");
+  s.bind(1, id).bind(2, nlohmann::json(after.tags).dump()).bind(3, note).run();
+  tx.commit();
+  return after;
 }
 
 bool JobStore::set_archived(const std::string& id, const std::string& archived_at) {

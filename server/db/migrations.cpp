@@ -20,6 +20,7 @@ const std::vector<Migration>& schema_migrations() {
       {migrations::m10_file_intents()},
       {migrations::m11_imported_results()},
       {migrations::m12_job_validation()},
+      {migrations::m13_study_annotations()},
   };
   return list;
 }

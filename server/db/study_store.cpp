@@ -1,5 +1,9 @@
 #include "server/db/study_store.hpp"
 
+#include "server/core/clock.hpp"
+#include "server/db/file_intents.hpp"
+
+#include <set>
 #include <stdexcept>
 
 namespace slipfront::server {
@@ -11,7 +15,7 @@ namespace {
 const char* study_columns =
     "seq, id, name, tags, kind, base_spec, request, scene_hash, submitted_by, priority, fresh, "
     "created_at, updated_at, finished_at, status, runs_done, runs_total, L_c, "
-    "spectral_critical_length, result, idempotency_key FROM studies ";
+    "spectral_critical_length, result, idempotency_key, note, archived_at FROM studies ";
 
 // A row of SELECT study_columns, read by column name.
 StudyRecord read_study(const Statement& s) {
@@ -41,6 +45,8 @@ StudyRecord read_study(const Statement& s) {
   r.spectral_critical_length = s.real("spectral_critical_length");
   r.result = parse_stored_json(s.text("result"), "result of study " + r.id);
   r.idempotency_key = s.text("idempotency_key");
+  r.note = s.text("note");
+  r.archived_at = s.text("archived_at");
   return r;
 }
 
@@ -134,11 +140,14 @@ std::optional<StudyRecord> StudyStore::get(const std::string& id) {
 }
 
 std::vector<StudyRecord> StudyStore::list(int limit, std::optional<std::int64_t> before_seq,
-                                          std::optional<api::StudyStatus> status) {
+                                          std::optional<api::StudyStatus> status,
+                                          ArchivedRuns archived) {
   return db_.with_db([&](Database& db) {
     std::string sql = std::string("SELECT ") + study_columns + "WHERE 1 = 1";
     if (before_seq) sql += " AND seq < ?1";
     if (status) sql += " AND status = ?2";
+    if (archived == ArchivedRuns::exclude) sql += " AND archived_at IS NULL";
+    if (archived == ArchivedRuns::only) sql += " AND archived_at IS NOT NULL";
     sql += " ORDER BY seq DESC LIMIT " + std::to_string(limit);
     auto s = db.prepare(sql);
     if (before_seq) s.bind(1, *before_seq);
@@ -220,6 +229,133 @@ std::string StudyStore::study_of_job(const std::string& job_id) {
     s.bind(1, job_id);
     return s.step() ? s.text(0) : std::string();
   });
+}
+
+bool study_exists(Database& db, const std::string& id) {
+  auto s = db.prepare("SELECT 1 FROM studies WHERE id = ?1");
+  s.bind(1, id);
+  return s.step();
+}
+
+void insert_imported_study(Database& db, const StudyRecord& st,
+                           const std::vector<StudyRunRow>& runs) {
+  db.prepare("INSERT INTO studies (id, name, tags, kind, base_spec, request, scene_hash, "
+             "submitted_by, priority, fresh, created_at, updated_at, finished_at, status, "
+             "runs_done, runs_total, L_c, spectral_critical_length, result, note) VALUES (?1, "
+             "?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, "
+             "?19, ?20)")
+      .bind(1, st.id)
+      .bind(2, st.name)
+      .bind(3, json(st.tags).dump())
+      .bind(4, st.kind)
+      .bind(5, st.base.dump())
+      .bind(6, st.request.dump())
+      .bind(7, st.scene_hash)
+      .bind(8, st.submitted_by)
+      .bind(9, std::int64_t{st.priority})
+      .bind(10, std::int64_t{st.fresh ? 1 : 0})
+      .bind(11, st.created_at)
+      .bind(12, text_or_null(st.updated_at))
+      .bind(13, text_or_null(st.finished_at))
+      .bind(14, std::string(api::to_string(st.status)))
+      .bind(15, std::int64_t{st.runs_done})
+      .bind(16, std::int64_t{st.runs_total})
+      .bind(17, st.L_c)
+      .bind(18, st.spectral_critical_length)
+      .bind(19, st.result.dump(-1, ' ', false, json::error_handler_t::replace))
+      .bind(20, st.note)
+      .run();
+  auto s = db.prepare("INSERT OR IGNORE INTO study_runs (study_id, job_id, regime, L, n_d, "
+                      "convergence_status, partner_n_d, propagation_distance_change, "
+                      "arrival_time_change, reason) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, "
+                      "?10)");
+  for (const auto& r : runs) {
+    s.bind(1, st.id)
+        .bind(2, r.job_id)
+        .bind(3, r.regime)
+        .bind(4, r.L)
+        .bind(5, r.n_d)
+        .bind(6, r.convergence_status)
+        .bind(7, r.partner_n_d)
+        .bind(8, r.propagation_distance_change)
+        .bind(9, r.arrival_time_change)
+        .bind(10, r.reason)
+        .run();
+    s.reset();
+  }
+}
+
+std::optional<api::TagsAfter> StudyStore::annotate(const std::string& id,
+                                                   const api::TagChange& tags,
+                                                   const std::optional<std::string>& note) {
+  auto db = db_.lock();
+  Transaction tx(*db);
+  auto row = db->prepare("SELECT tags FROM studies WHERE id = ?1");
+  row.bind(1, id);
+  if (!row.step()) return std::nullopt;
+  const auto stored =
+      parse_stored_json(row.text(0), "tags of study " + id).get<std::vector<std::string>>();
+  api::TagsAfter after = api::apply_tag_change(stored, tags);
+  if (after.error) return after;
+  db->prepare("UPDATE studies SET tags = ?2, note = COALESCE(?3, note) WHERE id = ?1")
+      .bind(1, id)
+      .bind(2, json(after.tags).dump())
+      .bind(3, note)
+      .run();
+  tx.commit();
+  return after;
+}
+
+bool StudyStore::set_archived(const std::string& id, const std::string& archived_at) {
+  auto db = db_.lock();
+  auto s = db->prepare("UPDATE studies SET archived_at = ?2 WHERE id = ?1");
+  s.bind(1, id).bind(2, text_or_null(archived_at)).run();
+  return s.changes() == 1;
+}
+
+StudyStore::Removal StudyStore::remove(const std::string& id) {
+  using Kind = Removal::Kind;
+  auto db = db_.lock();
+  Transaction tx(*db);
+  auto study = db->prepare("SELECT status FROM studies WHERE id = ?1");
+  study.bind(1, id);
+  if (!study.step()) return {};
+  if (study.text(0) == "running") return {Kind::running, {}, {}, 0};
+  // Its runs: those it submitted (or an import stored for it), but not one another study also
+  // lists. A run it only lists (one already here when it was imported) stays, unlisted.
+  auto runs = db->prepare(
+      "SELECT j.id, j.status, j.result_path FROM jobs j WHERE j.study_id = ?1 AND NOT EXISTS "
+      "(SELECT 1 FROM study_runs o WHERE o.job_id = j.id AND o.study_id != ?1)");
+  runs.bind(1, id);
+  Removal removal{Kind::removed, {}, {}, 0};
+  std::set<std::string> paths;
+  while (runs.step()) {
+    const auto status = parse_status(runs.text(1));
+    if (!status || !is_final(*status)) return {Kind::runs_not_final, {}, {}, 0};
+    removal.job_ids.push_back(runs.text(0));
+    if (!runs.text(2).empty()) paths.insert(runs.text(2));
+  }
+  db->prepare("DELETE FROM study_runs WHERE study_id = ?1").bind(1, id).run();
+  auto metrics = db->prepare("DELETE FROM metrics WHERE job_id = ?1");
+  auto jobs = db->prepare("DELETE FROM jobs WHERE id = ?1");
+  for (const auto& job : removal.job_ids) {
+    metrics.bind(1, job).run();
+    metrics.reset();
+    jobs.bind(1, job).run();
+    jobs.reset();
+  }
+  db->prepare("DELETE FROM studies WHERE id = ?1").bind(1, id).run();
+  // A cache hit elsewhere shares the file of the run it reused: the file goes with the last.
+  auto users = db->prepare("SELECT count(*) FROM jobs WHERE result_path = ?1");
+  for (const auto& path : paths) {
+    users.bind(1, path);
+    if (users.step() && users.integer(0) == 0) removal.orphaned_results.push_back(path);
+    users.reset();
+  }
+  if (!removal.orphaned_results.empty())
+    removal.intent = insert_file_intent(*db, "delete", removal.orphaned_results, now_iso8601());
+  tx.commit();
+  return removal;
 }
 
 void StudyStore::save_analysis(const StudyRecord& st, const std::vector<StudyRunRow>& runs) {

@@ -160,6 +160,9 @@ std::optional<Response> refuse_archive_space(ServerContext& ctx, const Request& 
   return std::nullopt;
 }
 
+Response archive_response(ServerContext& ctx, const Request& req, const std::vector<Job>& jobs,
+                          const nlohmann::json* study, const std::string& file_name);
+
 // GET /exports (ids or filters in the query) and POST /exports ({"ids": [...]}).
 Response export_archive(ServerContext& ctx, RequestContext& rc, bool ids_in_body) {
   // Exports may take much disk and bandwidth: on a shared server they need a token, as writes do.
@@ -170,10 +173,51 @@ Response export_archive(ServerContext& ctx, RequestContext& rc, bool ids_in_body
                             {{"/query", "POST /exports takes its ids in the body only"}});
   auto chosen = ids_in_body ? runs_of_body(ctx, rc) : runs_to_export(ctx, rc);
   if (auto* refusal = std::get_if<Response>(&chosen)) return std::move(*refusal);
-  const auto& jobs = std::get<std::vector<Job>>(chosen);
+  return archive_response(ctx, req, std::get<std::vector<Job>>(chosen), nullptr,
+                          "slipfront-runs-" +
+                              std::to_string(std::get<std::vector<Job>>(chosen).size()));
+}
+
+// GET /studies/{id}/export: a study that is over with its runs, as one archive (study.json
+// beside the runs' members).
+Response export_study(ServerContext& ctx, RequestContext& rc) {
+  if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
+  const auto& req = rc.request;
+  const auto& id = rc.path_params.at("id");
+  if (!rc.query.empty())
+    return problem_response(
+        req, http::status::bad_request, "invalid query parameters",
+        {{"/query/" + api::cut_text(rc.query.begin()->first, 64), "unknown query parameter"}});
+  auto view = is_valid_job_id(id) ? ctx.studies.view(id) : std::nullopt;
+  if (!view) return problem_response(req, http::status::not_found, "no study with id " + id);
+  if (view->study.status == api::StudyStatus::running)
+    return problem_response(req, http::status::conflict,
+                            "study " + id +
+                                " is running: export it once it is over (or cancel it first)");
+  if (view->runs.size() > max_archive_runs)
+    return problem_response(req, http::status::unprocessable_entity,
+                            "study " + id + " has more than " + std::to_string(max_archive_runs) +
+                                " runs, more than an archive holds");
+  std::vector<Job> jobs;
+  for (const auto& run : view->runs) {
+    auto job = ctx.service.get(run.job_id);
+    if (!job) throw std::runtime_error("run " + run.job_id + " of study " + id + " vanished");
+    if (!is_final(job->status))
+      return problem_response(req, http::status::conflict,
+                              "run " + job->id + " of study " + id + " is " +
+                                  to_string(job->status) + ": export the study once it stops");
+    jobs.push_back(std::move(*job));
+  }
+  const nlohmann::json study = study_archive_json(view->study, view->runs);
+  return archive_response(ctx, req, jobs, &study, "slipfront-study-" + id);
+}
+
+// The archive of `jobs` (and `study`, if given) streamed from an unnamed file of the data dir.
+Response archive_response(ServerContext& ctx, const Request& req, const std::vector<Job>& jobs,
+                          const nlohmann::json* study, const std::string& file_name) {
   ArchivePlan plan;
   try {
-    plan = plan_run_archive(ctx.service, jobs);
+    plan = plan_run_archive(ctx.service, jobs, study);
   } catch (const ArchiveRefusal& e) {
     return problem_response(req, http::status::conflict, e.what());
   }
@@ -207,8 +251,7 @@ Response export_archive(ServerContext& ctx, RequestContext& rc, bool ids_in_body
   http::response<RangeFileBody> res{http::status::ok, req.version()};
   res.set(http::field::server, "slipfront");
   res.set(http::field::content_type, "application/x-tar");
-  res.set(http::field::content_disposition,
-          "attachment; filename=\"slipfront-runs-" + std::to_string(jobs.size()) + ".tar\"");
+  res.set(http::field::content_disposition, "attachment; filename=\"" + file_name + ".tar\"");
   res.set(http::field::cache_control, "no-store");
   res.body().reset(std::move(body), ec);
   if (ec)
@@ -222,8 +265,20 @@ Response export_archive(ServerContext& ctx, RequestContext& rc, bool ids_in_body
 Response import_archive(ServerContext& ctx, RequestContext& rc) {
   if (auto denied = authenticate(ctx.tokens, rc)) return std::move(*denied);
   const auto& req = rc.request;
+  // ?again=true stores the runs already here too, under new ids (a copy of one's own).
+  bool again = false;
+  for (const auto& [name, value] : rc.query) {
+    if (name == "again" && (value == "true" || value == "false"))
+      again = value == "true";
+    else
+      return problem_response(
+          req, http::status::bad_request, "invalid query parameters",
+          {{"/query/" + api::cut_text(name, 64),
+            name == "again" ? "must be true or false"
+                            : "unknown parameter (POST /imports takes again)"}});
+  }
   try {
-    const ImportResult imported = import_run_archive(req.body(), ctx.service, rc.user);
+    const ImportResult imported = import_run_archive(req.body(), ctx.service, rc.user, again);
     if (imported.kind == ImportResult::Kind::no_space)
       return unavailable_response(req, imported.reason + "; nothing was stored, retry later",
                                   ctx.retry_after_s);
@@ -239,9 +294,29 @@ Response import_archive(ServerContext& ctx, RequestContext& rc) {
       warnings.push_back(imported.warnings[i]);
     if (imported.warnings.size() > 20)
       warnings.push_back("and " + std::to_string(imported.warnings.size() - 20) + " more");
+    // The runs already here, not stored again: each with the run here that it is.
+    nlohmann::json skipped = nlohmann::json::array();
+    for (const auto& run : imported.skipped)
+      skipped.push_back({{"original_id", run.original_id},
+                         {"id", run.id},
+                         {"url", api_prefix + "/jobs/" + run.id},
+                         {"reason", run.reason},
+                         {"detail", run.detail}});
+    nlohmann::json answer = {{"imported", runs},
+                             {"count", imported.ids.size()},
+                             {"skipped", skipped},
+                             {"warnings", warnings}};
+    // A study's archive: the study here, or the one of its id that was here already.
+    const bool study_stored = imported.study && !imported.study->skipped;
+    if (imported.study)
+      answer["study"] = {{"id", imported.study->id},
+                         {"original_id", imported.study->original_id},
+                         {"url", api_prefix + "/studies/" + imported.study->id},
+                         {"skipped", imported.study->skipped}};
+    // 201 when something was stored; 200 when everything was already here (nothing created).
     return json_response(
-        req, http::status::created,
-        {{"imported", runs}, {"count", imported.ids.size()}, {"warnings", warnings}});
+        req, imported.ids.empty() && !study_stored ? http::status::ok : http::status::created,
+        answer);
   } catch (const ArchiveRefusal& e) {
     // A member name comes from the client: a long one is cut, as other echoed values are.
     const std::string where = api::cut_text(e.where(), 300);
@@ -262,6 +337,9 @@ void add_archive_routes(Router& router, ServerContext& ctx) {
   router.add_json_body(
       http::verb::post, api_prefix + "/exports",
       [&ctx](RequestContext& rc) { return export_archive(ctx, rc, true); }, Runs::export_pool);
+  router.add(
+      http::verb::get, api_prefix + "/studies/{id}/export",
+      [&ctx](RequestContext& rc) { return export_study(ctx, rc); }, Runs::export_pool);
   router.add(http::verb::post, api_prefix + "/imports",
              [&ctx](RequestContext& rc) { return import_archive(ctx, rc); });
 }

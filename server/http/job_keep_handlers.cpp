@@ -1,6 +1,7 @@
 // What an owner does with a run after submission (docs/server.md "Keep, annotate, share"):
-// PATCH /jobs/{id} (tags, note), POST /jobs/{id}/archive and /restore, DELETE /jobs/{id}.
-// With a token file, only the user who submitted the run may change it (as for cancel).
+// PATCH /jobs/{id} (tags replaced, added or removed; note), POST /jobs/{id}/archive and /restore,
+// DELETE /jobs/{id}. With a token file, only the user who submitted the run may change it (as for
+// cancel).
 #include "api/json_parse.hpp"
 #include "api/run_annotations.hpp"
 #include "server/core/job_id.hpp"
@@ -33,6 +34,9 @@ std::optional<Response> refusal(const Request& req, const std::string& id, const
     return problem_response(req, http::status::conflict,
                             "job " + id + " is a run of study " + r.study_id +
                                 ", which keeps its runs: archive it instead (POST .../archive)");
+  case Kind::invalid:
+    return problem_response(req, http::status::unprocessable_entity, "the change is invalid",
+                            {*r.error});
   }
   return problem_response(req, http::status::internal_server_error, "unreachable");
 }

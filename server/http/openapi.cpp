@@ -310,7 +310,8 @@ const char* document = R"json({
       "get": {"summary": "List studies, newest first (summaries)",
         "parameters": [{"name": "status", "in": "query", "schema": {"type": "string", "enum": ["running", "finished", "cancelled"]}},
           {"name": "limit", "in": "query", "schema": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 50}},
-          {"name": "cursor", "in": "query", "schema": {"type": "string"}}],
+          {"name": "cursor", "in": "query", "schema": {"type": "string"}},
+          {"name": "archived", "in": "query", "schema": {"type": "string", "enum": ["exclude", "include", "only"], "default": "exclude"}, "description": "archived studies: left out (default), listed too, or alone"}],
         "responses": {"200": {"description": "A page: {studies, count, next_cursor, next}"}, "400": {"$ref": "#/components/responses/Problem"}}}
     },
     "/api/v1/studies/{id}": {
@@ -373,6 +374,9 @@ const std::map<std::string, std::string>& path_tags() {
       {"/api/v1/studies", "studies"},
       {"/api/v1/studies/{id}", "studies"},
       {"/api/v1/studies/{id}/cancel", "studies"},
+      {"/api/v1/studies/{id}/archive", "studies"},
+      {"/api/v1/studies/{id}/export", "studies"},
+      {"/api/v1/studies/{id}/restore", "studies"},
       {"/api/v1/studies/{id}/speed-accuracy", "studies"},
       {"/api/v1/convergence-map", "studies"},
       {"/api/v1/presets", "presets"},

@@ -2,6 +2,7 @@
 
 #include "api/free_text.hpp"
 #include "api/json_fields.hpp"
+#include "api/json_number.hpp"
 #include "api/json_parse.hpp"
 #include "api/metrics_reader.hpp"
 #include "api/number_text.hpp"
@@ -9,6 +10,7 @@
 #include "server/core/clock.hpp"
 #include "server/core/file_descriptor.hpp"
 #include "server/core/job_id.hpp"
+#include "server/core/study_request.hpp"
 #include "server/core/tar_archive.hpp"
 #include "server/http/job_json.hpp"
 
@@ -29,6 +31,8 @@ namespace slipfront::server {
 namespace {
 
 using nlohmann::json;
+
+constexpr const char* study_member = "study.json";
 
 std::string job_member(const std::string& id) {
   return "runs/" + id + "/job.json";
@@ -53,7 +57,8 @@ OpenedResult open_intact(JobService& service, const Job& job) {
 
 } // namespace
 
-ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs) {
+ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs,
+                             const nlohmann::json* study) {
   // Every file is checked (and every job.json made) before a byte is written; the result
   // files are opened again, one at a time, when they are copied.
   ArchivePlan plan;
@@ -78,23 +83,68 @@ ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs) 
     }
     runs.push_back(std::move(run));
   }
-  const json manifest = {
+  if (study) {
+    plan.study_text = study->dump(2) + "\n";
+    files.push_back({{"name", study_member},
+                     {"size", plan.study_text.size()},
+                     {"sha256", api::sha256_hex(plan.study_text)}});
+    sizes.push_back(plan.study_text.size());
+  }
+  json manifest = {
       {"format", archive_format},
       {"version", archive_version},
       {"exported_at", now_iso8601()},
       {"server", {{"host", host_name()}, {"code_version", service.options().code_version}}},
       {"runs", std::move(runs)},
       {"files", std::move(files)}};
+  if (study) manifest["study"] = study_member;
   plan.manifest = manifest.dump(2) + "\n";
   sizes.push_back(plan.manifest.size());
   plan.size = TarWriter::archive_size(sizes);
   return plan;
 }
 
+nlohmann::json study_archive_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs) {
+  json rows = json::array();
+  for (const auto& r : runs)
+    rows.push_back(
+        {{"job_id", r.job_id},
+         {"regime", r.regime},
+         {"L", r.L},
+         {"n_d", r.n_d},
+         {"convergence_status", r.convergence_status},
+         {"partner_n_d", api::json_number(r.partner_n_d)},
+         {"propagation_distance_change", api::json_number(r.propagation_distance_change)},
+         {"arrival_time_change", api::json_number(r.arrival_time_change)},
+         {"reason", r.reason}});
+  return {{"id", s.id},
+          {"name", s.name},
+          {"tags", s.tags},
+          {"note", s.note},
+          {"kind", s.kind},
+          {"status", api::to_string(s.status)},
+          {"base", s.base},
+          {"request", s.request},
+          {"scene_hash", s.scene_hash},
+          {"submitted_by", s.submitted_by},
+          {"priority", s.priority},
+          {"fresh", s.fresh},
+          {"created_at", s.created_at},
+          {"updated_at", s.updated_at.empty() ? json(nullptr) : json(s.updated_at)},
+          {"finished_at", s.finished_at.empty() ? json(nullptr) : json(s.finished_at)},
+          {"runs_done", s.runs_done},
+          {"runs_total", s.runs_total},
+          {"L_c", api::json_number(s.L_c)},
+          {"spectral_critical_length", api::json_number(s.spectral_critical_length)},
+          {"result", s.result},
+          {"runs", std::move(rows)}};
+}
+
 void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
                        const ArchivePlan& plan) {
   TarWriter tar(fd);
   tar.add("manifest.json", plan.manifest);
+  if (!plan.study_text.empty()) tar.add(study_member, plan.study_text);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     tar.add(job_member(jobs[i].id), plan.job_texts[i]);
     if (has_result(jobs[i])) {
@@ -110,11 +160,12 @@ namespace {
 // A job.json read field by field; every refusal names the member and the JSON pointer.
 class RecordReader {
 public:
-  RecordReader(const json& record, std::string member)
-      : record_(record), member_(std::move(member)) {}
+  // `prefix`: where the record is inside the member ("runs/0/"), for the pointers.
+  RecordReader(const json& record, std::string member, std::string prefix = "")
+      : record_(record), member_(std::move(member)), prefix_(std::move(prefix)) {}
 
   [[noreturn]] void refuse(const std::string& key, const std::string& reason) const {
-    throw ArchiveRefusal(member_ + "#/" + key, reason);
+    throw ArchiveRefusal(member_ + "#/" + prefix_ + key, reason);
   }
   const json& field(const std::string& key) const {
     static const json null;
@@ -161,6 +212,7 @@ public:
 private:
   const json& record_;
   std::string member_;
+  std::string prefix_;
 };
 
 // Why a stored front ({x1, arrival_time, rupture_speed}: lists of numbers or null of one
@@ -234,7 +286,7 @@ RunToImport read_run(const json& entry, const std::map<std::string, std::string_
   auto annotations = api::parse_annotations(kept);
   if (!annotations.ok())
     in.refuse(annotations.errors.front().pointer.substr(1), annotations.errors.front().reason);
-  job.tags = annotations.annotations.tags.value_or(std::vector<std::string>());
+  job.tags = annotations.annotations.tags.replace.value_or(std::vector<std::string>());
   job.note = annotations.annotations.note.value_or("");
   job.created_at = in.time("created_at", true);
   job.started_at = in.time("started_at", false);
@@ -314,6 +366,98 @@ RunToImport read_run(const json& entry, const std::map<std::string, std::string_
   return run;
 }
 
+// The study of a study's archive (study.json), checked as a run's job.json is: its request
+// must parse as this server reads studies, its texts and numbers in range, its runs runs of
+// the archive. Nothing stored.
+StudyToImport read_study(const std::map<std::string, std::string_view>& members,
+                         const std::set<std::string>& run_ids) {
+  auto member = members.find(study_member);
+  if (member == members.end())
+    throw ArchiveRefusal(study_member, "the manifest names it but the archive does not hold it");
+  auto parsed = api::parse_bounded_json(member->second);
+  if (!parsed.ok() || !parsed.value.is_object())
+    throw ArchiveRefusal(study_member, "not a JSON object: " + parsed.error.reason);
+  const json& doc = parsed.value;
+  RecordReader in(doc, study_member);
+  StudyToImport out;
+  StudyRecord& s = out.study;
+  s.id = in.text("id", 64);
+  if (!is_valid_job_id(s.id)) in.refuse("id", "must be a study id (32 lower-case hex characters)");
+  s.name = in.text("name");
+  json kept = {{"tags", in.field("tags").is_null() ? json::array() : in.field("tags")},
+               {"note", in.field("note").is_null() ? json("") : in.field("note")}};
+  auto annotations = api::parse_annotations(kept);
+  if (!annotations.ok())
+    in.refuse(annotations.errors.front().pointer.substr(1), annotations.errors.front().reason);
+  s.tags = annotations.annotations.tags.replace.value_or(std::vector<std::string>());
+  s.note = annotations.annotations.note.value_or("");
+  s.kind = in.text("kind", 32);
+  if (s.kind != "grid" && s.kind != "convergence" && s.kind != "failure_regimes" &&
+      s.kind != "accuracy")
+    in.refuse("kind", "must be grid, convergence, failure_regimes or accuracy");
+  const auto status = api::parse_study_status(in.text("status", 16));
+  if (!status || *status == api::StudyStatus::running)
+    in.refuse("status", "must be finished or cancelled (only a study that is over moves)");
+  s.status = *status;
+  s.request = in.field("request");
+  if (auto request = parse_study_request(s.request); !request.request)
+    in.refuse("request" + (request.errors.empty() ? "" : request.errors.front().pointer),
+              "is not a study request this server reads: " +
+                  (request.errors.empty() ? std::string() : request.errors.front().reason));
+  s.base = in.field("base");
+  if (!s.base.is_object()) in.refuse("base", "must be an object (the study's base job)");
+  s.scene_hash = in.text("scene_hash", 64);
+  s.created_at = in.time("created_at", true);
+  s.updated_at = in.time("updated_at", false);
+  s.finished_at = in.time("finished_at", false);
+  s.runs_done = static_cast<int>(in.count(in.field("runs_done"), "runs_done"));
+  s.runs_total = static_cast<int>(in.count(in.field("runs_total"), "runs_total"));
+  if (s.runs_done > 100000 || s.runs_total > 100000)
+    in.refuse("runs_total", "must be at most 100000");
+  auto length = [&](const char* key) {
+    const json& v = in.field(key);
+    if (v.is_null()) return api::not_available;
+    return in.number(v, key, 1e6);
+  };
+  s.L_c = length("L_c");
+  s.spectral_critical_length = length("spectral_critical_length");
+  s.result = in.field("result");
+  if (!s.result.is_null() && !s.result.is_object())
+    in.refuse("result", "must be an object (the stored analysis) or null");
+  const json& runs = in.field("runs");
+  if (!runs.is_array() || runs.size() > run_ids.size())
+    in.refuse("runs", "must be a list of the study's runs, each a run of the archive");
+  std::set<std::string> listed;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const json& r = runs[i];
+    const std::string at = "runs/" + std::to_string(i);
+    if (!r.is_object()) in.refuse(at, "must be an object");
+    RecordReader row(r, study_member, at + "/");
+    StudyRunRow run;
+    run.job_id = row.text("job_id", 64);
+    if (!run_ids.contains(run.job_id)) row.refuse("job_id", "is not a run of the archive");
+    if (!listed.insert(run.job_id).second) row.refuse("job_id", "is listed twice");
+    run.regime = row.text("regime", 32);
+    run.L = row.number(row.field("L"), "L", 1e6);
+    run.n_d = row.number(row.field("n_d"), "n_d", 1e9);
+    run.convergence_status = row.text("convergence_status", 32);
+    if (run.convergence_status.empty()) run.convergence_status = "pending";
+    auto optional = [&](const char* key) {
+      const json& v = row.field(key);
+      if (v.is_null()) return api::not_available;
+      if (!v.is_number() || !std::isfinite(v.get<double>()))
+        row.refuse(key, "must be a number or null");
+      return v.get<double>();
+    };
+    run.partner_n_d = optional("partner_n_d");
+    run.propagation_distance_change = optional("propagation_distance_change");
+    run.arrival_time_change = optional("arrival_time_change");
+    run.reason = row.text("reason", 4096);
+    out.runs.push_back(std::move(run));
+  }
+  return out;
+}
+
 // Every member but the manifest is listed in it, every listed file is there with its size and
 // SHA-256. Returns the listing by name.
 std::map<std::string, json> check_files(const json& manifest,
@@ -354,7 +498,7 @@ std::map<std::string, json> check_files(const json& manifest,
 } // namespace
 
 ImportResult import_run_archive(std::string_view archive, JobService& service,
-                                const std::string& user) {
+                                const std::string& user, bool again) {
   std::vector<TarMember> members;
   try {
     members = read_tar(archive, {2 * max_archive_runs + 1});
@@ -397,8 +541,16 @@ ImportResult import_run_archive(std::string_view archive, JobService& service,
     if (!ids.insert(pending.back().job.id).second)
       throw ArchiveRefusal("manifest.json#/runs", "run " + pending.back().job.id + " given twice");
   }
-  // Everything checked: store, all runs or none.
-  ImportResult result = service.import_runs(std::move(pending), user);
+  // A study's archive names its study.json in the manifest.
+  std::optional<StudyToImport> study;
+  if (const json& named = manifest.value("study", json()); !named.is_null()) {
+    if (named != study_member)
+      throw ArchiveRefusal("manifest.json#/study",
+                           std::string("must be \"") + study_member + "\" (or absent: no study)");
+    study = read_study(by_name, ids);
+  }
+  // Everything checked: store, all runs or none (with the study, if any).
+  ImportResult result = service.import_runs(std::move(pending), user, again, std::move(study));
   result.warnings = std::move(warnings);
   return result;
 }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "server/core/job.hpp"
+#include "server/core/study.hpp"
 #include "server/services/job_service.hpp"
 
 #include <cstddef>
@@ -40,10 +41,18 @@ private:
 struct ArchivePlan {
   std::string manifest;
   std::vector<std::string> job_texts; // runs/<id>/job.json of each job, in order
+  std::string study_text;             // study.json of a study's archive ("" = none)
   std::uint64_t size = 0;
 };
 // Throws ArchiveRefusal when a run's result file is missing or damaged (where = the job id).
-ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs);
+// With `study` (the study these jobs are the runs of, as study_archive_json writes it), the
+// archive holds it as study.json, named by the manifest's "study".
+ArchivePlan plan_run_archive(JobService& service, const std::vector<Job>& jobs,
+                             const nlohmann::json* study = nullptr);
+
+// A study as its archive holds it: its record (name, tags, note, kind, request, base, status,
+// times, L_c, the stored analysis) and its runs with their places in it.
+nlohmann::json study_archive_json(const StudyRecord& study, const std::vector<StudyRunRow>& runs);
 // Writes the archive of `jobs` as planned to `fd`. Throws ArchiveRefusal as above (a file
 // damaged since), StorageError when the disk refuses the bytes.
 void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs,
@@ -54,7 +63,8 @@ void write_run_archive(int fd, JobService& service, const std::vector<Job>& jobs
 // none (JobService::import_runs): each keeps its id if it is free here, else gets a new one,
 // and records where it came from (`imported_from`). Throws ArchiveRefusal naming what does
 // not hold, StorageError when the disk refuses a write.
+// A run already here is skipped unless `again` (JobService::import_runs).
 ImportResult import_run_archive(std::string_view archive, JobService& service,
-                                const std::string& user);
+                                const std::string& user, bool again = false);
 
 } // namespace slipfront::server

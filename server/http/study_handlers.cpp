@@ -1,4 +1,5 @@
-// POST /studies, GET /studies, GET /studies/{id}, POST /studies/{id}/cancel,
+// POST /studies, GET /studies, GET /studies/{id}, POST /studies/{id}/cancel (the owner's other
+// changes: study_keep_handlers.cpp),
 // GET /studies/{id}/speed-accuracy, GET /convergence-map (docs/studies-api.md).
 #include "server/core/job_id.hpp"
 #include "server/http/handlers.hpp"
@@ -115,7 +116,8 @@ Response cancel_study(ServerContext& ctx, RequestContext& rc) {
 }
 
 Response list_studies(ServerContext& ctx, RequestContext& rc) {
-  if (auto bad = unknown_parameters(rc, {"limit", "cursor", "status"})) return std::move(*bad);
+  if (auto bad = unknown_parameters(rc, {"limit", "cursor", "status", "archived"}))
+    return std::move(*bad);
   std::vector<api::FieldError> errors;
   int limit = 50;
   std::optional<std::int64_t> cursor;
@@ -138,10 +140,22 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
     status = api::parse_study_status(it->second);
     if (!status) errors.push_back({"/query/status", "must be running, finished or cancelled"});
   }
+  // Archived studies are left out unless asked for, as archived runs are.
+  ArchivedRuns archived = ArchivedRuns::exclude;
+  std::string archived_query;
+  if (auto it = rc.query.find("archived"); it != rc.query.end()) {
+    archived_query = "&archived=" + it->second;
+    if (it->second == "include")
+      archived = ArchivedRuns::include;
+    else if (it->second == "only")
+      archived = ArchivedRuns::only;
+    else if (it->second != "exclude")
+      errors.push_back({"/query/archived", "must be exclude (the default), include or only"});
+  }
   if (!errors.empty())
     return problem_response(rc.request, http::status::bad_request, "invalid query parameters",
                             errors);
-  auto studies = ctx.studies.list(limit + 1, cursor, status);
+  auto studies = ctx.studies.list(limit + 1, cursor, status, archived);
   json body;
   body["studies"] = json::array();
   std::optional<std::int64_t> next;
@@ -157,7 +171,7 @@ Response list_studies(ServerContext& ctx, RequestContext& rc) {
   body["next"] =
       next ? json(api_prefix + "/studies?limit=" + std::to_string(limit) +
                   (status ? std::string("&status=") + api::to_string(*status) : std::string()) +
-                  "&cursor=" + std::to_string(*next))
+                  archived_query + "&cursor=" + std::to_string(*next))
            : json(nullptr);
   return json_response(rc.request, http::status::ok, std::move(body));
 }

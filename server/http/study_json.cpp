@@ -57,6 +57,8 @@ json study_to_json(const StudyRecord& s, const std::vector<StudyRunRow>& runs, b
                    {"fraction", s.runs_total ? double(s.runs_done) / s.runs_total : 0.0}};
   j["L_c"] = api::json_number(s.L_c);
   j["spectral_critical_length"] = api::json_number(s.spectral_critical_length);
+  j["note"] = s.note;
+  j["archived_at"] = s.archived_at.empty() ? json(nullptr) : json(s.archived_at);
   j["links"] = {{"self", self},
                 {"speed_accuracy", self + "/speed-accuracy"},
                 {"convergence_map", api_prefix + "/convergence-map?scene=" + s.scene_hash},

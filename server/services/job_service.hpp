@@ -4,6 +4,7 @@
 
 #include "api/cost_estimate.hpp"
 #include "api/job_spec.hpp"
+#include "server/core/study.hpp"
 #include "server/db/job_store.hpp"
 #include "server/run/job_queue.hpp"
 #include "server/run/running_jobs.hpp"
@@ -77,10 +78,12 @@ struct KeepResult {
     forbidden, // a token file is configured and the run is another user's
     not_final, // delete: the run is queued or running (cancel it first)
     in_study,  // delete: a study holds the run (study_id); archive it instead
+    invalid,   // the change cannot be made (error: its field and reason); nothing changed
   } kind = Kind::not_found;
   std::optional<Job> job; // done: the run as it is now (delete: as it was)
   std::string study_id;
   bool result_deleted = false; // delete: its result file went with it (no other run shares it)
+  std::optional<api::FieldError> error; // invalid
 };
 
 // A finished run read from an archive and checked (server/http/run_archive.hpp), to be stored
@@ -99,6 +102,21 @@ struct ImportResult {
     refused,  // 422: a result file is not what its run says (`where`: its member)
   } kind = Kind::imported;
   std::vector<std::pair<std::string, std::string>> ids; // (id here, id in the archive)
+  // A run already here is not stored again (docs/server.md "Export and import").
+  struct Skipped {
+    std::string original_id; // in the archive
+    std::string id;          // the run here that it is
+    std::string reason;      // "same_origin" or "same_result"
+    std::string detail;      // in words
+  };
+  std::vector<Skipped> skipped;
+  // A study's archive: the study here (its id, the archive's; `skipped` when a study of that
+  // id was here already: not stored again).
+  struct ImportedStudy {
+    std::string id, original_id;
+    bool skipped = false;
+  };
+  std::optional<ImportedStudy> study;
   std::string where;
   std::string reason;
   std::vector<std::string> warnings; // what was left out of the runs (their metrics' names)
@@ -164,10 +182,19 @@ public:
   std::optional<nlohmann::json> front(const std::string& id) { return store_.front(id); }
 
   // Owner-only changes after submission (docs/server.md "Keep, annotate, share").
-  KeepResult annotate(const std::string& id, const std::string& user,
-                      const std::optional<std::vector<std::string>>& tags,
+  KeepResult annotate(const std::string& id, const std::string& user, const api::TagChange& tags,
                       const std::optional<std::string>& note);
   KeepResult set_archived(const std::string& id, const std::string& user, bool archived);
+  // Deletes rows by `remove_rows` under the submission lock (no submission picks one of their
+  // files as a cache hit meanwhile): one transaction that returns the result files no row
+  // refers to any more and the intent to remove them; then removes those files and forgets
+  // the intent. Returns how many files went. `what` names the change in the log.
+  struct RowsRemoved {
+    std::vector<std::string> orphaned_results;
+    std::int64_t intent = 0;
+  };
+  std::size_t remove_rows_and_files(const std::function<RowsRemoved()>& remove_rows,
+                                    const std::string& what);
   // Deletes a finished run; its result file too once no other run (a cache hit) refers to it.
   KeepResult remove(const std::string& id, const std::string& user);
   // Stores the runs of an archive for `user`, all of them or none (services/run_import.cpp):
@@ -175,7 +202,14 @@ public:
   // HDF5 API and checked against docs/hdf5-layout.md and the spec of its run before anything
   // is stored (refused otherwise). Throws StorageError when the disk refuses a write (nothing
   // stays).
-  ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user);
+  // A run already here is skipped, not stored again: one of the same origin (the server and id
+  // that first computed it, followed through earlier imports) and spec, or one that succeeded
+  // with the same result file (SHA-256) and spec.
+  // `again`: store them all, those already here too (under new ids).
+  // With `study`, the study is stored in the same transaction as its runs, listing each by
+  // its id here (a run skipped as already here is listed as that run).
+  ImportResult import_runs(std::vector<RunToImport> runs, const std::string& user,
+                           bool again = false, std::optional<StudyToImport> study = std::nullopt);
   // At start-up, before the server answers: removes the files of imports and deletes a
   // crash interrupted, and every other file of results/ no row refers to.
   StrayResults recover_result_files();
@@ -216,6 +250,8 @@ private:
   std::recursive_mutex submit_mutex_;
   std::mutex import_mutex_; // one import at a time
   // `wanted` if neither a job, a result file nor `chosen` has it, else a new id.
+  // The run here that `run` already is, and why; nullopt when there is none.
+  std::optional<ImportResult::Skipped> already_here(const RunToImport& run);
   std::string free_import_id(const std::string& wanted, const std::set<std::string>& chosen);
   std::optional<std::vector<Pending>> batch_; // inside submit_together(): queued at its commit
   std::function<void(const std::string& id)> on_cancelled_;

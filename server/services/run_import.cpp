@@ -18,6 +18,7 @@
 #include "server/core/job_id.hpp"
 #include "server/core/log.hpp"
 #include "server/core/storage_error.hpp"
+#include "server/db/study_store.hpp"
 #include "server/services/job_service.hpp"
 
 #include <fcntl.h>
@@ -26,7 +27,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <system_error>
@@ -101,7 +104,55 @@ std::optional<std::string> not_the_result_of(const Job& job, const std::string& 
   return std::nullopt;
 }
 
+// Where a run was first computed: the server's host and the run's id there, followed through
+// the earlier imports a run's `imported_from` records; a run computed here is (`host`, `id`).
+struct RunOrigin {
+  std::string host, id;
+  bool operator==(const RunOrigin&) const = default;
+};
+
+RunOrigin origin_of(const nlohmann::json& imported_from, const std::string& host,
+                    const std::string& id) {
+  if (!imported_from.is_object()) return {host, id};
+  const nlohmann::json* first = &imported_from;
+  // An archive's earlier imports are at most 16 kB of JSON: the walk is bounded by it.
+  while (first->contains("imported_from") && (*first)["imported_from"].is_object())
+    first = &(*first)["imported_from"];
+  const nlohmann::json& server = first->value("server", nlohmann::json());
+  const nlohmann::json& from = first->value("id", nlohmann::json());
+  return {server.is_object() && server.value("host", nlohmann::json()).is_string()
+              ? server["host"].get<std::string>()
+              : std::string(),
+          from.is_string() ? from.get<std::string>() : std::string()};
+}
+
 } // namespace
+
+std::optional<ImportResult::Skipped> JobService::already_here(const RunToImport& run) {
+  const Job& incoming = run.job;
+  const RunOrigin origin = origin_of(incoming.imported_from, "", incoming.id);
+  if (origin.id.empty()) return std::nullopt;
+  const std::string here = host_name();
+  const std::string result =
+      incoming.status == JobStatus::succeeded ? incoming.result.sha256 : std::string();
+  // Both ways need the same spec: its hash is indexed, and recomputed here for both runs.
+  std::optional<ImportResult::Skipped> same_result;
+  for (const auto& job : store_.import_candidates(incoming.spec_sha256, origin.id, result)) {
+    if (origin_of(job.imported_from, here, job.id) == origin)
+      return ImportResult::Skipped{incoming.id, job.id, "same_origin",
+                                   "the run " + origin.id + " of " +
+                                       (origin.host.empty() ? "its server" : origin.host) +
+                                       " is already here as job " + job.id};
+    if (!same_result && !result.empty() && job.status == JobStatus::succeeded &&
+        job.result_sha256 == result)
+      same_result = ImportResult::Skipped{incoming.id, job.id, "same_result",
+                                          "job " + job.id +
+                                              " has the same spec and the same result file "
+                                              "(SHA-256 " +
+                                              result + ")"};
+  }
+  return same_result;
+}
 
 std::string JobService::free_import_id(const std::string& wanted,
                                        const std::set<std::string>& chosen) {
@@ -116,10 +167,39 @@ std::string JobService::free_import_id(const std::string& wanted,
   return id;
 }
 
-ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::string& user) {
+ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::string& user,
+                                     bool again, std::optional<StudyToImport> study) {
   // One import at a time: the ids chosen here stay free until its rows are in.
   std::lock_guard import_lock(import_mutex_);
   ImportResult out;
+  // A run already here is not stored again: the answer says which one it is.
+  std::vector<RunToImport> fresh;
+  std::map<std::string, std::string> here; // the archive's run ids -> the ids here
+  for (auto& run : runs) {
+    if (auto skipped = again ? std::nullopt : already_here(run)) {
+      here[skipped->original_id] = skipped->id;
+      out.skipped.push_back(std::move(*skipped));
+    } else {
+      fresh.push_back(std::move(run));
+    }
+  }
+  runs = std::move(fresh);
+  // A study's archive: its study, unless one of its id is here (then not stored again).
+  if (study) {
+    out.study = ImportResult::ImportedStudy{study->study.id, study->study.id, false};
+    const bool taken =
+        store_.db().with_db([&](Database& db) { return study_exists(db, study->study.id); });
+    if (taken && !again) {
+      out.study->skipped = true;
+      study.reset();
+    } else if (taken) {
+      std::string id = new_job_id();
+      while (store_.db().with_db([&](Database& db) { return study_exists(db, id); }))
+        id = new_job_id();
+      out.study->id = study->study.id = id;
+    }
+  }
+  if (runs.empty() && !study) return out;
   std::uint64_t result_bytes = 0;
   for (const auto& run : runs)
     result_bytes += run.result.size();
@@ -137,8 +217,10 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
     run.job.id = free_import_id(run.job.id, chosen);
     chosen.insert(run.job.id);
     out.ids.back().first = run.job.id;
+    here[out.ids.back().second] = run.job.id;
     run.job.submitted_by = user;
-    run.job.result_imported_by = user; // a cache source for this user only
+    run.job.result_imported_by = user;             // a cache source for this user only
+    if (study) run.job.study_id = study->study.id; // its runs go with it
     run.job.result.path =
         run.job.status == JobStatus::succeeded ? result_relative_path(run.job.id) : std::string();
     run.record.result = run.job.result;
@@ -171,10 +253,25 @@ ImportResult JobService::import_runs(std::vector<RunToImport> runs, const std::s
     std::vector<JobStore::FinishedRun> rows;
     for (auto& run : runs)
       rows.push_back({std::move(run.job), std::move(run.record)});
+    // The study lists its runs by their ids here; its stored analysis names them too.
+    std::function<void(Database&)> also;
+    if (study) {
+      study->study.submitted_by = user;
+      std::string result = study->study.result.dump();
+      for (const auto& [original, id] : here)
+        if (original != id)
+          for (auto at = result.find(original); at != std::string::npos;
+               at = result.find(original, at + id.size()))
+            result.replace(at, original.size(), id);
+      study->study.result = nlohmann::json::parse(result);
+      for (auto& row : study->runs)
+        row.job_id = here.at(row.job_id);
+      also = [&study](Database& db) { insert_imported_study(db, study->study, study->runs); };
+    }
     bool stored = false;
     {
       std::lock_guard lock(submit_mutex_);
-      stored = store_.insert_finished(rows, intent);
+      stored = store_.insert_finished(rows, intent, also);
     }
     if (!stored) throw std::runtime_error("an imported run's id was taken meanwhile");
   } catch (...) {

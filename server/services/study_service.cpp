@@ -14,6 +14,7 @@
 #include "api/study_analysis.hpp"
 #include "solver/interface/ill_posedness.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -350,6 +351,21 @@ std::optional<StudyView> StudyService::view(const std::string& id) {
       view.cross_method = scenes->method_first
                               ? cross_method(scenes->method, mine, scenes->other, theirs)
                               : cross_method(scenes->other, theirs, scenes->method, mine);
+      // Only the study's own L (an L search's plain-Coulomb runs have none): the scene's other
+      // L are other studies' runs, shown on their pages and on the shared map.
+      std::set<double> own;
+      for (const auto& run : view.runs)
+        if (run.regime != "coulomb") own.insert(run.L);
+      json kept = json::array();
+      for (const auto& row : *view.cross_method) {
+        if (!row.is_object()) continue;
+        const json& L = row.value("L", json());
+        if (L.is_number() && std::any_of(own.begin(), own.end(), [&](double l) {
+              return std::abs(l - L.get<double>()) <= 1e-12 * std::abs(l);
+            }))
+          kept.push_back(row);
+      }
+      view.cross_method = std::move(kept);
     }
   }
   return view;
@@ -360,8 +376,91 @@ std::optional<StudyRecord> StudyService::get(const std::string& id) {
 }
 
 std::vector<StudyRecord> StudyService::list(int limit, std::optional<std::int64_t> before_seq,
-                                            std::optional<api::StudyStatus> status) {
-  return studies_.list(limit, before_seq, status);
+                                            std::optional<api::StudyStatus> status,
+                                            ArchivedRuns archived) {
+  return studies_.list(limit, before_seq, status, archived);
+}
+
+StudyKeepResult StudyService::annotate(const std::string& id, const std::string& user,
+                                       const api::TagChange& tags,
+                                       const std::optional<std::string>& note) {
+  using Kind = StudyKeepResult::Kind;
+  StudyKeepResult out;
+  out.study = studies_.get(id);
+  if (!out.study) return {};
+  if (jobs_.auth_enabled() && out.study->submitted_by != user) {
+    out.kind = Kind::forbidden;
+    return out;
+  }
+  const auto after = studies_.annotate(id, tags, note);
+  if (!after) return {};
+  if (after->error) {
+    out.kind = Kind::invalid;
+    out.error = after->error;
+    return out;
+  }
+  out.kind = Kind::done;
+  out.study = studies_.get(id);
+  return out;
+}
+
+StudyKeepResult StudyService::set_archived(const std::string& id, const std::string& user,
+                                           bool archived) {
+  using Kind = StudyKeepResult::Kind;
+  StudyKeepResult out;
+  out.study = studies_.get(id);
+  if (!out.study) return {};
+  if (jobs_.auth_enabled() && out.study->submitted_by != user) {
+    out.kind = Kind::forbidden;
+    return out;
+  }
+  // Archiving an archived study keeps its first archive time.
+  if (archived == out.study->archived_at.empty()) {
+    if (!studies_.set_archived(id, archived ? now_iso8601() : std::string())) return {};
+    out.study = studies_.get(id);
+  }
+  out.kind = Kind::done;
+  return out;
+}
+
+StudyKeepResult StudyService::remove(const std::string& id, const std::string& user) {
+  using Kind = StudyKeepResult::Kind;
+  StudyKeepResult out;
+  out.study = studies_.get(id);
+  if (!out.study) return {};
+  if (jobs_.auth_enabled() && out.study->submitted_by != user) {
+    out.kind = Kind::forbidden;
+    return out;
+  }
+  StudyStore::Removal removal;
+  // Under the step lock: no step of this study submits a run meanwhile.
+  supervisor_.exclusive([&] {
+    out.results_deleted = jobs_.remove_rows_and_files(
+        [&] {
+          removal = studies_.remove(id);
+          return JobService::RowsRemoved{removal.orphaned_results, removal.intent};
+        },
+        "study " + id + " deleted");
+  });
+  using Removed = StudyStore::Removal::Kind;
+  switch (removal.kind) {
+  case Removed::not_found:
+    return {};
+  case Removed::running:
+    out.kind = Kind::running;
+    return out;
+  case Removed::runs_not_final:
+    out.kind = Kind::runs_not_final;
+    return out;
+  case Removed::removed:
+    break;
+  }
+  out.kind = Kind::done;
+  out.deleted_jobs = std::move(removal.job_ids);
+  log_info("study " + id + " deleted by " + user + " with its " +
+           std::to_string(out.deleted_jobs.size()) + " run(s) and " +
+           std::to_string(out.results_deleted) + " result file(s)");
+  return out;
 }
 
 json StudyService::convergence_map(const std::string& scene_hash) {

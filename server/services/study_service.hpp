@@ -37,6 +37,23 @@ struct StudyCancelResult {
   std::vector<std::string> cancel_requested_jobs;      // were running: they stop at their next step
 };
 
+// The answer to an owner's change to a study (study_service.cpp; docs/server.md "Keep,
+// annotate, share").
+struct StudyKeepResult {
+  enum class Kind {
+    done,
+    not_found,
+    forbidden,      // a token file is configured and the study is another user's
+    running,        // delete: the study still runs (cancel it first)
+    runs_not_final, // delete: cancelled, but a run of it has not stopped yet
+    invalid,        // the change cannot be made (error); nothing changed
+  } kind = Kind::not_found;
+  std::optional<StudyRecord> study; // done: the study as it is now (delete: as it was)
+  std::optional<api::FieldError> error;
+  std::vector<std::string> deleted_jobs; // delete: its runs, gone with it
+  std::size_t results_deleted = 0;       // delete: result files removed (none shared elsewhere)
+};
+
 // The study's scene and the same physics by its method's counterpart (docs/studies.md).
 struct MethodScenes {
   std::string method;      // the study's: "fe"
@@ -71,12 +88,19 @@ public:
   std::optional<StudyRecord> get(const std::string& id);
   // Newest first, at most `limit`; `before_seq` is the cursor of the previous page.
   std::vector<StudyRecord> list(int limit, std::optional<std::int64_t> before_seq,
-                                std::optional<api::StudyStatus> status);
+                                std::optional<api::StudyStatus> status,
+                                ArchivedRuns archived = ArchivedRuns::include);
   // POST /studies/{id}/cancel: no further runs, and every queued or running run of the
   // study is cancelled. `user` must be the submitter when tokens are in use.
   StudyCancelResult cancel(const std::string& id, const std::string& user, bool auth_enabled);
   // GET /studies/{id}/speed-accuracy (docs/studies-api.md); nullopt for an unknown study.
   std::optional<nlohmann::json> speed_accuracy(const std::string& id);
+  // Owner-only changes (docs/server.md "Keep, annotate, share"): tags and note, archive and
+  // restore, delete with its runs (a study that is over: finished, or cancelled and stopped).
+  StudyKeepResult annotate(const std::string& id, const std::string& user,
+                           const api::TagChange& tags, const std::optional<std::string>& note);
+  StudyKeepResult set_archived(const std::string& id, const std::string& user, bool archived);
+  StudyKeepResult remove(const std::string& id, const std::string& user);
   // GET /convergence-map: the map and L_c of every run of a scene (scene_analysis).
   nlohmann::json convergence_map(const std::string& scene_hash);
 

@@ -284,7 +284,7 @@ bool StudySupervisor::start_L(const StudyRecord& study, const StudyRequest& requ
 
 void StudySupervisor::step_locked(const std::string& study_id) {
   auto study = studies_.get(study_id);
-  if (!study) throw std::runtime_error("no study " + study_id + " in the database");
+  if (!study) return; // deleted meanwhile (DELETE /studies/{id}): nothing left to step
   auto parsed = parse_study_request(study->request);
   if (!parsed.request)
     throw std::runtime_error(

@@ -119,6 +119,32 @@ class AnswerBlock(unittest.TestCase):
         self.assertIn("spectral estimate (an order of magnitude from the filter law, not the "
                       "rule's answer): 9.38e-05", "\n".join(shown))
 
+    def test_an_l_searchs_runs_and_maps_are_named_for_what_they_are(self):
+        """`study show` of an L search: its plain-Coulomb runs listed as "coulomb" (not under
+        the base's L), and an L that did not converge said so with its finest mesh, never
+        "converged from n_d = -"."""
+        def run(L, n_d, regime=None):
+            row = {"job_id": f"{L}-{n_d}-{regime}", "L": L, "n_d": n_d,
+                   "job_status": "succeeded", "convergence": {"status": "unknown"}}
+            if regime:
+                row["regime"] = regime
+            return row
+        study = {"id": "s", "status": "finished", "kind": "convergence",
+                 "runs": [run(3.2e-06, 10), run(3.2e-06, 20), run(1.6e-06, 10),
+                          run(1.6e-06, 20), run(3.2e-06, 10, "coulomb"),
+                          run(3.2e-06, 20, "coulomb")],
+                 "convergence_map": {"converged_n_d": {"3.2e-06": 20, "1.6e-06": None}}}
+        shown = studies.summary_lines(study)
+        rows = [line.split() for line in shown if line.split()[-1:] and "-" in line.split()[-1]
+                and line.split()[-1].endswith(("None", "coulomb"))]
+        self.assertEqual([(r[0], r[-1].endswith("coulomb")) for r in rows],
+                         [("3.2e-06", False), ("3.2e-06", False), ("1.6e-06", False),
+                          ("1.6e-06", False), ("coulomb", True), ("coulomb", True)])
+        self.assertIn("L = 3.2e-06: converged from n_d = 20", shown)
+        self.assertIn("L = 1.6e-06: not converged (no two successive meshes agree up to "
+                      "n_d = 20)", shown)
+        self.assertFalse([line for line in shown if "n_d = -" in line], shown)
+
     def test_the_reproduction_report_opens_with_the_l_searchs_answer(self):
         from slipfront_client.reproduction_report import opening_lines
         search = {"id": "search", "method": "spectral_bi", "search": {"state": "found"},

@@ -464,6 +464,8 @@ TEST(JobStore, AnImportedResultIsReusedByItsImporterOnly) {
     Database raw(path); // as a build at schema version 10 left it
     raw.exec("ALTER TABLE jobs DROP COLUMN result_imported_by");
     raw.exec("ALTER TABLE jobs DROP COLUMN validation"); // added at version 12
+    raw.exec("ALTER TABLE studies DROP COLUMN note");    // added at version 13
+    raw.exec("ALTER TABLE studies DROP COLUMN archived_at");
     raw.set_user_version(10);
   }
   JobStore store(path);

@@ -256,3 +256,75 @@ TEST(StudyStore, StoresStatusesAndLcAndListsSceneRuns) {
   ASSERT_EQ(scene.size(), 1u);
   EXPECT_EQ(scene[0].job_id, fine.id);
 }
+
+// Migration 12 -> 13 gives existing studies an empty note and no archive time; a study is
+// deleted with its runs only once it is over and every run is final, a run another study
+// also lists stays, and the result files left without a row are named with the intent.
+TEST(StudyStore, MigrationToThirteenThenArchiveAndDeleteWithItsRuns) {
+  TempDir dir("slipfront-study-");
+  const auto path = dir.file("db.sqlite");
+  const std::string old_id(32, 'a');
+  {
+    Database raw(path); // a database written by a build at schema version 12
+    for (int v = 0; v < 12; ++v)
+      raw.exec(schema_migrations()[static_cast<std::size_t>(v)].sql);
+    raw.set_user_version(12);
+    raw.exec("INSERT INTO studies (id, kind, base_spec, request, scene_hash, created_at, "
+             "status) VALUES ('" +
+             old_id + "', 'grid', '{}', '{}', 's', '2024', 'finished')");
+  }
+  JobStore jobs(path);
+  EXPECT_EQ(jobs.user_version(), JobStore::schema_version);
+  StudyStore studies(jobs);
+  ASSERT_TRUE(studies.get(old_id));
+  EXPECT_EQ(studies.get(old_id)->note, "");
+  EXPECT_EQ(studies.get(old_id)->archived_at, "");
+  ASSERT_TRUE(studies.set_archived(old_id, "2025-01-01T00:00:00.000Z"));
+  EXPECT_TRUE(studies.list(10, std::nullopt, std::nullopt, ArchivedRuns::exclude).empty());
+  EXPECT_EQ(studies.list(10, std::nullopt, std::nullopt, ArchivedRuns::only).size(), 1u);
+  auto after = studies.annotate(old_id, {std::nullopt, {"fig-3"}, {}}, std::string("kept"));
+  ASSERT_TRUE(after && !after->error);
+  EXPECT_EQ(studies.get(old_id)->tags, std::vector<std::string>{"fig-3"});
+  EXPECT_EQ(studies.get(old_id)->note, "kept");
+
+  StudyRecord st;
+  st.id = new_job_id();
+  st.kind = "grid";
+  st.base = st.request = nlohmann::json::object();
+  st.created_at = "2024";
+  studies.insert(st); // running
+  Job own = make_job(spec(1e-5, 10, 0.75, "own"), "succeeded");
+  own.study_id = st.id;
+  own.result.path = "results/" + own.id + ".h5";
+  Job shared = make_job(spec(1e-5, 20, 0.75, "shared"), "succeeded");
+  shared.study_id = st.id;
+  shared.result.path = "results/" + shared.id + ".h5";
+  Job hit = make_job(spec(1e-5, 20, 0.75, "shared"), "succeeded"); // another user's hit
+  hit.cached_from = shared.id;
+  hit.result.path = shared.result.path;
+  Job queued = make_job(spec(1e-5, 40, 0.75, "queued"));
+  queued.study_id = st.id;
+  for (const Job* j : {&own, &shared, &hit, &queued})
+    jobs.insert(*j);
+  studies.add_run(st.id, own.id, "", 1e-5, 10);
+  studies.add_run(st.id, shared.id, "", 1e-5, 20);
+  studies.add_run(st.id, queued.id, "", 1e-5, 40);
+  studies.add_run(old_id, own.id, "", 1e-5, 10); // the other study lists it too
+  using Kind = StudyStore::Removal::Kind;
+  EXPECT_EQ(studies.remove(st.id).kind, Kind::running);
+  studies.set_status(st.id, api::StudyStatus::cancelled, "2025");
+  EXPECT_EQ(studies.remove(st.id).kind, Kind::runs_not_final);
+  EXPECT_TRUE(jobs.get(queued.id)) << "a refused delete changed nothing";
+  ASSERT_TRUE(jobs.cancel_queued(queued.id, "2025"));
+  const auto removal = studies.remove(st.id);
+  ASSERT_EQ(removal.kind, Kind::removed);
+  EXPECT_EQ(std::set<std::string>(removal.job_ids.begin(), removal.job_ids.end()),
+            (std::set<std::string>{shared.id, queued.id}));
+  EXPECT_TRUE(removal.orphaned_results.empty()) << "the hit still shares the file";
+  EXPECT_FALSE(studies.get(st.id));
+  EXPECT_FALSE(jobs.get(shared.id));
+  EXPECT_FALSE(jobs.get(queued.id));
+  EXPECT_TRUE(jobs.get(own.id)) << "another study lists it";
+  EXPECT_TRUE(jobs.get(hit.id));
+  EXPECT_EQ(studies.remove(st.id).kind, Kind::not_found);
+}

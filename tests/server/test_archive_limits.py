@@ -45,6 +45,8 @@ JOB = dict(TINY, name="archived", geometry={"nodes_per_meter": 10},
 RUNS = 60
 
 SOURCE = None        # the source server (alice's runs)
+# The imports here store the same archive many times: again=true stores runs already there.
+AGAIN = {"again": "true"}
 RUN_IDS = []         # its RUNS finished runs: one computed, the others cache hits of it
 TOKEN_FILE = None
 
@@ -285,7 +287,8 @@ class Imports(unittest.TestCase):
 
     def post(self, archive, headers=ALICE, server=None):
         server = server or self.target
-        return server.post("/api/v1/imports", data=archive, headers=headers, timeout=120)
+        return server.post("/api/v1/imports", data=archive, headers=headers, timeout=120,
+                           params=AGAIN)
 
     def assert_refused(self, archive, where):
         before = imported_counts(self.target.data_dir)
@@ -490,20 +493,23 @@ class ImportOnAFullDisk(unittest.TestCase):
                               "--min-free-bytes", str(1 << 20)]).start()
         try:
             archive = export(RUN_IDS[:40])
-            r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120)
+            r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120,
+                            params=AGAIN)
             self.assertEqual(r.status_code, 503, r.content[:500])
             self.assertIn("Retry-After", r.headers)
             self.assertEqual(imported_counts(server.data_dir), 0)
             self.assertEqual(os.listdir(os.path.join(server.data_dir, "results")), [])
             # Room again: the retry stores every run, once.
             subprocess.run(["mount", "-o", "remount,nr_inodes=10000", mount], check=True)
-            r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120)
+            r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120,
+                            params=AGAIN)
             self.assertEqual(r.status_code, 201, r.content[:500])
             self.assertEqual(imported_counts(server.data_dir), 40)
             self.assertEqual(stray_files(server.data_dir), [])
             # Now the disk cannot take the archive again above --min-free-bytes: refused
             # before a byte is written, and so is an export of it.
-            r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120)
+            r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120,
+                            params=AGAIN)
             self.assertEqual(r.status_code, 503, r.content[:500])
             self.assertIn("free space", r.json()["detail"])
             self.assertEqual(imported_counts(server.data_dir), 40)
@@ -529,7 +535,8 @@ class KilledDuringImportsAndDeletes(unittest.TestCase):
         args = ["--workers", "1", "--token-file", TOKEN_FILE.name]
         server = Server(BINARY, data_dir=data_dir, args=args).start()
         started = time.monotonic()
-        r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120)
+        r = server.post("/api/v1/imports", data=archive, headers=ALICE, timeout=120,
+                            params=AGAIN)
         self.assertEqual(r.status_code, 201, r.content[:300])
         took = time.monotonic() - started
         landed = {"import": 0, "delete": 0}
@@ -539,7 +546,7 @@ class KilledDuringImportsAndDeletes(unittest.TestCase):
                 before = imported_counts(data_dir)
                 if kind == "import":
                     work = lambda s=server: s.post("/api/v1/imports", data=archive,
-                                                    headers=ALICE, timeout=120)
+                                                    headers=ALICE, timeout=120, params=AGAIN)
                 else:
                     ids = [j["id"] for j in server.get(
                         JOBS, params={"limit": 1000}).json()["jobs"]][:40]

@@ -115,6 +115,58 @@ class KeepAndShare(unittest.TestCase):
         self.assertEqual(r.json()["tags"], ["fig-2", "keep"])
         self.assertEqual(r.json()["note"], "")
 
+    def test_tags_added_and_removed_keep_the_others(self):
+        job = self.run_job(tiny("tags-add-remove", tags=["kammer2014", "L=5e-5", "nd=40"]))
+        r = self.patch(job["id"], {"tags_add": ["fig-2", "nd=40"], "tags_remove": ["L=5e-5"]})
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(r.json()["tags"], ["kammer2014", "nd=40", "fig-2"])
+        got = self.server.get(f"{JOBS}/{job['id']}").json()
+        self.assertEqual(got["tags"], ["kammer2014", "nd=40", "fig-2"])
+        # Removing a tag the run does not have, or adding one it has: no error, no change.
+        r = self.patch(job["id"], {"tags_remove": ["never-there"], "tags_add": ["fig-2"]})
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(r.json()["tags"], ["kammer2014", "nd=40", "fig-2"])
+        # Replacing every tag stays possible, with "tags" alone.
+        r = self.patch(job["id"], {"tags": ["only"]})
+        self.assertEqual(r.json()["tags"], ["only"])
+        self.assertEqual(self.server.get(JOBS, params={"tag": "only"}).json()["jobs"][0]["id"],
+                         job["id"])
+
+    def test_tag_changes_at_once_all_hold(self):
+        """Eight clients each add three tags at the same time: the store changes the tags it
+        holds under its write lock, so none of the 24 is lost to another's change."""
+        import concurrent.futures
+        job = self.run_job(tiny("tags-at-once", tags=["base"]))
+
+        def add(i):
+            return self.patch(job["id"], {"tags_add": [f"c{i}-{k}" for k in range(3)]}).status_code
+
+        with concurrent.futures.ThreadPoolExecutor(8) as pool:
+            codes = list(pool.map(add, range(8)))
+        self.assertEqual(codes, [200] * 8)
+        tags = self.server.get(f"{JOBS}/{job['id']}").json()["tags"]
+        self.assertEqual(sorted(tags), sorted(["base"] + [f"c{i}-{k}" for i in range(8)
+                                                         for k in range(3)]))
+
+    def test_invalid_tag_changes_name_the_field_and_change_nothing(self):
+        job = self.run_job(tiny("refused-tag-changes", tags=["kept"]))
+        cases = [
+            ({"tags": ["a"], "tags_add": ["b"]}, "/tags_add"),
+            ({"tags": ["a"], "tags_remove": ["kept"]}, "/tags_remove"),
+            ({"tags_add": ["x"], "tags_remove": ["y", "x"]}, "/tags_remove/1"),
+            ({"tags_add": ["ok", "x" * 65]}, "/tags_add/1"),
+            ({"tags_remove": "kept"}, "/tags_remove"),
+            ({"tags_add": [f"t{i}" for i in range(32)]}, "/tags_add"),  # 33 with "kept"
+        ]
+        for body, pointer in cases:
+            r = self.patch(job["id"], body)
+            self.assertEqual(r.status_code, 422, f"{body}: {r.text}")
+            self.assertIn(pointer, [e["pointer"] for e in r.json()["errors"]], r.text)
+            self.assertEqual(self.server.get(f"{JOBS}/{job['id']}").json()["tags"], ["kept"],
+                             f"{body} changed the tags")
+        r = self.patch(job["id"], {"tags_add": [f"t{i}" for i in range(32)]})
+        self.assertIn("33 tags", r.text)
+
     def test_invalid_changes_name_the_field_and_change_nothing(self):
         job = self.run_job(tiny("refused-changes", tags=["kept"]))
         cases = [
@@ -293,11 +345,97 @@ class KeepAndShare(unittest.TestCase):
                 np.testing.assert_array_equal(h5["interface/slip_velocity"][...],
                                               mine_h5["interface/slip_velocity"][...])
         self.assertEqual(self.other.get(f"{JOBS}/{a['id']}").json()["note"], "Fig. 2 run")
-        # Imported twice: the ids are taken now, so the runs get new ones.
+        # Stored again on request (again=true): the ids are taken now, so the copy gets a new one.
         again = self.other.post("/api/v1/imports", data=self.server.get(
-            "/api/v1/exports", params={"ids": a["id"]}, timeout=60).content, timeout=60)
+            "/api/v1/exports", params={"ids": a["id"]}, timeout=60).content, timeout=60,
+            params={"again": "true"})
         self.assertEqual(again.status_code, 201, again.text)
         self.assertNotEqual(again.json()["imported"][0]["id"], a["id"])
+        self.assertEqual(again.json()["skipped"], [])
+
+    def count(self, server):
+        return server.get(JOBS, params={"archived": "include"}).json()["count"]
+
+    def import_archive(self, server, archive, **params):
+        return server.post("/api/v1/imports", data=archive, timeout=60, params=params,
+                           headers={"Content-Type": "application/x-tar"})
+
+    def test_an_archive_imported_twice_stores_its_runs_once(self):
+        a = self.run_job(tiny("twice-a", L=5.3e-4))
+        b = self.run_job(tiny("twice-b", L=5.5e-4))
+        archive = self.server.get("/api/v1/exports", params={"ids": f"{a['id']},{b['id']}"},
+                                  timeout=60).content
+        r = self.import_archive(self.other, archive)
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertEqual((r.json()["count"], r.json()["skipped"]), (2, []))
+        before = self.count(self.other)
+        files = sorted(os.listdir(os.path.join(self.other.data_dir, "results")))
+        # The same archive again: nothing stored, 200, each run named with the run it is.
+        r = self.import_archive(self.other, archive)
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual((r.json()["imported"], r.json()["count"]), ([], 0))
+        skipped = {s["original_id"]: s for s in r.json()["skipped"]}
+        self.assertEqual(set(skipped), {a["id"], b["id"]})
+        for original in (a, b):
+            self.assertEqual(skipped[original["id"]]["id"], original["id"])
+            self.assertEqual(skipped[original["id"]]["reason"], "same_origin")
+            self.assertEqual(skipped[original["id"]]["url"], f"{JOBS}/{original['id']}")
+        self.assertEqual(self.count(self.other), before)
+        self.assertEqual(sorted(os.listdir(os.path.join(self.other.data_dir, "results"))), files)
+        # An archive of one new run and one already there: the new one only.
+        c = self.run_job(tiny("twice-c", L=5.7e-4))
+        mixed = self.server.get("/api/v1/exports", params={"ids": f"{a['id']},{c['id']}"},
+                                timeout=60).content
+        r = self.import_archive(self.other, mixed)
+        self.assertEqual(r.status_code, 201, r.text)
+        self.assertEqual([run["original_id"] for run in r.json()["imported"]], [c["id"]])
+        self.assertEqual([s["original_id"] for s in r.json()["skipped"]], [a["id"]])
+        self.assertEqual(self.count(self.other), before + 1)
+        # Back home: the second server's copies came from here, so the first server skips
+        # them (their origin followed through imported_from), and so does a round trip.
+        back = self.other.get("/api/v1/exports", params={"ids": f"{a['id']},{c['id']}"},
+                              timeout=60).content
+        home_before = self.count(self.server)
+        r = self.import_archive(self.server, back)
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual({(s["original_id"], s["id"], s["reason"]) for s in r.json()["skipped"]},
+                         {(a["id"], a["id"], "same_origin"), (c["id"], c["id"], "same_origin")})
+        self.assertEqual(self.count(self.server), home_before)
+        # A bad query is refused by name, nothing stored.
+        r = self.import_archive(self.other, archive, again="yes")
+        self.assertEqual(r.status_code, 400, r.text)
+        self.assertEqual(r.json()["errors"][0]["pointer"], "/query/again")
+        r = self.import_archive(self.other, archive, colour="red")
+        self.assertEqual(r.status_code, 400, r.text)
+        self.assertEqual(r.json()["errors"][0]["pointer"], "/query/colour")
+        self.assertEqual(self.count(self.other), before + 1)
+
+    def test_a_run_with_the_same_spec_and_result_is_skipped(self):
+        """A run under another id (another server's copy, renamed) whose spec and result file
+        are those of a run here: skipped as the same result."""
+        job, archive = self.exported("same-result", 5.9e-4)
+        files = members(archive)
+        new_id = "ab" * 16
+        manifest = json.loads(files["manifest.json"])
+        record = json.loads(files[f"runs/{job['id']}/job.json"])
+        record["id"] = new_id
+        renamed = {"manifest.json": None,
+                   f"runs/{new_id}/job.json": (json.dumps(record) + "\n").encode(),
+                   f"runs/{new_id}/result.h5": files[f"runs/{job['id']}/result.h5"]}
+        manifest["runs"] = [{"id": new_id, "job": f"runs/{new_id}/job.json",
+                             "result": f"runs/{new_id}/result.h5"}]
+        manifest["files"] = [{"name": n, "size": len(d), "sha256": sha256(d)}
+                             for n, d in renamed.items() if d is not None]
+        renamed["manifest.json"] = json.dumps(manifest).encode()
+        before = self.count(self.server)
+        r = self.import_archive(self.server, make_tar(renamed.items()))
+        self.assertEqual(r.status_code, 200, r.text)
+        self.assertEqual(r.json()["skipped"][0]["original_id"], new_id)
+        self.assertEqual(r.json()["skipped"][0]["id"], job["id"])
+        self.assertEqual(r.json()["skipped"][0]["reason"], "same_result")
+        self.assertIn(job["result"]["sha256"], r.json()["skipped"][0]["detail"])
+        self.assertEqual(self.count(self.server), before)
+        self.assertEqual(self.server.get(f"{JOBS}/{new_id}").status_code, 404)
 
     def test_export_by_search(self):
         job = self.run_job(tiny("searched", L=4.9e-4, tags=["by-search"]))

@@ -67,6 +67,20 @@ export async function send(method, url, payload) {
   return body;
 }
 
+// A file the server writes for a user (an archive: it needs the token on a shared server), as
+// a Blob; an ApiError when refused.
+export async function download(url) {
+  const headers = {};
+  const t = token();
+  if (t) headers.Authorization = `Bearer ${t}`;
+  const res = await fetch(url, { headers, cache: 'no-store' });
+  if (!res.ok) {
+    const body = await parse(res);
+    throw new ApiError(res.status, typeof body === 'object' ? body : { detail: body });
+  }
+  return res.blob();
+}
+
 export function qs(params) {
   const u = new URLSearchParams();
   for (const [k, v] of Object.entries(params)) if (v !== undefined && v !== null && v !== '') u.set(k, v);

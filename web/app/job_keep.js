@@ -1,4 +1,4 @@
-// Keep, annotate, share on the run page (docs/server.md): the run's tags and note, edited
+// Keep, annotate, share on the run page and the study page (docs/server.md): the tags and note, edited
 // after submission, archive and restore, and delete (after a confirmation). On a shared
 // server only the run's owner may: the server's 401 or 403 is shown beside the buttons.
 import { h, fill, fmtTime } from './dom.js';
@@ -9,8 +9,22 @@ export function parseTags(text) {
   return text.split(',').map((t) => t.trim()).filter(Boolean);
 }
 
-// Fills `card` for `job`; onChange(job) after a change the server took, onDeleted() after a delete.
-export function keepCard(card, job, onChange, onDeleted) {
+// The PATCH members that turn the tags shown when the page was drawn into those typed: only
+// the tags added and removed, so a tag another client added meanwhile stays.
+export function tagChange(shown, typed) {
+  return {
+    tags_add: typed.filter((t) => !shown.includes(t)),
+    tags_remove: shown.filter((t) => !typed.includes(t)),
+  };
+}
+
+// Fills `card` for `job` (or a study: `what` gives its URL and words); onChange(record) after a
+// change the server took, onDeleted() after a delete.
+export function keepCard(card, job, onChange, onDeleted, what = {}) {
+  const base = what.base || `/api/v1/jobs/${job.id}`;
+  const noun = what.noun || 'run';
+  const deleteQuestion = what.deleteQuestion || 'Delete this run and its result file? This cannot be undone.';
+  const final = what.final ?? ['succeeded', 'failed', 'cancelled'].includes(job.status);
   const tags = h('input', { id: 'keep-tags', type: 'text', size: 40, value: (job.tags || []).join(', '), placeholder: 'comma-separated, e.g. fig-2, keep' });
   const note = h('textarea', { id: 'keep-note', rows: 3, cols: 60, placeholder: 'a note for yourself and your group' });
   note.value = job.note || '';
@@ -26,8 +40,7 @@ export function keepCard(card, job, onChange, onDeleted) {
       done(answer);
     } catch (e) { show(e); }
   };
-  const base = `/api/v1/jobs/${job.id}`;
-  const save = () => act('PATCH', base, { tags: parseTags(tags.value), note: note.value }, (updated) => {
+  const save = () => act('PATCH', base, { ...tagChange(job.tags || [], parseTags(tags.value)), note: note.value }, (updated) => {
     onChange(updated);
     const saved = document.getElementById('keep-message');
     if (saved) { saved.textContent = 'saved'; saved.className = 'ok'; }
@@ -35,13 +48,12 @@ export function keepCard(card, job, onChange, onDeleted) {
   const archived = Boolean(job.archived_at);
   const toggle = () => act('POST', `${base}/${archived ? 'restore' : 'archive'}`, undefined, onChange);
   const remove = () => {
-    if (!window.confirm(`Delete this run and its result file? This cannot be undone.`)) return;
+    if (!window.confirm(deleteQuestion)) return;
     act('DELETE', base, undefined, onDeleted);
   };
-  const final = ['succeeded', 'failed', 'cancelled'].includes(job.status);
   fill(card,
     h('h2', { text: 'Keep' }),
-    archived ? h('p', { class: 'muted', id: 'keep-archived', text: `Archived ${fmtTime(job.archived_at)}: hidden from the jobs list and exports, never deleted.` }) : null,
+    archived ? h('p', { class: 'muted', id: 'keep-archived', text: `Archived ${fmtTime(job.archived_at)}: hidden from the ${noun === 'run' ? 'jobs list and exports' : 'studies list'}, never deleted.` }) : null,
     job.imported_from ? h('p', { class: 'muted', text: `Imported from ${job.imported_from.server?.host || 'another server'} (id ${job.imported_from.id}).` }) : null,
     h('label', {}, 'Tags ', tags),
     h('label', { class: 'block' }, 'Note', note),

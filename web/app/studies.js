@@ -2,19 +2,22 @@
 // plane, the L_c verdict with its reason, the speed–accuracy chart and the shared map of the
 // scene (every run of the group with the same physics but L and n_d).
 import { h, fill, fmt, fmtTime, badge, progressBar, kvTable, link, notFound, shortId } from './dom.js';
-import { get, getJSON, post } from './api.js';
+import { download, get, getJSON, post } from './api.js';
 import { convergenceGrid, mapIsFinal, statusBadge } from './convergence_grid.js';
 import { METRICS, drawSpeedChart } from './speed_chart.js';
 import { searchSection } from './study_search.js';
 import { accuracySection } from './study_accuracy.js';
 import { defaultMethod, methodHeading, methodLabel } from './methods.js';
+import { keepCard } from './job_keep.js';
 
 export function studiesPage(view, page) {
   const table = h('table', { class: 'grid', id: 'studies-table' });
   const message = h('span');
+  const archived = h('input', { type: 'checkbox', id: 'study-archived' });
   view.append(
     h('div', { class: 'pagehead' }, h('h1', { text: 'Studies' }), h('a', { class: 'button', href: '#/submit/study', text: 'Start a study' })),
     h('p', { class: 'muted', text: 'A study is a set of runs differing only in L and n_d (the paper’s L × n_d sweeps); the server refines meshes until two successive ones agree and names L_c.' }),
+    h('div', { class: 'toolbar' }, h('label', {}, archived, ' show archived')),
     message, h('div', { class: 'tablewrap' }, table));
   let studies = null;
   const render = () => {
@@ -23,7 +26,9 @@ export function studiesPage(view, page) {
     for (const s of studies) {
       const p = s.progress || {};
       body.append(h('tr', { dataset: { id: s.id } },
-        h('td', {}, h('a', { href: `#/studies/${s.id}`, text: s.name || `study ${shortId(s.id)}` })),
+        h('td', {}, h('a', { href: `#/studies/${s.id}`, text: s.name || `study ${shortId(s.id)}` }),
+          s.archived_at ? h('span', { class: 'tag archived', title: `archived ${s.archived_at}`, text: 'archived' }) : null,
+          (s.tags || []).slice(0, 4).map((t) => h('span', { class: 'tag', text: t }))),
         h('td', { text: methodLabel(s.method) }),
         h('td', { text: s.kind }),
         h('td', {}, badge(s.status)),
@@ -36,12 +41,13 @@ export function studiesPage(view, page) {
     table.append(body);
   };
   const load = async () => {
-    const { body, changed } = await getJSON('/api/v1/studies?limit=200');
+    const { body, changed } = await getJSON(`/api/v1/studies?limit=200${archived.checked ? '&archived=include' : ''}`);
     if (!changed && studies) return;
     studies = body.studies || [];
     render();
   };
   const fail = (e) => { message.textContent = e.message; message.className = 'error'; };
+  archived.addEventListener('change', () => { studies = null; load().catch(fail); });
   load().catch(fail);
   page.every(3000, () => load().catch(fail));
 }
@@ -68,7 +74,9 @@ export async function studyPage(view, page, id) {
   const saCard = h('section', { class: 'card', id: 'study-speed' });
   const sceneCard = h('section', { class: 'card', id: 'study-scene' });
   const runsCard = h('section', { class: 'card', id: 'study-runs' });
+  const keep = h('section', { class: 'card', id: 'study-keep' });
   let study = null;
+  let keepDrawnFor = null; // the study's status when its Keep card was drawn
   let metric = 'max';
   let sa = null;
 
@@ -109,6 +117,38 @@ export async function studyPage(view, page, id) {
     }
   };
 
+  // Tags, note, archive and delete (with its runs) of the study, its owner's. Drawn again when
+  // its status changes or after a change, not at every poll (it would wipe what one types).
+  const renderKeep = () => {
+    keepDrawnFor = study.status;
+    keepCard(keep, study, (updated) => { study = updated; render(); renderKeep(); }, () => { location.hash = '#/studies'; }, {
+      base: `/api/v1/studies/${study.id}`,
+      noun: 'study',
+      deleteQuestion: `Delete this study with its ${study.runs?.length ?? 0} run(s) and their result files? This cannot be undone.`,
+      final: study.status !== 'running',
+    });
+    // The study with its runs as one archive (GET /studies/{id}/export), for another server's
+    // import (POST /imports) or a paper's record.
+    if (study.status === 'running') return;
+    const out = h('span', { id: 'study-export-message' });
+    const exportArchive = async () => {
+      out.textContent = 'writing the archive…'; out.className = 'muted';
+      try {
+        const blob = await download(`/api/v1/studies/${study.id}/export`);
+        const name = `slipfront-study-${study.id}.tar`;
+        const link = h('a', { id: 'study-export-link', href: URL.createObjectURL(blob), download: name, text: `${name} (${blob.size} bytes)` });
+        fill(out, 'saved as ', link);
+        out.className = 'ok';
+        link.click();
+      } catch (e) {
+        out.textContent = e.status === 401 ? `${e.message} — enter your token at the top` : e.message;
+        out.className = 'error';
+      }
+    };
+    keep.append(h('div', { class: 'actions' },
+      h('button', { id: 'study-export', onclick: exportArchive, text: 'Export with its runs (tar)' }), out));
+  };
+
   const renderSpeed = async () => {
     fill(saCard, h('h2', { text: 'Speed and accuracy' }));
     const select = h('select', { id: 'sa-metric', onchange: () => { metric = select.value; renderSpeed(); } },
@@ -145,9 +185,10 @@ export async function studyPage(view, page, id) {
     const { body, changed } = await getJSON(`/api/v1/studies/${id}`);
     if (!changed && study) return;
     study = body;
-    if (!head.isConnected) view.append(head, answerCard, summary, mapCard, saCard, sceneCard, runsCard); // only for a study that exists
+    if (!head.isConnected) view.append(head, answerCard, summary, mapCard, saCard, sceneCard, runsCard, keep); // only for a study that exists
     answerBlock(answerCard, study.answer);
     render();
+    if (keepDrawnFor !== study.status) renderKeep();
     sa = await get(`/api/v1/studies/${id}/speed-accuracy`).catch(() => null);
     await renderSpeed();
     await renderScene();

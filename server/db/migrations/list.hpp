@@ -20,5 +20,6 @@ const char* m9_run_annotations();
 const char* m10_file_intents();
 const char* m11_imported_results();
 const char* m12_job_validation();
+const char* m13_study_annotations();
 
 } // namespace slipfront::server::migrations
