@@ -14,9 +14,12 @@ import re
 import time
 import uuid
 
-import requests
+from .errors import MissingDependency, ServerError, UsageError
 
-from .errors import ServerError, UsageError
+try:
+    import requests
+except ModuleNotFoundError:  # the package imports without it; Api() names what is missing
+    requests = None
 
 API = "/api/v1"
 # A result_url cell of the run table: a CSV cell, or the value of an NDJSON row's key.
@@ -74,6 +77,8 @@ class Api:
         self.max_retry_wait = max_retry_wait
         self.connect_retries = connect_retries
         self.sleep = sleep
+        if requests is None:
+            raise MissingDependency("requests", "talk to the server")
         self.session = requests.Session()
         self.session.headers["User-Agent"] = USER_AGENT
         if token:

@@ -6,7 +6,7 @@ import sys
 from . import (__version__, commands_compare, commands_fit, commands_jobs, commands_keep,
                commands_plot, commands_study, config, methods)
 from .api import Api
-from .errors import EXIT_INTERRUPTED, EXIT_SERVER, ClientError
+from .errors import EXIT_INTERRUPTED, EXIT_SERVER, ClientError, MissingDependency
 
 EPILOG = """server URL (and token), first found:
   --server (--token), SLIPFRONT_SERVER (SLIPFRONT_TOKEN), server = "..." (token = "...") in
@@ -107,6 +107,13 @@ def main(argv=None):
     ctx = Context(args)
     try:
         return args.func(args, ctx)
+    except ModuleNotFoundError as e:
+        module = (e.name or "").split(".")[0]
+        if module not in MissingDependency.DEBIAN:
+            raise
+        error = MissingDependency(module)
+        report(error)
+        return error.exit_code
     except ClientError as e:
         report(e)
         return e.exit_code

@@ -8,8 +8,6 @@ field that differs. The web view's compare page (web/app/run_labels.js) follows 
 import json
 import math
 
-from .results import run_label
-
 # The job fields shown beside the spec and the metrics.
 RUN_FIELDS = ("name", "status", "study_id", "submitted_by", "code_version", "scene_hash",
               "cached_from", "wall_time_s")
@@ -105,6 +103,7 @@ def compare_labels(jobs, rows=None):
     """The legend text of each job: its run label, then every other spec field that every job
     has and that differs ('time.duration = 3'); a text still shared by two jobs gets the short
     id, so that no two legend entries read the same."""
+    from .results import run_label  # numpy on first use: the command line starts without it
     rows = compare_rows(jobs) if rows is None else rows
     extra = [r for r in rows if r["group"] == "spec" and r["differs"] and not r["partial"]
              and r["key"] not in IN_RUN_LABEL]

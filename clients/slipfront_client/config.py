@@ -8,9 +8,14 @@ same order (`--token`, SLIPFRONT_TOKEN, `token = "..."`).
 """
 
 import os
-import tomllib
+import re
 
 from .errors import UsageError
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python < 3.11: the config file's `key = "string"` lines only
+    tomllib = None
 
 DEFAULT_SERVER = "http://127.0.0.1:8080"
 
@@ -27,14 +32,34 @@ def read_config(path=None):
     path = path or config_path()
     try:
         with open(path, "rb") as f:
-            doc = tomllib.load(f)
+            doc = tomllib.load(f) if tomllib else parse_string_lines(f.read().decode())
     except FileNotFoundError:
         return {}
-    except (OSError, tomllib.TOMLDecodeError) as e:
+    except (OSError, ValueError) as e:  # tomllib.TOMLDecodeError is a ValueError
         raise UsageError(f"config file {path}: {e}") from e
     for key in ("server", "token"):
         if key in doc and not isinstance(doc[key], str):
             raise UsageError(f"config file {path}: {key} must be a string")
+    return doc
+
+
+STRING_LINE = re.compile(r'([A-Za-z0-9_-]+)\s*=\s*"((?:[^"\\]|\\["\\])*)"\s*(#.*)?')
+
+
+def parse_string_lines(text):
+    """The config file without tomllib (Python < 3.11): blank lines, # comments and
+    `key = "string"` lines (\\" and \\\\ escapes); anything else is a ValueError that names
+    the line, as a TOML error would."""
+    doc = {}
+    for number, line in enumerate(text.splitlines(), 1):
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        match = STRING_LINE.fullmatch(line)
+        if not match:
+            raise ValueError(f"line {number}: expected key = \"string\" (Python < 3.11 reads "
+                             f"only those; Python 3.11+ reads any TOML)")
+        doc[match.group(1)] = re.sub(r'\\(["\\])', r"\1", match.group(2))
     return doc
 
 
