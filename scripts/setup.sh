@@ -3,8 +3,12 @@
 # builds the Release tree in build/ (build/slipfront). Safe to run again. The web view's
 # third-party files (Swagger UI and Plotly, pinned in web/package-lock.json) come from the npm
 # registry with `npm ci`; Chromium, its driver and Selenium are for the browser test (docs/web.md).
-#   bash scripts/setup.sh            # packages + Release build
+# Last, the Python client goes into a venv that sees the Debian packages (~/venv/slipfront, an
+# editable install that follows the checkout) with a Jupyter kernel "slipfront" running in it
+# (docs/python-api.md "Install").
+#   bash scripts/setup.sh            # packages + Release build + client venv and kernel
 #   BUILD_DIR=build-x bash scripts/setup.sh
+#   SLIPFRONT_VENV=/other/venv bash scripts/setup.sh    # SLIPFRONT_VENV=none: no venv, no kernel
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -57,3 +61,21 @@ build_dir="${BUILD_DIR:-build}"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${SLIPFRONT_CMAKE_ARGS:-} >&2
 cmake --build "$build_dir" -j"$(nproc)" >&2
 echo "setup: built $build_dir/slipfront" >&2
+
+# The client venv and the notebook's kernel: made once, the install and the kernel spec
+# refreshed on every run (offline: the in-tree build backend of clients/pyproject.toml).
+venv="${SLIPFRONT_VENV:-$HOME/venv/slipfront}"
+if [ "$venv" != none ]; then
+  if { [ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv --system-site-packages "$venv"; } &&
+     "$venv/bin/pip" install -q --no-index --disable-pip-version-check -e ./clients >&2 &&
+     PYDEVD_DISABLE_FILE_VALIDATION=1 "$venv/bin/python" -m ipykernel install --user --name slipfront \
+       --display-name "Python (slipfront)" >/dev/null; then
+    echo "setup: client in $venv ($venv/bin/slipfront-client), Jupyter kernel 'slipfront'" >&2
+    "$venv/bin/python" -c "import numpy, h5py, matplotlib, requests" 2>/dev/null ||
+      echo "setup: $venv does not see Debian's numpy/h5py/matplotlib/requests (made without" \
+           "--system-site-packages?): remove it and run the set-up again" >&2
+  else
+    echo "setup: the client venv $venv or its Jupyter kernel could not be set up" \
+         "(docs/python-api.md \"Install\" does it by hand)" >&2
+  fi
+fi
