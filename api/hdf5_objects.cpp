@@ -62,6 +62,9 @@ Cause innermost_cause() {
 
 [[noreturn]] void fail(const std::string& what) {
   const Cause cause = innermost_cause();
+  // The cause is carried by the exception now: nothing is left on HDF5's error stack, whose
+  // entries would otherwise stay allocated until the next HDF5 call (at exit: a leak).
+  H5Eclear2(H5E_DEFAULT);
   throw Error("HDF5: " + what + " failed" + (cause.text.empty() ? "" : ": " + cause.text),
               cause.system_errno);
 }
