@@ -24,7 +24,9 @@ void add_once(std::vector<std::string>& list, const std::string& name) {
 // "meaning (law, law)": each distinct phrase with the laws that say it.
 std::string joined_meaning(const std::vector<std::pair<std::string, std::string>>& phrases) {
   std::vector<std::pair<std::string, std::vector<std::string>>> groups;
-  for (const auto& [phrase, law] : phrases) {
+  for (const auto& entry : phrases) {
+    const std::string& phrase = entry.first;
+    const std::string& law = entry.second;
     auto it = std::find_if(groups.begin(), groups.end(),
                            [&](const auto& g) { return g.first == phrase; });
     if (it == groups.end())
