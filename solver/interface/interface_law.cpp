@@ -21,16 +21,16 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c,
   // 3. Strength over the step from the last one to this one: the pressure goes from the
   //    last step's to this step's, the slip speed is that of the last interval (FE: the
   //    last half step's, the velocity over that interval in the leapfrog scheme).
-  const FrictionStep friction_step =
-      c.law.advance(friction, state, previous_pressure, out.pressure, slip_speed, c.dt);
-  out.strength = friction_step.strength;
-  out.friction = friction_step.state;
+  //    (The strength itself is asked for below, where the node's state needs it.)
+  out.friction =
+      c.law.advance_state(friction, state, previous_pressure, out.pressure, slip_speed, c.dt);
 
   // 4. Tangential: stick if the plane can hold the node, else slip at strength.
   // The constrained velocities are set exactly (not through the force, whose round-off
   // would leave 1e-20 m/s of noise on a stuck, closed node).
   out.v2 = in_contact ? -u2 / c.dt : v2_trial; // in contact: u2_next = u2 + dt v2 = 0
   if (!in_contact) {
+    out.strength = c.law.strength(friction, out.friction, slip_speed);
     out.state = NodeState::open;
     out.contact_force1 = 0.0;
     out.v1 = v1_trial;
@@ -48,10 +48,12 @@ InterfaceNodeStep resolve_interface_node(const InterfaceNodeConstants& c,
         slip_speed);
     out.state = NodeState::slip;
     out.v1 = v;
-    out.contact_force1 = -(tau_lock - eta * v) * c.tributary_length;
-    out.strength = c.law.strength(friction, out.friction, std::abs(v));
+    const double traction = tau_lock - eta * v;
+    out.contact_force1 = -traction * c.tributary_length;
+    out.strength = std::abs(traction); // the strength at V, to the solve's tolerance
     return out;
   }
+  out.strength = c.law.strength(friction, out.friction, slip_speed);
   const double stick_force = -c.mass1 * v1_trial / c.dt; // makes v1 = v1_trial + dt F/m1 = 0
   const double limit = out.strength * c.tributary_length;
   if (std::abs(stick_force) <= limit) {

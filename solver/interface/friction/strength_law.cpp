@@ -36,17 +36,24 @@ double StrengthLaw::strength(const FrictionValues& values, const FrictionState& 
   return scaled_strength(*coefficient_, values, state, slip_rate);
 }
 
-FrictionStep StrengthLaw::advance(const FrictionValues& values, const FrictionState& state,
-                                  double pressure_start, double pressure_end, double slip_speed,
-                                  double dt) const {
+FrictionState StrengthLaw::advance_state(const FrictionValues& values, const FrictionState& state,
+                                         double pressure_start, double pressure_end,
+                                         double slip_speed, double dt) const {
   const double mu_0 = coefficient_->static_coefficient(values);
   const double c_start = mu_0 * std::max(0.0, pressure_start);
   const double c_end = mu_0 * std::max(0.0, pressure_end);
-  FrictionStep out;
-  out.state = state;
-  out.state.filtered =
+  FrictionState out = state;
+  out.filtered =
       regularization_->advance(values, job_.update, state.filtered, c_start, c_end, slip_speed, dt);
-  coefficient_->advance_state(job_, values, out.state, slip_speed, dt);
+  coefficient_->advance_state(job_, values, out, slip_speed, dt);
+  return out;
+}
+
+FrictionStep StrengthLaw::advance(const FrictionValues& values, const FrictionState& state,
+                                  double pressure_start, double pressure_end, double slip_speed,
+                                  double dt) const {
+  FrictionStep out;
+  out.state = advance_state(values, state, pressure_start, pressure_end, slip_speed, dt);
   out.strength = scaled_strength(*coefficient_, values, out.state, slip_speed);
   return out;
 }

@@ -35,6 +35,11 @@ public:
   FrictionStep advance(const FrictionValues& values, const FrictionState& state,
                        double pressure_start, double pressure_end, double slip_speed,
                        double dt) const;
+  // The state of advance() without its strength (a law of the slip rate finds its strength
+  // in the solve of the slip rate instead).
+  FrictionState advance_state(const FrictionValues& values, const FrictionState& state,
+                              double pressure_start, double pressure_end, double slip_speed,
+                              double dt) const;
   // sigma* of a state: c* / mu_0 (0 when mu_0 is 0).
   double normal_stress_seen(const FrictionValues& values, const FrictionState& state) const;
 
