@@ -19,7 +19,7 @@ namespace slipfront::api {
 
 namespace {
 
-constexpr std::size_t terms = 4; // setup and the method's three kinds of work
+constexpr std::size_t terms = 5; // setup and the method's four kinds of work
 
 // The method of that name, or an error naming it.
 const MethodEntry& entry_of(const std::string& method) {
@@ -142,15 +142,15 @@ CostModel CostModel::built_in() {
   // Calibrated by `slipfront calibrate` on the development machine (docs/performance.md
   // "Cost estimate"), for a server that was never calibrated.
   CostModel m;
-  m.machine = "the development machine (2 cores shared with other work, load about 4)";
-  m.calibrated_at = "2026-11-28T11:31:59Z";
+  m.machine = "the development machine (2 cores shared with other work, load about 3)";
+  m.calibrated_at = "2026-11-28T16:11:29Z";
   m.source = "built-in";
-  // FE {setup, node_step, row_step, interface_step} [s]
-  m.coefficients["fe"][1] = {{0.0493, 4.358e-9, 0.0, 1.743e-7}};
-  m.coefficients["fe"][2] = {{0.0369, 3.736e-9, 0.0, 1.963e-7}};
-  // BI {setup, lag_step, lower_lag_step, interface_step} [s]
-  m.coefficients["spectral_bi"][1] = {{0.0, 7.953e-9, 3.729e-9, 0.0}};
-  m.coefficients["spectral_bi"][2] = {{0.0, 8.724e-9, 1.076e-9, 0.0}};
+  // FE {setup, node_step, row_step, interface_step, rate_solve} [s]
+  m.coefficients["fe"][1] = {{0.03497, 4.804e-09, 6.267e-07, 2.773e-07, 2.743e-07}};
+  m.coefficients["fe"][2] = {{0, 2.632e-09, 7.089e-07, 2.9e-07, 4.484e-07}};
+  // BI {setup, lag_step, transform_step, interface_step, rate_solve} [s]
+  m.coefficients["spectral_bi"][1] = {{0, 2.413e-09, 1.739e-08, 3.081e-07, 2.378e-07}};
+  m.coefficients["spectral_bi"][2] = {{0, 3.768e-09, 1.36e-08, 1.228e-07, 3.458e-07}};
   return m;
 }
 
@@ -175,7 +175,12 @@ std::optional<CostModel> CostModel::from_json(const nlohmann::json& json, std::s
         std::array<double, terms> v{};
         const auto names = term_names(method);
         for (std::size_t i = 0; i < terms; ++i) {
-          v[i] = k.value(names[i], 0.0); // a term a file leaves out costs nothing
+          if (!k.contains(names[i])) { // a file of an older slipfront: the built-in model's term
+            v[i] = built_in().at(method, t)->seconds[i];
+            m.outdated = true;
+            continue;
+          }
+          v[i] = k.at(names[i]).get<double>();
           if (!(v[i] >= 0 && std::isfinite(v[i])))
             throw std::runtime_error(std::string(names[i]) + " is not a number >= 0");
         }
@@ -202,6 +207,9 @@ CostModel CostModel::read_file(const std::string& path) {
   auto model = from_json(json, error);
   if (!model) throw std::runtime_error(path + ": " + error);
   model->source = path;
+  if (model->outdated)
+    model->source += " (written by an older slipfront: the terms it lacks are the built-in "
+                     "model's; run slipfront calibrate again)";
   return *model;
 }
 

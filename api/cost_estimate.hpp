@@ -5,11 +5,11 @@
 // The model times the work counts of solver/run_work.hpp, per method and thread count, as
 // the method's entry names them (its cost_terms):
 //   FE: wall = setup + node_step * node_steps + row_step * row_steps
-//              + interface_step * interface_steps
-//   BI: wall = setup + lag_step * lag_steps + lower_lag_step * lower_lag_steps
-//              + interface_step * interface_steps
-// (the lower half-space's history sums share the passes of the upper one's: a term of their
-// own).
+//              + interface_step * interface_steps + rate_solve * rate_solves
+//   BI: wall = setup + lag_step * lag_steps + transform_step * transform_steps
+//              + interface_step * interface_steps + rate_solve * rate_solves
+// (lag_steps: the history sums of every solid; transform_steps: steps x nx log2 nx per solid,
+// the FFTs).
 // Its coefficients are fitted to timed runs by least squares on the relative error, each
 // coefficient >= 0.
 #pragma once
@@ -30,7 +30,7 @@ namespace slipfront::api {
 // Seconds per unit of work of one method at one thread count: the set-up [s], then one per
 // count of the method's work it times (its entry's cost_terms, solver/method_entry.hpp) [s].
 struct CostCoefficients {
-  std::array<double, 4> seconds{}; // {setup, then the method's three terms}
+  std::array<double, 5> seconds{}; // {setup, then the method's four terms}
 };
 
 struct CostModel {
@@ -39,6 +39,7 @@ struct CostModel {
   std::string machine;       // where it was calibrated (host name, cores)
   std::string calibrated_at; // ISO 8601
   std::string source;        // "built-in", or the file it was read from
+  bool outdated = false;     // the file lacked terms of today's model (the built-in ones used)
 
   // The model measured on the development machine (docs/performance.md), for a server
   // that was never calibrated.

@@ -38,8 +38,9 @@ struct CalibrateOptions {
 };
 
 // The timed runs: of both methods, one and two solids, damped and not, small and large meshes,
-// from a fraction of a second to several seconds, so that the fit sees each term of the model
-// vary (each three times: about two minutes per thread count on the development machine).
+// slip weakening and rate and state, from a fraction of a second to several seconds, so that
+// the fit sees each term of the model vary (each three times: about two and a half minutes per
+// thread count on the development machine).
 std::vector<nlohmann::json> calibration_jobs() {
   const nlohmann::json run_through = {{"stop_on_arrest", false}};
   const api::Preset& rock_preset = *api::find_preset("rock_patch_nd2");
@@ -67,6 +68,7 @@ std::vector<nlohmann::json> calibration_jobs() {
        {"geometry", {{"nodes_per_meter", 5}}},
        {"time", {{"duration", 0.02}}}},
       {{"preset", "bimaterial_prakash_clifton"}, {"geometry", {{"nodes_per_meter", 2}}}},
+      {{"preset", "rsf_slip_law_inplane"}, {"time", {{"duration", 0.25}}}},
       {{"method", "spectral_bi"}, {"geometry", {{"nodes_per_meter", 10}}}, {"time", run_through}},
       {{"method", "spectral_bi"}, {"geometry", {{"nodes_per_meter", 20}}}, {"time", run_through}},
       {{"method", "spectral_bi"}, {"geometry", {{"nodes_per_meter", 40}}}, {"time", run_through}},
@@ -79,6 +81,13 @@ std::vector<nlohmann::json> calibration_jobs() {
        {"geometry", {{"nodes_per_meter", 5}}},
        {"time", {{"duration", 0.05}}}},
       {{"preset", "scec_tpv3_2d"}, {"method", "spectral_bi"}},
+      {{"preset", "scec_tpv3_2d"},
+       {"method", "spectral_bi"},
+       {"geometry", {{"nodes_per_meter", 0.04}}},
+       {"time", {{"duration", 1}}}},
+      {{"preset", "rsf_slip_law_inplane"},
+       {"method", "spectral_bi"},
+       {"time", {{"duration", 0.5}}}},
       with(rock_bi, {{"time", run_through}}),
   };
 }

@@ -70,9 +70,9 @@ struct MethodEntry {
   double (*estimated_memory_bytes)(const SimulationParams& params);
   // The work of a run to `until` seconds, in the counts the cost model times (run_work.hpp).
   RunWork (*estimated_work)(const SimulationParams& params, double until);
-  // The three counts of that work the cost model times besides the set-up
+  // The four counts of that work the cost model times besides the set-up
   // (api/cost_estimate.hpp): each its name in the model's file and its RunWork member.
-  std::array<CostTerm, 3> cost_terms;
+  std::array<CostTerm, 4> cost_terms;
   // The discretisation in a phrase ("Q4 2x2 Gauss, lumped mass, central differences"), and
   // with the run's options ("...; top boundary: traction"): the metrics' method_description
   // before the friction law.

@@ -10,8 +10,10 @@ struct RunWork {
   double node_steps = 0;      // FE: nodes swept, summed over the steps (x2.7 with mesh damping)
   double row_steps = 0;       // FE: rows swept (of both blocks), summed over the steps
   double interface_steps = 0; // interface nodes x steps (both methods)
-  double lag_steps = 0;       // BI: history lags convolved, summed over the steps and modes
-  double lower_lag_steps = 0; // BI: the same of the lower half-space (0 on the rigid plane)
+  double rate_solves = 0;     // solves of a law of the slip rate (rate and state): nodes x steps
+                              // x (1 + corrector passes); 0 for a law with a stick state
+  double lag_steps = 0;       // BI: history lags convolved, summed over the steps, modes and
+                              // solids
   double transform_steps = 0; // BI: steps x nx log2 nx, per solid
 };
 

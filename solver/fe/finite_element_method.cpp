@@ -1,6 +1,7 @@
 #include "solver/fe/finite_element_method.hpp"
 
 #include "solver/fe/stable_time_step.hpp"
+#include "solver/interface/friction/coefficient_law.hpp"
 #include "solver/interface/ill_posedness.hpp"
 #include "solver/interface/nucleation.hpp"
 #include "solver/mesh_size.hpp"
@@ -109,7 +110,13 @@ RunWork FiniteElementMethod::estimated_work(const SimulationParams& params, doub
   work.dt = params.time.safety_factor * dt;
   work.steps = steps_to_reach(until, work.dt);
   work.interface_steps = work.steps * m.nx;
-  const Interval patch = nucleation_patch(params.nucleation);
+  const CoefficientLaw& law = coefficient_law(params.friction);
+  if (law.rate_dependent()) // a solve at each node in the predictor and in the corrector
+    work.rate_solves = 2.0 * work.interface_steps;
+  // The waves leave the nucleation patch, or the whole interface where the law slides from
+  // the first step (rate and state at its initial slip rate: no far field stays quiet).
+  Interval patch = nucleation_patch(params.nucleation);
+  if (!law.starts_stuck()) patch = {-0.5 * params.geometry.width, 0.5 * params.geometry.width};
   if (!(patch.lo <= patch.hi) || !(work.steps > 0)) return work; // nothing ever moves
   const double source = patch.hi - patch.lo;
   double nodes = 0, rows = 0;

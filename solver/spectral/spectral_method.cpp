@@ -1,5 +1,6 @@
 #include "solver/spectral/spectral_method.hpp"
 
+#include "solver/interface/friction/coefficient_law.hpp"
 #include "solver/interface/friction/regularization_law.hpp"
 #include "solver/interface/ill_posedness.hpp"
 #include "solver/interface/nucleation.hpp"
@@ -70,15 +71,16 @@ RunWork SpectralMethod::estimated_work(const SimulationParams& p, double until) 
   work.dt = time_step(p);
   work.steps = steps_to_reach(until, work.dt);
   work.interface_steps = work.steps * nx;
+  if (coefficient_law(p.friction).rate_dependent()) // a solve in the predictor and each corrector
+    work.rate_solves = work.interface_steps * (1 + p.spectral.corrector_passes);
   const double n = work.steps;
   const long steps = max_steps(p);
   for (const Material* side : solids(p)) {
     // sum over the steps of min(step, L): the history fills, then stays L lags long.
-    double& lag_steps = side == &p.material ? work.lag_steps : work.lower_lag_steps;
     for (int k = 1; k < modes; ++k) {
       const double lags = double(ModeMemory::memory_length(
           k, p.geometry.width, work.dt, side->s_wave_speed(), p.spectral.memory_periods, steps));
-      lag_steps += lags >= n ? n * (n + 1) / 2 : lags * (lags + 1) / 2 + (n - lags) * lags;
+      work.lag_steps += lags >= n ? n * (n + 1) / 2 : lags * (lags + 1) / 2 + (n - lags) * lags;
     }
     work.transform_steps += n * nx * std::log2(double(std::max(nx, 2)));
   }

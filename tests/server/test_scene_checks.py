@@ -107,8 +107,10 @@ class SceneChecks(unittest.TestCase):
             model = os.path.join(tmp, "model.json")
             with open(model, "w") as f:  # every run costs an hour
                 json.dump({"machine": "test", "calibrated_at": "now", "coefficients": {
-                    "fe": {"1": {"setup_s": 3600, "node_step_s": 0, "interface_step_s": 0}},
-                    "spectral_bi": {"1": {"setup_s": 3600, "lag_step_s": 0, "lower_lag_step_s": 0}}}},
+                    "fe": {"1": {"setup_s": 3600, "node_step_s": 0, "row_step_s": 0,
+                                 "interface_step_s": 0, "rate_solve_s": 0}},
+                    "spectral_bi": {"1": {"setup_s": 3600, "lag_step_s": 0, "transform_step_s": 0,
+                                          "interface_step_s": 0, "rate_solve_s": 0}}}},
                     f)
             server = Server(BINARY, args=["--workers", "1", "--max-run-seconds", "600",
                                           "--cost-model", model]).start()
