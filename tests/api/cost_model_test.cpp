@@ -1,6 +1,7 @@
 // The cost model of the estimates (api/cost_estimate.hpp): the work each method counts before
 // a run (a law of the slip rate adds its solves, predictor and corrector, and, by FE, makes the
-// whole interface a source), the fit recovering known coefficients, and a model file of an older slipfront.
+// whole interface a source), the fit recovering known coefficients, and a model file of an older
+// slipfront.
 #include "api/cost_estimate.hpp"
 #include "api/job_spec.hpp"
 #include "solver/mesh_size.hpp"
