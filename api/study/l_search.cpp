@@ -121,8 +121,10 @@ SearchVerdict search_verdict(const LSearch& search, const std::vector<double>& l
     v.coulomb = {{"status", coulomb.status}, {"steps", against}};
   }
   if (!settled) {
-    v.reason = "refining the meshes of L = " + number_text(ladder[active - 1]) +
-               (search.coulomb.value_or(false) && !coulomb.run ? " (and of plain Coulomb)" : "");
+    v.reason =
+        "refining the meshes of L = " + number_text(ladder[active - 1]) +
+        (search.coulomb.value_or(false) && !coulomb.run ? " (and of " + search.companion + ")"
+                                                        : std::string());
     return v;
   }
   const std::size_t confirm = static_cast<std::size_t>(search.confirm);
@@ -143,9 +145,10 @@ SearchVerdict search_verdict(const LSearch& search, const std::vector<double>& l
   if (meets < refs.size()) {
     v.state = SearchVerdict::State::meets_coulomb;
     v.L_c = refs[meets].L;
-    v.reason = "L = " + number_text(v.L_c) + " meets plain Coulomb friction (" +
-               compare(*refs[meets].run, *coulomb.run, tol).reason + "; Coulomb " + coulomb.status +
-               "): below L_c the rupture propagates as under Coulomb, so " +
+    v.reason = "L = " + number_text(v.L_c) + " meets " + search.companion + " (" +
+               compare(*refs[meets].run, *coulomb.run, tol).reason + "; " + search.companion +
+               ": " + coulomb.status + "): below L_c the rupture propagates as with " +
+               search.companion + ", so " +
                (meets > 0 ? "L_c = " + number_text(v.L_c) + ", in [" + number_text(v.L_c) + ", " +
                                 number_text(refs[meets - 1].L) + ")"
                           : "L_c is at least " + number_text(v.L_c) +

@@ -22,6 +22,9 @@ struct LSearch {
   // Whether plain Coulomb runs of the scene are refined beside the L and compared with them;
   // the service decides when the request does not (where Coulomb is well-posed).
   std::optional<bool> coulomb;
+  // What those runs are called in the verdict's text: "plain Coulomb" (the paper's law), or
+  // "<law> without regularisation" (the server sets it from the base's law).
+  std::string companion = "plain Coulomb";
 };
 
 // The plain-Coulomb answer of the search's scene: its mesh-converged reference run, if any.

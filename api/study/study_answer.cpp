@@ -99,7 +99,7 @@ Answer rule_answer(const json& critical, std::size_t runs) {
 }
 
 // An L search (docs/studies-api.md "L search").
-Answer search_answer(const json& search, std::size_t runs) {
+Answer search_answer(const json& search, std::size_t runs, const std::string& companion) {
   Answer a;
   const std::string state = search.value("state", std::string());
   const double L_c = number_at(search, "L_c");
@@ -117,9 +117,11 @@ Answer search_answer(const json& search, std::size_t runs) {
     a.state = "found";
     a.verdict = "L_c = " + text(L_c) + " m" +
                 (std::isnan(next) ? "" : ", in [" + text(L_c) + ", " + text(next) + ") m");
-    a.meaning = state == "found" ? std::string(found_meaning)
-                                 : "from L_c down the rupture is that of plain Coulomb friction "
-                                   "(paper §5: below L_c the event is Coulomb's)";
+    a.meaning = state == "found"
+                    ? std::string(found_meaning)
+                    : "from L_c down the rupture is that of " + companion +
+                          " (paper §5: below L_c the event is that of the law without its "
+                          "regularisation)";
   } else if (state == "all_agree" && !std::isnan(L_c)) {
     a.state = "at_least";
     a.verdict = "L_c ≥ " + text(L_c) + " m";
@@ -168,7 +170,8 @@ json study_answer(const json& study, bool paper_scene) {
   if (study.contains("accuracy") && study["accuracy"].is_object())
     a = accuracy_answer(study["accuracy"], study.value("request", json::object()));
   else if (study.contains("search") && study["search"].is_object())
-    a = search_answer(study["search"], runs);
+    a = search_answer(study["search"], runs,
+                      study.value("companion_label", std::string("plain Coulomb")));
   else
     a = rule_answer(critical.is_object() ? critical : json::object(), runs);
   const json progress = study.value("progress", json::object());

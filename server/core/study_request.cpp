@@ -35,12 +35,23 @@ std::optional<StudyKind> parse_study_kind(const std::string& text) {
   return std::nullopt;
 }
 
-nlohmann::json coulomb_overrides(const nlohmann::json& base) {
-  // The base's friction as a job reads it (a preset expanded, the defaults filled in); a base
-  // that does not validate gets the paper's patch (its errors are the study's to report).
+namespace {
+
+// The base's friction as a job reads it (a preset expanded, the defaults filled in); a base
+// that does not validate gets the paper's (its errors are the study's to report).
+Friction base_friction(const nlohmann::json& base) {
   const api::ParseResult parsed = api::parse_job(base);
-  const Friction friction = parsed.spec ? parsed.spec->params.friction : Friction();
-  return {{"friction", api::unregularized_patch(friction)}};
+  return parsed.spec ? parsed.spec->params.friction : Friction();
+}
+
+} // namespace
+
+nlohmann::json coulomb_overrides(const nlohmann::json& base) {
+  return {{"friction", api::unregularized_patch(base_friction(base))}};
+}
+
+std::string companion_label(const nlohmann::json& base) {
+  return api::unregularized_label(base_friction(base));
 }
 
 const std::vector<double>& default_ladder() {
@@ -357,6 +368,7 @@ StudyRequestParse parse_study_request(const json& body) {
   } else if (convergence) {
     r.kind = StudyKind::convergence;
     parse_convergence(body["convergence"], r, errors);
+    if (r.search) r.search->companion = companion_label(r.base);
   } else if (body["preset"] != "failure_regimes") {
     errors.push_back({"/preset", "unknown preset (known: \"failure_regimes\")"});
   } else {

@@ -65,6 +65,9 @@ nlohmann::json run_document(const StudyRequest& request, const std::string& stud
 // regularization -> "none").
 constexpr const char* coulomb_regime = "coulomb";
 nlohmann::json coulomb_overrides(const nlohmann::json& base);
+// What those runs are called for the reader: "plain Coulomb", or "<law> without
+// regularisation" (api::unregularized_label of the base's friction).
+std::string companion_label(const nlohmann::json& base);
 
 // The default convergence ladder.
 const std::vector<double>& default_ladder();

@@ -5,6 +5,7 @@
 #include "api/job_spec.hpp"
 #include "api/json_number.hpp"
 #include "api/study/study_answer.hpp"
+#include "server/core/study_request.hpp"
 #include "server/http/api_prefix.hpp"
 
 #include <map>
@@ -27,12 +28,6 @@ bool paper_scene(const std::string& method, const std::string& scene_hash) {
   }();
   const auto found = paper.find(method);
   return found != paper.end() && found->second == scene_hash;
-}
-
-// The name of an L search's unregularised companion for the study's base (its law's).
-std::string companion_label(const json& base) {
-  const api::ParseResult parsed = api::parse_job(base);
-  return api::unregularized_label(parsed.spec ? parsed.spec->params.friction : Friction());
 }
 
 } // namespace

@@ -128,6 +128,14 @@ TEST(LSearch, StopsWhereTheRegularisedRunsMeetPlainCoulomb) {
   EXPECT_EQ(v.state, SearchVerdict::State::meets_coulomb);
   EXPECT_DOUBLE_EQ(v.L_c, 2e-5);
   EXPECT_NE(v.reason.find("in [2e-05, 4e-05)"), std::string::npos) << v.reason;
+  EXPECT_NE(v.reason.find("meets plain Coulomb ("), std::string::npos) << v.reason;
+  // Another law's unregularised companion is named as itself, never as Coulomb.
+  LSearch rate_state = with_coulomb;
+  rate_state.companion = "rate and state without regularisation";
+  const auto named = search_verdict(rate_state, ladder, 2, true, runs, reference);
+  EXPECT_NE(named.reason.find("meets rate and state without regularisation ("), std::string::npos)
+      << named.reason;
+  EXPECT_EQ(named.reason.find("Coulomb"), std::string::npos) << named.reason;
   ASSERT_EQ(v.coulomb["steps"].size(), 2u);
   EXPECT_FALSE(v.coulomb["steps"][0]["agree"].get<bool>());
   EXPECT_TRUE(v.coulomb["steps"][1]["agree"].get<bool>());
