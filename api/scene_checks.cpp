@@ -129,18 +129,11 @@ void process_zone_resolution(const JobSpec& job, std::vector<FieldWarning>& out)
                      text(std::ceil(min_process_zone_elements / zone * 100) / 100)});
 }
 
-// A law whose coefficient grows with the slip rate everywhere (rate-and-state with a >= b and
-// no profile that changes a or b) cannot host a rupture that grows on its own.
-void velocity_strengthening(const JobSpec& job, std::vector<FieldWarning>& out) {
-  const SimulationParams& p = job.params;
-  if (p.friction.law != "rate_and_state" || p.friction.a < p.friction.b) return;
-  for (const Profile& profile : p.profiles)
-    for (const auto& [member, value] : profile.friction)
-      if (member == &FrictionValues::a || member == &FrictionValues::b) return;
-  out.push_back({"/friction/a", "a = " + text(p.friction.a) +
-                                    " is at least b = " + text(p.friction.b) +
-                                    " on the whole interface: velocity strengthening, where a "
-                                    "rupture does not grow on its own (it needs a - b < 0)"});
+// What the job's friction law warns of (its scene_warnings: rate and state's velocity
+// strengthening, for one), beside the law's field.
+void law_warnings(const JobSpec& job, std::vector<FieldWarning>& out) {
+  for (const LawWarning& w : coefficient_law(job.params.friction).scene_warnings(job.params))
+    out.push_back({"/friction/" + w.field, w.message});
 }
 
 void arrest_window_room(const JobSpec& job, std::vector<FieldWarning>& out) {
@@ -213,7 +206,7 @@ std::vector<FieldWarning> scene_warnings(const JobSpec& job) {
   paper_defaults_at_another_scale(job, warnings);
   stresses_against_modulus(job, warnings);
   process_zone_resolution(job, warnings);
-  velocity_strengthening(job, warnings);
+  law_warnings(job, warnings);
   arrest_window_room(job, warnings);
   probes_outside_patch(job, warnings);
   duration_against_nucleation(job, warnings);

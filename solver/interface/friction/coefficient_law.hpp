@@ -32,6 +32,13 @@ struct Weakening {
   const char* formula = "";
 };
 
+// A warning of a law about a valid scene (api/scene_checks.cpp shows it beside the field):
+// the friction field it names ("a" for /friction/a) and why.
+struct LawWarning {
+  std::string field;
+  std::string message;
+};
+
 // The FrictionValues a law reads (a profile may set only these).
 using FrictionParameters = std::vector<double FrictionValues::*>;
 
@@ -87,6 +94,9 @@ public:
   // How mu weakens with slip (the scale of its process zone, D_c mu* / (drop sigma): the
   // resolution check of api/scene_checks.cpp); none for a constant coefficient.
   virtual std::optional<Weakening> weakening(const FrictionValues&) const { return std::nullopt; }
+  // What the law warns of in a valid scene (rate and state: velocity strengthening on the
+  // whole interface); none by default.
+  virtual std::vector<LawWarning> scene_warnings(const SimulationParams&) const { return {}; }
 };
 
 // Every coefficient law a job can name, in the job schema's order (friction_laws.cpp), with

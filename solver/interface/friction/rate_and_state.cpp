@@ -10,6 +10,7 @@
 #include "solver/interface/friction/coefficient_law.hpp"
 #include "solver/interface/friction/rate_state_math.hpp"
 #include "solver/interface/ill_posedness.hpp"
+#include "solver/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -87,6 +88,19 @@ public:
   std::optional<Weakening> weakening(const FrictionValues& v) const override {
     return Weakening{v.b, v.D_c, 1.0,
                      "the rate-and-state process zone, mu* D_c / (b |normal_stress|)"};
+  }
+
+  // A coefficient that grows with the slip rate everywhere (a >= b, and no profile that changes
+  // a or b) cannot host a rupture that grows on its own.
+  std::vector<LawWarning> scene_warnings(const SimulationParams& p) const override {
+    if (p.friction.a < p.friction.b) return {};
+    for (const Profile& profile : p.profiles)
+      for (const auto& [member, value] : profile.friction)
+        if (member == &FrictionValues::a || member == &FrictionValues::b) return {};
+    return {{"a", "a = " + number_text(p.friction.a, 4) +
+                      " is at least b = " + number_text(p.friction.b, 4) +
+                      " on the whole interface: velocity strengthening, where a rupture does "
+                      "not grow on its own (it needs a - b < 0)"}};
   }
 
   // The regularisation filters sigma itself: mu_0 = 1, c* = sigma*.
